@@ -38,7 +38,7 @@ pub const BUILTIN_WALLS: [BuiltinWall; 4] = [
     },
     BuiltinWall {
         name: "mbzirc",
-        description: "MBZIRC pattern: 2 layers of 3 segments × 7 bricks (42 bricks)",
+        description: "MBZIRC pattern: 2 layers of 3 segments × 7 bricks",
         text: "R G B G R R G  G R B R G R R  R B G G R R G\nO B G R R G B  B O G R G R R  G G B O R R B\n",
         mbzirc: true,
     },

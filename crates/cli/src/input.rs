@@ -1,0 +1,106 @@
+//! Reading designs and models from files (the only place the CLI touches input files).
+
+use crate::fail::{input_error, CliResult};
+use clap::ValueEnum;
+use mason_order::CostModel;
+use mason_wall::{
+    builtin, looks_like_cmcp, parse_cmcp, parse_layer_text, parse_mbzirc, read_png, CmcpSizes,
+    Wall, BUILTIN_WALLS,
+};
+use std::path::Path;
+
+/// How to read a design file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// By extension and content: `.png` image, CMCP if lines have 6 numbers, else layer text.
+    Auto,
+    /// Layer text.
+    Text,
+    /// MBZIRC 21-token pattern.
+    Mbzirc,
+    /// PNG image.
+    Png,
+    /// CMCP `id type x y z yaw_rotated`.
+    Cmcp,
+}
+
+/// CMCP size table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Sizes {
+    /// CMCP's planner.yaml (green 0.60 m, blue 1.20 m).
+    Yaml,
+    /// Green and blue swapped, as the `wall_*_multi` files were drawn.
+    Swapped,
+}
+
+/// Loads `design`: a path, or `builtin:NAME`.
+pub fn load_wall(design: &str, format: Format, sizes: Sizes) -> CliResult<Wall> {
+    if let Some(name) = design.strip_prefix("builtin:") {
+        return builtin(name).map(|b| b.wall()).ok_or_else(|| {
+            let names: Vec<&str> = BUILTIN_WALLS.iter().map(|b| b.name).collect();
+            input_error(format!(
+                "{design}: no such built-in wall (built-in walls: {})",
+                names.join(", ")
+            ))
+        });
+    }
+    let path = Path::new(design);
+    let bytes = std::fs::read(path).map_err(|e| input_error(format!("{design}: {e}")))?;
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = match format {
+        Format::Auto if ext.as_deref() == Some("png") => Format::Png,
+        Format::Auto => {
+            let text = String::from_utf8_lossy(&bytes);
+            if looks_like_cmcp(&text) {
+                Format::Cmcp
+            } else {
+                Format::Text
+            }
+        }
+        f => f,
+    };
+    let text = || {
+        String::from_utf8(bytes.clone()).map_err(|_| {
+            input_error(format!(
+                "{design}: not UTF-8 text (is it an image? use --format png)"
+            ))
+        })
+    };
+    let cmcp_sizes = match sizes {
+        Sizes::Yaml => CmcpSizes::Yaml,
+        Sizes::Swapped => CmcpSizes::Swapped,
+    };
+    let wall = match format {
+        Format::Png => read_png(&bytes, design),
+        Format::Text | Format::Auto => parse_layer_text(&text()?, design),
+        Format::Mbzirc => parse_mbzirc(&text()?, design),
+        Format::Cmcp => parse_cmcp(&text()?, design, cmcp_sizes),
+    };
+    wall.map_err(|e| input_error(e.to_string()))
+}
+
+/// Loads a cost model from TOML, or the defaults.
+pub fn load_model(path: Option<&Path>) -> CliResult<CostModel> {
+    let Some(path) = path else {
+        return Ok(CostModel::default());
+    };
+    let shown = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| input_error(format!("{shown}: {e}")))?;
+    let model: CostModel = toml::from_str(&text).map_err(|e| {
+        let line = e
+            .span()
+            .map(|s| text[..s.start.min(text.len())].lines().count().max(1));
+        let msg = e.message().trim().to_string();
+        match line {
+            Some(l) => input_error(format!("{shown}:{l}: {msg}")),
+            None => input_error(format!("{shown}: {msg}")),
+        }
+    })?;
+    model
+        .validate()
+        .map_err(|e| input_error(format!("{shown}: {e}")))?;
+    Ok(model)
+}

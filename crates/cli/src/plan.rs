@@ -1,0 +1,154 @@
+//! `mason plan`: solve, validate, print a table or JSON.
+
+use crate::fail::{input_error, no_solution, CliResult};
+use mason_order::{validate_claim, Budget, BuildProblem, Evaluation, Outcome, PlannerSpec, Status};
+use mason_wall::Wall;
+use serde_json::{json, Value};
+use std::time::Duration;
+
+/// A planner's outcome after validation.
+pub struct Checked {
+    /// The raw outcome.
+    pub outcome: Outcome,
+    /// The validator's evaluation of the order, when there is one.
+    pub evaluation: Option<Evaluation>,
+}
+
+/// Runs a planner and validates its order (a failed validation is a bug: reported, exit 2).
+pub fn solve(
+    problem: &BuildProblem<'_>,
+    spec: PlannerSpec,
+    limit: Option<f64>,
+) -> CliResult<Checked> {
+    let budget = match limit {
+        Some(s) => Budget::time(Duration::from_secs_f64(s)),
+        None => Budget::unlimited(),
+    };
+    let outcome = spec.plan(problem, &budget);
+    let evaluation = match (&outcome.order, outcome.total_cost) {
+        (Some(order), Some(cost)) => Some(
+            validate_claim(problem.wall(), problem.model(), order, cost).map_err(|e| {
+                input_error(format!(
+                    "internal error: {spec} produced an invalid plan: {e}"
+                ))
+            })?,
+        ),
+        _ => None,
+    };
+    Ok(Checked {
+        outcome,
+        evaluation,
+    })
+}
+
+/// Parses `--time-limit`.
+pub fn time_limit(s: Option<f64>) -> CliResult<Option<f64>> {
+    match s {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(input_error(format!(
+            "--time-limit {v}: expected a positive number of seconds"
+        ))),
+        other => Ok(other),
+    }
+}
+
+/// The exit status for an outcome.
+pub fn exit_for(checked: &Checked) -> CliResult<()> {
+    match (checked.outcome.status, &checked.evaluation) {
+        (Status::Infeasible, _) => Err(no_solution("no valid build order exists")),
+        (_, None) => Err(no_solution(format!(
+            "{}: no complete build order within the budget",
+            checked.outcome.planner
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// The plan as the JSON of DESIGN §7, with the wall and the model so it can be checked alone.
+pub fn plan_json(problem: &BuildProblem<'_>, checked: &Checked) -> Value {
+    let wall = problem.wall();
+    let o = &checked.outcome;
+    let steps: Vec<Value> = checked
+        .evaluation
+        .iter()
+        .flat_map(|e| &e.steps)
+        .map(|s| {
+            json!({
+                "id": wall.brick(s.brick).label,
+                "placed_neighbours": s.placed_neighbours,
+                "cost": s.cost,
+            })
+        })
+        .collect();
+    json!({
+        "planner": o.planner,
+        "status": o.status,
+        "order": o.order.as_ref().map(|ord| ord.iter().map(|&b| wall.brick(b).label).collect::<Vec<_>>()),
+        "total_cost": checked.evaluation.as_ref().map(|e| e.total_cost),
+        "steps": steps,
+        "stats": {
+            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "nodes": o.stats.nodes,
+            "leaves": o.stats.leaves,
+        },
+        "model": problem.model(),
+        "wall": wall_json(wall),
+    })
+}
+
+/// The wall's bricks with their supports and neighbours, by label.
+pub fn wall_json(wall: &Wall) -> Value {
+    let labels =
+        |ids: &[mason_wall::BrickId]| ids.iter().map(|&i| wall.brick(i).label).collect::<Vec<_>>();
+    let bricks: Vec<Value> = wall
+        .ids()
+        .map(|id| {
+            let b = wall.brick(id);
+            json!({
+                "id": b.label,
+                "type": b.kind,
+                "level": b.level,
+                "segment": b.segment,
+                "footprint": [b.footprint.x0, b.footprint.x1, b.footprint.y0, b.footprint.y1],
+                "supports": labels(wall.supports(id)),
+                "neighbours": labels(wall.neighbours(id)),
+            })
+        })
+        .collect();
+    json!({ "name": wall.name(), "levels": wall.levels(), "bricks": bricks, "warnings": wall.warnings() })
+}
+
+/// The plan as a table.
+pub fn plan_table(problem: &BuildProblem<'_>, checked: &Checked) -> String {
+    let wall = problem.wall();
+    let o = &checked.outcome;
+    let mut out = format!(
+        "wall {} ({} bricks, {} levels) · planner {} · status {} · {:.3} ms · {} nodes\n",
+        wall.name(),
+        wall.len(),
+        wall.levels(),
+        o.planner,
+        o.status,
+        o.stats.elapsed.as_secs_f64() * 1e3,
+        o.stats.nodes
+    );
+    if let Some(e) = &checked.evaluation {
+        out.push_str(" step   brick  type    level  placed nb   cost (s)\n");
+        for (i, s) in e.steps.iter().enumerate() {
+            let b = wall.brick(s.brick);
+            out.push_str(&format!(
+                "{:>5}  {:>6}  {:<6}  {:>5}  {:>9}  {:>9.2}\n",
+                i + 1,
+                b.label,
+                b.kind.name(),
+                b.level,
+                s.placed_neighbours,
+                s.cost
+            ));
+        }
+        out.push_str(&format!(
+            "total cost {:.2} s (checked by order::validate)\n",
+            e.total_cost
+        ));
+    }
+    out
+}
