@@ -46,7 +46,7 @@ enum Command {
         #[arg(long, default_value = "mason-out")]
         out: PathBuf,
         /// Seconds brute force and improved greedy may search per wall
-        #[arg(long, default_value_t = 2.0)]
+        #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
         time_limit: f64,
     },
     /// Wall designs
@@ -65,7 +65,7 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
         /// Search budget in seconds (brute, improved); the best order so far is reported
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         time_limit: Option<f64>,
         /// Print JSON instead of a table
         #[arg(long)]
@@ -79,7 +79,7 @@ enum Command {
         /// thesis (Tables 3.3–3.5 setting) or planning (whole-process planning time)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
-        #[arg(long, default_value_t = 60.0)]
+        #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         time_limit: f64,
         /// Repetitions per wall (planning)
         #[arg(long, default_value_t = 20)]

@@ -182,7 +182,7 @@ pub fn parse_mbzirc(src: &str, name: &str) -> Result<Wall, WallError> {
             return Err(at(WallErrorKind::MbzircToken { token: "|".into() }));
         }
         let tokens = layer.segments.pop().unwrap_or_default();
-        if tokens.iter().any(|t| *t == Token::Empty) {
+        if tokens.contains(&Token::Empty) {
             return Err(at(WallErrorKind::MbzircToken { token: ".".into() }));
         }
         if tokens.len() != MBZIRC_TOKENS {

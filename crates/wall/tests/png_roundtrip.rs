@@ -11,14 +11,15 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-/// A canonical description: per brick (level, type, x in units), and the relations by label.
-fn canonical(
-    w: &Wall,
-) -> (
+/// Per brick (level, type, x in units, label), then supports and neighbours by label.
+type Canonical = (
     Vec<(u32, BrickType, i64, u32)>,
     Vec<Vec<u32>>,
     Vec<Vec<u32>>,
-) {
+);
+
+/// A canonical description: per brick (level, type, x in units), and the relations by label.
+fn canonical(w: &Wall) -> Canonical {
     let x_min = w
         .bricks()
         .iter()
