@@ -355,14 +355,6 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize)) -> Vec<(usize, usize,
     steps.sort_by(f32::total_cmp);
     let noise = steps.get(steps.len() / 2).copied().unwrap_or(0.0);
     let dips = dip_mask(&profile, floor, 4.0 * noise, plateau);
-    if std::env::var_os("MASON_DEBUG_PNG").is_some() {
-        let v: Vec<String> = profile.iter().map(|p| format!("{:.2}", p)).collect();
-        let d: Vec<usize> = (0..dips.len()).filter(|&i| dips[i]).collect();
-        eprintln!(
-            "band {y0}..{y1} plateau {plateau:.2} noise {noise:.3} dips {d:?}: {}",
-            v.join(" ")
-        );
-    }
     let on: Vec<bool> = profile
         .iter()
         .zip(&dips)
@@ -513,12 +505,6 @@ fn read_layers(
     // The wall's height from edge to edge, with the final border estimate.
     let extent = layers.extent - layers.border.unwrap_or(0.0) + border;
     let ratio = extent / layers.bands.len() as f64 / unit;
-    if std::env::var_os("MASON_DEBUG_PNG").is_some() {
-        eprintln!(
-            "extent {extent:.2} border {border:.2} unit {unit:.2} ratio {ratio:.2} bands {:?}",
-            layers.bands
-        );
-    }
     if !(0.45..=0.9).contains(&ratio) {
         return Ok(Err((extent / (unit * 2.0 / 3.0)).round() as usize));
     }
