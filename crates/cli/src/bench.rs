@@ -1,6 +1,6 @@
 //! `mason bench`: the thesis tables and the planning-speed benchmark.
 
-use crate::demo::{format_ms, row, COMPARED};
+use crate::demo::{format_ms, row, search_limit, COMPARED};
 use crate::fail::{input_error, write_file, CliResult};
 use crate::plan::solve;
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
@@ -37,12 +37,10 @@ pub fn thesis(brute_limit: f64) -> CliResult<String> {
         ));
         let mut brute_ms = None;
         for spec in COMPARED {
-            let limit =
-                (spec != PlannerSpec::Exact && spec != PlannerSpec::Greedy).then_some(brute_limit);
             let c = if spec == PlannerSpec::Exact {
-                solve(&problem, spec, None)?
+                exact.clone()
             } else {
-                solve(&problem, spec, limit)?
+                solve(&problem, spec, search_limit(spec, brute_limit))?
             };
             let ms = c.outcome.stats.elapsed.as_secs_f64() * 1e3;
             if spec == PlannerSpec::Brute {

@@ -15,6 +15,11 @@ pub const COMPARED: [PlannerSpec; 5] = [
     PlannerSpec::Exact,
 ];
 
+/// The time limit a compared planner gets: the tree searches are capped, the others not.
+pub fn search_limit(spec: PlannerSpec, limit: f64) -> Option<f64> {
+    matches!(spec, PlannerSpec::Brute | PlannerSpec::Improved { .. }).then_some(limit)
+}
+
 /// One row of a comparison table.
 pub fn row(spec: &str, c: &Checked, optimum: f64, extra: &str) -> String {
     let o = &c.outcome;
@@ -71,9 +76,11 @@ pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
             "gap"
         ));
         for spec in COMPARED {
-            let limit =
-                (spec != PlannerSpec::Exact && spec != PlannerSpec::Greedy).then_some(brute_limit);
-            let c = solve(&problem, spec, limit)?;
+            let c = if spec == PlannerSpec::Exact {
+                exact.clone()
+            } else {
+                solve(&problem, spec, search_limit(spec, brute_limit))?
+            };
             text.push_str(&row(&spec.to_string(), &c, optimum, ""));
             plans.push(plan_json(&problem, &c));
         }

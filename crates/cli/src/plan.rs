@@ -7,6 +7,7 @@ use serde_json::{json, Value};
 use std::time::Duration;
 
 /// A planner's outcome after validation.
+#[derive(Clone)]
 pub struct Checked {
     /// The raw outcome.
     pub outcome: Outcome,

@@ -8,7 +8,6 @@ pub(crate) struct Frontier<'p, 'w> {
     problem: &'p BuildProblem<'w>,
     missing: Vec<u32>,
     placed_neighbours: Vec<u32>,
-    placed: Vec<bool>,
     /// Bricks whose supports are all placed and which are not placed yet.
     available: Vec<BrickId>,
 }
@@ -21,7 +20,6 @@ impl<'p, 'w> Frontier<'p, 'w> {
         Frontier {
             problem,
             placed_neighbours: vec![0; missing.len()],
-            placed: vec![false; missing.len()],
             missing,
             available,
         }
@@ -47,7 +45,6 @@ impl<'p, 'w> Frontier<'p, 'w> {
             .position(|&x| x == b)
             .expect("placed brick must be available");
         self.available.remove(at);
-        self.placed[b.index()] = true;
         for &n in wall.neighbours(b) {
             self.placed_neighbours[n.index()] += 1;
         }
@@ -77,7 +74,6 @@ impl<'p, 'w> Frontier<'p, 'w> {
         for &n in wall.neighbours(b) {
             self.placed_neighbours[n.index()] -= 1;
         }
-        self.placed[b.index()] = false;
         self.available.push(b);
     }
 

@@ -141,18 +141,17 @@ fn brute_reports_timeout_with_its_best_order_when_the_budget_runs_out() {
     assert!(out.total_cost.unwrap() >= exact.total_cost.unwrap() - 1e-9);
 }
 
+fn labels_of(wall: &Wall, order: &[BrickId]) -> Vec<u32> {
+    order.iter().map(|&b| wall.brick(b).label).collect()
+}
+
 #[test]
 fn greedy_breaks_ties_by_smallest_label() {
     // Three identical reds: every first choice costs the same; 101 goes first.
     let wall = parse_layer_text("R R R", "t").unwrap();
     let problem = BuildProblem::new(&wall, CostModel::default()).unwrap();
     let out = PlannerSpec::Greedy.plan(&problem, &Budget::unlimited());
-    let labels: Vec<u32> = out
-        .order
-        .unwrap()
-        .iter()
-        .map(|&b| wall.brick(b).label)
-        .collect();
+    let labels = labels_of(&wall, &out.order.unwrap());
     // 101 (k=0), then 103 (k=0 is cheaper than 102 with k=1), then 102 (k=2).
     assert_eq!(labels, vec![101, 103, 102]);
 }

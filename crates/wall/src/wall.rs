@@ -1,6 +1,6 @@
 //! A wall: its bricks, the precedence DAG (supports) and the neighbour relation.
 
-use crate::brick::{Brick, BrickId, Origin, NEIGHBOUR_GAP, OVERLAP_EPS};
+use crate::brick::{Brick, BrickId, Origin, NEIGHBOUR_GAP};
 use crate::error::{Location, WallError, WallErrorKind};
 use serde::Serialize;
 
@@ -224,10 +224,5 @@ impl Wall {
             .iter()
             .position(|b| b.label == label)
             .map(|i| BrickId(i as u32))
-    }
-
-    /// Overlap tolerance used for supports (m), for documentation and tests.
-    pub fn overlap_tolerance() -> f64 {
-        OVERLAP_EPS
     }
 }
