@@ -1,0 +1,277 @@
+//! `crew::validate`: checks a multi-robot plan knowing nothing of the solvers (DESIGN §6).
+//!
+//! Every path starts on its robot's start and ends on its goal; every step is a wait or a legal
+//! move on free cells; and no two robots ever share a cell, swap along an edge, or cross
+//! diagonals in one 2×2 square, counting the time robots rest on their goals afterwards.
+
+use crate::grid::{Cell, Connectivity, Grid};
+use rustc_hash::FxHashMap;
+use thiserror::Error;
+
+/// What is wrong with a plan. Robots are 0-based; steps count from 0.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+pub enum PlanError {
+    /// Not one path per robot.
+    #[error("{paths} paths for {robots} robots")]
+    PathCount {
+        /// Paths given.
+        paths: usize,
+        /// Robots.
+        robots: usize,
+    },
+    /// An empty path.
+    #[error("robot {robot} has an empty path")]
+    EmptyPath {
+        /// The robot.
+        robot: usize,
+    },
+    /// A path that does not begin on the robot's start.
+    #[error("robot {robot} starts at {found:?}, not at its start {expected:?}")]
+    WrongStart {
+        /// The robot.
+        robot: usize,
+        /// (x, y) found.
+        found: (u32, u32),
+        /// (x, y) expected.
+        expected: (u32, u32),
+    },
+    /// A path that does not end on the robot's goal.
+    #[error("robot {robot} ends at {found:?}, not at its goal {expected:?}")]
+    WrongGoal {
+        /// The robot.
+        robot: usize,
+        /// (x, y) found.
+        found: (u32, u32),
+        /// (x, y) expected.
+        expected: (u32, u32),
+    },
+    /// A path through an obstacle or off the grid.
+    #[error("robot {robot} is on a blocked cell at step {step}")]
+    Blocked {
+        /// The robot.
+        robot: usize,
+        /// The step.
+        step: usize,
+    },
+    /// A step that is neither a wait nor a legal move.
+    #[error("robot {robot} makes an illegal move {from:?} → {to:?} at step {step}")]
+    IllegalMove {
+        /// The robot.
+        robot: usize,
+        /// The step the move starts at.
+        step: usize,
+        /// (x, y) before.
+        from: (u32, u32),
+        /// (x, y) after.
+        to: (u32, u32),
+    },
+    /// Two robots on one cell.
+    #[error("robots {a} and {b} are both on {cell:?} at step {step}")]
+    Vertex {
+        /// One robot.
+        a: usize,
+        /// The other.
+        b: usize,
+        /// (x, y).
+        cell: (u32, u32),
+        /// The step.
+        step: usize,
+    },
+    /// Two robots exchanging cells.
+    #[error("robots {a} and {b} swap cells between steps {step} and {}", step + 1)]
+    Swap {
+        /// One robot.
+        a: usize,
+        /// The other.
+        b: usize,
+        /// The step the moves start at.
+        step: usize,
+    },
+    /// Two robots crossing diagonals of one 2×2 square.
+    #[error("robots {a} and {b} cross diagonals between steps {step} and {}", step + 1)]
+    Crossing {
+        /// One robot.
+        a: usize,
+        /// The other.
+        b: usize,
+        /// The step the moves start at.
+        step: usize,
+    },
+}
+
+/// Sum of costs and makespan of a valid plan.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanMetrics {
+    /// Σ over robots of the steps until the robot last arrives on its goal.
+    pub sum_of_costs: u64,
+    /// The largest of those.
+    pub makespan: u64,
+}
+
+/// Steps until a path last arrives at its final cell.
+pub fn arrival(path: &[Cell]) -> usize {
+    let goal = path[path.len() - 1];
+    path.iter().rposition(|&c| c != goal).map_or(0, |i| i + 1)
+}
+
+/// Checks `paths` (robot i from `starts[i]` to `goals[i]`) and returns its metrics.
+pub fn validate(
+    grid: &Grid,
+    conn: Connectivity,
+    starts: &[Cell],
+    goals: &[Cell],
+    paths: &[Vec<Cell>],
+) -> Result<PlanMetrics, PlanError> {
+    if paths.len() != starts.len() || goals.len() != starts.len() {
+        return Err(PlanError::PathCount {
+            paths: paths.len(),
+            robots: starts.len(),
+        });
+    }
+    let xy = |c: Cell| grid.xy(c);
+    for (r, path) in paths.iter().enumerate() {
+        let (Some(&first), Some(&last)) = (path.first(), path.last()) else {
+            return Err(PlanError::EmptyPath { robot: r });
+        };
+        if first != starts[r] {
+            return Err(PlanError::WrongStart {
+                robot: r,
+                found: xy(first),
+                expected: xy(starts[r]),
+            });
+        }
+        if last != goals[r] {
+            return Err(PlanError::WrongGoal {
+                robot: r,
+                found: xy(last),
+                expected: xy(goals[r]),
+            });
+        }
+        for (t, &c) in path.iter().enumerate() {
+            if c.0 as usize >= grid.len() || !grid.is_free(c) {
+                return Err(PlanError::Blocked { robot: r, step: t });
+            }
+        }
+        for (t, w) in path.windows(2).enumerate() {
+            if w[0] != w[1] && !grid.is_move(w[0], w[1], conn) {
+                return Err(PlanError::IllegalMove {
+                    robot: r,
+                    step: t,
+                    from: xy(w[0]),
+                    to: xy(w[1]),
+                });
+            }
+        }
+    }
+    let end = paths.iter().map(Vec::len).max().unwrap_or(1);
+    let at = |r: usize, t: usize| paths[r][t.min(paths[r].len() - 1)];
+    let mut cells: FxHashMap<Cell, usize> = FxHashMap::default();
+    let mut moves: FxHashMap<(Cell, Cell), usize> = FxHashMap::default();
+    for t in 0..end {
+        cells.clear();
+        for r in 0..paths.len() {
+            if let Some(b) = cells.insert(at(r, t), r) {
+                return Err(PlanError::Vertex {
+                    a: b,
+                    b: r,
+                    cell: xy(at(r, t)),
+                    step: t,
+                });
+            }
+        }
+        if t + 1 == end {
+            break;
+        }
+        moves.clear();
+        for r in 0..paths.len() {
+            let (a, b) = (at(r, t), at(r, t + 1));
+            if a != b {
+                moves.insert((a, b), r);
+            }
+        }
+        for r in 0..paths.len() {
+            let (a, b) = (at(r, t), at(r, t + 1));
+            if a == b {
+                continue;
+            }
+            if let Some(&o) = moves.get(&(b, a)) {
+                return Err(PlanError::Swap {
+                    a: o.min(r),
+                    b: o.max(r),
+                    step: t,
+                });
+            }
+            let ((ax, ay), (bx, by)) = (xy(a), xy(b));
+            if ax != bx && ay != by {
+                let c = grid.cell(bx as i64, ay as i64).expect("inside");
+                let d = grid.cell(ax as i64, by as i64).expect("inside");
+                if let Some(&o) = moves.get(&(c, d)).or_else(|| moves.get(&(d, c))) {
+                    return Err(PlanError::Crossing {
+                        a: o.min(r),
+                        b: o.max(r),
+                        step: t,
+                    });
+                }
+            }
+        }
+    }
+    let arrivals: Vec<u64> = paths.iter().map(|p| arrival(p) as u64).collect();
+    Ok(PlanMetrics {
+        sum_of_costs: arrivals.iter().sum(),
+        makespan: arrivals.iter().copied().max().unwrap_or(0),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cells(g: &Grid, xy: &[(i64, i64)]) -> Vec<Cell> {
+        xy.iter().map(|&(x, y)| g.cell(x, y).unwrap()).collect()
+    }
+
+    #[test]
+    fn finds_each_conflict() {
+        let g = Grid::open(4, 4);
+        let e8 = Connectivity::Eight;
+        let swap = [cells(&g, &[(0, 0), (1, 0)]), cells(&g, &[(1, 0), (0, 0)])];
+        let s = [swap[0][0], swap[1][0]];
+        let goals = [swap[0][1], swap[1][1]];
+        assert!(matches!(
+            validate(&g, e8, &s, &goals, &swap),
+            Err(PlanError::Swap { .. })
+        ));
+        let cross = [cells(&g, &[(0, 0), (1, 1)]), cells(&g, &[(1, 0), (0, 1)])];
+        let s = [cross[0][0], cross[1][0]];
+        let goals = [cross[0][1], cross[1][1]];
+        assert!(matches!(
+            validate(&g, e8, &s, &goals, &cross),
+            Err(PlanError::Crossing { .. })
+        ));
+        // Robot 1 rests on its goal at (1,0) from step 0; robot 0 passes through it at step 1.
+        let rest = [cells(&g, &[(0, 0), (1, 0), (2, 0)]), cells(&g, &[(1, 0)])];
+        let s = [rest[0][0], rest[1][0]];
+        let goals = [rest[0][2], rest[1][0]];
+        assert!(matches!(
+            validate(&g, e8, &s, &goals, &rest),
+            Err(PlanError::Vertex { step: 1, .. })
+        ));
+        let jump = [cells(&g, &[(0, 0), (2, 0)])];
+        assert!(matches!(
+            validate(&g, e8, &[jump[0][0]], &[jump[0][1]], &jump),
+            Err(PlanError::IllegalMove { .. })
+        ));
+        let ok = [
+            cells(&g, &[(0, 0), (0, 0), (1, 1), (2, 2)]),
+            cells(&g, &[(3, 3), (3, 2)]),
+        ];
+        let m = validate(&g, e8, &[ok[0][0], ok[1][0]], &[ok[0][3], ok[1][1]], &ok).unwrap();
+        assert_eq!(
+            m,
+            PlanMetrics {
+                sum_of_costs: 4,
+                makespan: 3
+            }
+        );
+    }
+}
