@@ -5,6 +5,8 @@
 //! 2 bad input or usage.
 
 mod bench;
+mod crew_bench;
+mod crew_cmd;
 mod demo;
 mod fail;
 mod input;
@@ -74,9 +76,12 @@ enum Command {
         #[arg(long)]
         svg: Option<PathBuf>,
     },
+    /// Assign ground robots to goals and plan collision-free paths (seen from a UAV)
+    Crew(CrewArgs),
     /// Reproduce published comparisons
     Bench {
-        /// thesis (Tables 3.3–3.5 setting) or planning (whole-process planning time)
+        /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time) or paper
+        /// (the crew paper's Table 2 setting and the MovingAI warehouse)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -85,6 +90,52 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         runs: usize,
     },
+}
+
+#[derive(clap::Args)]
+struct CrewArgs {
+    /// MovingAI .map file or occupancy PNG (dark pixels are obstacles); omit with --image
+    map: Option<String>,
+    /// MovingAI .scen file with the robots' starts and goals
+    #[arg(long)]
+    scen: Option<PathBuf>,
+    /// Take the first N agents of the scenario (default: all)
+    #[arg(long)]
+    agents: Option<usize>,
+    /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
+    #[arg(long)]
+    image: Option<PathBuf>,
+    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian
+    /// (default with --image) or path (Hungarian on path lengths)
+    #[arg(long)]
+    assign: Option<String>,
+    /// Single-robot paths: astar or prm
+    #[arg(long, default_value = "astar")]
+    paths: String,
+    /// Collision resolution: paper (priority waits) or st (space-time A*)
+    #[arg(long, default_value = "st")]
+    resolve: String,
+    /// 4 or 8 (diagonals only past two free sides)
+    #[arg(long, default_value = "8")]
+    connectivity: String,
+    /// Seed of the roadmap sampler
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// PRM samples
+    #[arg(long, default_value_t = 2000)]
+    samples: usize,
+    /// PRM neighbours per node
+    #[arg(long, default_value_t = 10)]
+    neighbours: usize,
+    /// Time budget in seconds
+    #[arg(long, allow_negative_numbers = true)]
+    time_limit: Option<f64>,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    json: bool,
+    /// Draw the map, starts, goals and paths as SVG
+    #[arg(long)]
+    svg: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -158,6 +209,7 @@ fn run(cli: Cli) -> CliResult<()> {
             }
             plan::exit_for(&checked)
         }
+        Command::Crew(args) => crew(args),
         Command::Bench {
             suite,
             time_limit,
@@ -167,9 +219,10 @@ fn run(cli: Cli) -> CliResult<()> {
             let text = match suite.as_str() {
                 "thesis" => bench::thesis(limit)?,
                 "planning" => bench::planning(runs)?,
+                "paper" => crew_bench::paper(runs)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis or planning"
+                        "unknown bench suite `{other}`: expected thesis, planning or paper"
                     )))
                 }
             };
@@ -177,6 +230,58 @@ fn run(cli: Cli) -> CliResult<()> {
             Ok(())
         }
     }
+}
+
+fn crew(a: CrewArgs) -> CliResult<()> {
+    let limit = plan::time_limit(a.time_limit)?;
+    let prm = mason_crew::PrmConfig {
+        samples: a.samples,
+        neighbours: a.neighbours,
+        seed: a.seed,
+    };
+    let choices = crew_cmd::choices(
+        a.assign.as_deref(),
+        &a.paths,
+        &a.resolve,
+        &a.connectivity,
+        prm,
+        a.scen.is_some(),
+    )?;
+    let input = crew_cmd::CrewInput {
+        map: a.map.as_deref(),
+        scen: a.scen.as_deref(),
+        agents: a.agents,
+        image: a.image.as_deref(),
+    };
+    let (inst, source) = crew_cmd::load_instance(&input, choices.connectivity)?;
+    let result = crew_cmd::run_solve(&inst, &choices.config, limit)?;
+    if let Some(path) = &a.svg {
+        let title = format!(
+            "{source} — {} robots, {} ({})",
+            inst.robot_count(),
+            result.outcome.status,
+            a.resolve
+        );
+        let paths = result.outcome.paths.clone().unwrap_or_default();
+        let svg = mason_report::crew_svg(
+            &title,
+            &inst.grid,
+            &inst.robots,
+            &result.outcome.goals,
+            &paths,
+        );
+        write_file(path, svg.as_bytes())?;
+    }
+    if a.json {
+        let v = crew_cmd::crew_json(&inst, &source, &choices.config, a.seed, &result);
+        println!("{}", serde_json::to_string_pretty(&v).expect("json"));
+    } else {
+        print!(
+            "{}",
+            crew_cmd::crew_table(&inst, &source, &choices.config, &result)
+        );
+    }
+    crew_cmd::exit_for(&result)
 }
 
 fn main() -> ExitCode {

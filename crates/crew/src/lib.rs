@@ -8,7 +8,7 @@
 //! Modules, one concept each:
 //! - [`grid`]: cells, connectivity and legal moves; [`instance`]: robots and goals on a grid;
 //! - [`movingai`]: `.map` and `.scen` readers; [`image`]: occupancy and bird's-eye PNGs;
-//! - [`distance`]: BFS step distances and Dijkstra path lengths;
+//! - [`distance`]: BFS step distances and Dijkstra path lengths; [`rra`]: distances on demand;
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
 //! - [`reservation`], [`paper`], [`st`]: collision resolution; [`solve`]: the pipeline;
@@ -48,6 +48,7 @@ pub mod paper;
 pub mod perm;
 pub mod prm;
 pub mod reservation;
+pub mod rra;
 pub mod solve;
 pub mod st;
 pub mod validate;

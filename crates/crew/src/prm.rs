@@ -1,8 +1,8 @@
 //! Probabilistic roadmap (Kavraki, Švestka, Latombe, Overmars 1996), as the crew paper uses it.
 //!
-//! `samples` distinct free cells are drawn with a seeded ChaCha8 generator. Each is joined to
-//! its `neighbours` nearest samples, found with an R*-tree, by every straight segment that is
-//! free (see [`crate::line`]). A robot's start and goal join the roadmap the same way, A* on the
+//! `samples` distinct free cells are drawn with a seeded ChaCha8 generator. Each is joined by
+//! free straight segments (see [`crate::line`]) to its `neighbours` nearest reachable samples,
+//! looking at up to 3·`neighbours` nearest candidates found with an R*-tree. A robot's start and goal join the roadmap the same way, A* on the
 //! roadmap (Euclidean edge weights) finds a route, and the route is rasterised to grid moves.
 //! Not complete and not optimal: with too few samples a reachable goal may be missed.
 //! Building costs O(s·k·L) for s samples, k neighbours and segments of length L.
@@ -31,7 +31,7 @@ pub struct PrmConfig {
 impl Default for PrmConfig {
     fn default() -> Self {
         PrmConfig {
-            samples: 2000,
+            samples: 4000,
             neighbours: 10,
             seed: 0,
         }
@@ -39,6 +39,10 @@ impl Default for PrmConfig {
 }
 
 type Point = GeomWithData<[f64; 2], u32>;
+
+/// Each node looks at up to this many times `neighbours` nearest samples to find `neighbours`
+/// free connections; in a warehouse most of the very nearest samples lie behind a shelf.
+const CANDIDATES: usize = 3;
 
 /// A roadmap over the free cells of a grid.
 #[derive(Clone, Debug)]
@@ -81,15 +85,20 @@ impl Roadmap {
                 .map(|(i, &c)| Point::new(point(grid, c), i as u32))
                 .collect(),
         );
-        let mut edges = vec![Vec::new(); nodes.len()];
+        let mut edges: Vec<Vec<(u32, f64)>> = vec![Vec::new(); nodes.len()];
         for (i, &c) in nodes.iter().enumerate() {
+            let mut joined = 0;
             for near in index
                 .nearest_neighbor_iter(&point(grid, c))
                 .filter(|p| p.data as usize != i)
-                .take(config.neighbours)
+                .take(CANDIDATES * config.neighbours)
             {
+                if joined == config.neighbours {
+                    break;
+                }
                 let j = near.data as usize;
-                if j < i && edges[i].iter().any(|&(k, _)| k as usize == j) {
+                if edges[i].iter().any(|&(k, _)| k as usize == j) {
+                    joined += 1;
                     continue;
                 }
                 let (lo, hi) = (i.min(j), i.max(j));
@@ -97,6 +106,7 @@ impl Roadmap {
                     let w = grid.euclidean(c, nodes[j]);
                     edges[i].push((j as u32, w));
                     edges[j].push((i as u32, w));
+                    joined += 1;
                 }
             }
         }
@@ -144,8 +154,9 @@ impl Roadmap {
         let links = |c: Cell| -> Vec<(u32, f64)> {
             self.index
                 .nearest_neighbor_iter(&point(grid, c))
-                .take(self.neighbours)
+                .take(CANDIDATES * self.neighbours)
                 .filter(|p| segment_is_free(grid, conn, c, self.nodes[p.data as usize]))
+                .take(self.neighbours)
                 .map(|p| (p.data, grid.euclidean(c, self.nodes[p.data as usize])))
                 .collect()
         };

@@ -8,7 +8,8 @@ use crate::instance::Instance;
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
-use crate::st::{goal_tables, space_time_plan, StFailure};
+use crate::rra::GoalDistance;
+use crate::st::{space_time_plan, StFailure};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -184,14 +185,29 @@ pub fn solve(
             })
         }
         Resolution::St => {
-            let tables = goal_tables(grid, conn, &goals);
+            let mut to_goal: Vec<GoalDistance> = (0..n)
+                .map(|r| GoalDistance::new(grid, conn, goals[r], inst.robots[r]))
+                .collect();
             let lengths: Vec<u64> = (0..n)
-                .map(|r| tables[r][inst.robots[r].0 as usize])
-                .map(|d| if d == UNREACHABLE { u64::MAX } else { d as u64 })
+                .map(|r| to_goal[r].get(grid, inst.robots[r]))
+                .map(|d| {
+                    if d == UNREACHABLE {
+                        u64::MAX
+                    } else {
+                        u64::from(d)
+                    }
+                })
                 .collect();
             let order = priority_order(&lengths);
-            let (planned, expanded) =
-                space_time_plan(grid, conn, &inst.robots, &goals, &tables, &order, budget);
+            let (planned, expanded) = space_time_plan(
+                grid,
+                conn,
+                &inst.robots,
+                &goals,
+                &mut to_goal,
+                &order,
+                budget,
+            );
             stats.expanded += expanded;
             planned.map_err(|f| match f {
                 StFailure::Unreachable { robot } => (

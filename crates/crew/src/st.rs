@@ -2,15 +2,18 @@
 //! one at a time, longest shortest-path first, each by A* over (cell, step) states that avoids
 //! the reservation table of the robots before it. Waiting is a move. A robot may stop on its
 //! goal only after every reserved visit of that cell, so nobody runs into it later. The
-//! heuristic is the true step distance to the goal (a breadth-first table per robot).
+//! heuristic is the true step distance to the goal, from reverse resumable A*
+//! ([`crate::rra`]); f is raised to the first step the goal is free for good, and ties go to
+//! the deeper state, so a robot that must wait for its goal does not flood the map.
 //!
 //! Each robot's path is optimal given those above it; the whole is incomplete (a priority
 //! order may admit no plan). O(T·V log(T·V)) per robot in the worst case for horizon T.
 
-use crate::distance::{step_distances, UNREACHABLE};
+use crate::distance::UNREACHABLE;
 use crate::grid::{Cell, Connectivity, Grid};
 use crate::outcome::{Budget, Paths};
 use crate::reservation::ReservationTable;
+use crate::rra::GoalDistance;
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -62,14 +65,14 @@ impl PartialOrd for Node {
 }
 
 /// Plans every robot in `order` (highest priority first) from `starts[i]` to `goals[i]`.
-/// `to_goal[i]` is the step-distance table towards robot i's goal. Also returns the number of
+/// `to_goal[i]` gives step distances towards robot i's goal. Also returns the number of
 /// states expanded.
 pub fn space_time_plan(
     grid: &Grid,
     conn: Connectivity,
     starts: &[Cell],
     goals: &[Cell],
-    to_goal: &[Vec<u32>],
+    to_goal: &mut [GoalDistance],
     order: &[usize],
     budget: &Budget,
 ) -> (Result<Paths, StFailure>, u64) {
@@ -83,7 +86,7 @@ pub fn space_time_plan(
             &table,
             starts[r],
             goals[r],
-            &to_goal[r],
+            &mut to_goal[r],
             budget,
             &mut expanded,
         )
@@ -117,11 +120,11 @@ fn plan_one(
     table: &ReservationTable,
     start: Cell,
     goal: Cell,
-    h: &[u32],
+    h: &mut GoalDistance,
     budget: &Budget,
     expanded: &mut u64,
 ) -> Result<Vec<Cell>, StFailure> {
-    let h0 = h[start.0 as usize];
+    let h0 = h.get(grid, start);
     if h0 == UNREACHABLE {
         return Err(StFailure::Unreachable { robot: 0 });
     }
@@ -132,7 +135,7 @@ fn plan_one(
     let mut parent: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     let mut open = BinaryHeap::new();
     open.push(Node {
-        f: h0,
+        f: h0.max(rest_from),
         t: 0,
         cell: start.0,
     });
@@ -162,8 +165,11 @@ fn plan_one(
         }
         let here = Cell(cell);
         let mut push = |next: Cell| {
-            let hn = h[next.0 as usize];
-            if hn == UNREACHABLE || parent.contains_key(&(next.0, t + 1)) {
+            if parent.contains_key(&(next.0, t + 1)) {
+                return;
+            }
+            let hn = h.get(grid, next);
+            if hn == UNREACHABLE {
                 return;
             }
             if table.move_clash(grid, here, next, t).is_some() {
@@ -171,7 +177,7 @@ fn plan_one(
             }
             parent.insert((next.0, t + 1), cell);
             open.push(Node {
-                f: t + 1 + hn,
+                f: (t + 1 + hn).max(rest_from),
                 t: t + 1,
                 cell: next.0,
             });
@@ -180,12 +186,4 @@ fn plan_one(
         grid.for_each_move(here, conn, |n, _| push(n));
     }
     Err(StFailure::NoPath { robot: 0, horizon })
-}
-
-/// Step-distance tables towards each goal.
-pub fn goal_tables(grid: &Grid, conn: Connectivity, goals: &[Cell]) -> Vec<Vec<u32>> {
-    goals
-        .iter()
-        .map(|&g| step_distances(grid, conn, g))
-        .collect()
 }

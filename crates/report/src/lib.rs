@@ -7,6 +7,10 @@
 //! ```
 #![deny(missing_docs)]
 
+mod crew_svg;
+mod svg;
 mod wall_svg;
 
+pub use crew_svg::crew_svg;
+pub use svg::{escape, robot_colour};
 pub use wall_svg::wall_svg;

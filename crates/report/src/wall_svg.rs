@@ -1,6 +1,7 @@
 //! The wall seen from the front, bricks in their colours, labelled with their ids and, when an
 //! order is given, their place in it.
 
+use crate::svg::escape;
 use mason_wall::{brick_rgb, BrickId, Wall, BRICK_HEIGHT};
 use std::fmt::Write;
 
@@ -97,12 +98,6 @@ pub fn wall_svg(wall: &Wall, order: Option<&[BrickId]>) -> String {
     }
     svg.push_str("</svg>\n");
     svg
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 #[cfg(test)]
