@@ -278,3 +278,183 @@ fn cmcp_benchmark_walls_load_when_present() {
     }
     assert!(checked >= 20, "only {checked} CMCP walls found");
 }
+
+#[test]
+fn crew_json_has_the_documented_fields_and_valid_paths() {
+    let o = mason(&[
+        "crew",
+        &data("crew-room.map"),
+        "--scen",
+        &data("crew-room.scen"),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["connectivity"], 8);
+    assert_eq!(v["status"], "feasible");
+    assert_eq!(v["assign"], "given");
+    let agents = v["agents"].as_array().unwrap();
+    assert_eq!(agents.len(), 4);
+    let mut soc = 0;
+    for a in agents {
+        let path = a["path"].as_array().unwrap();
+        assert_eq!(path[0], a["start"]);
+        assert_eq!(path[path.len() - 1], a["goal"]);
+        for w in path.windows(2) {
+            let d = |k: usize| (w[0][k].as_i64().unwrap() - w[1][k].as_i64().unwrap()).abs();
+            assert!(d(0) <= 1 && d(1) <= 1, "one move per step");
+        }
+        let goal = &a["goal"];
+        soc += path.iter().rposition(|c| c != goal).map_or(0, |i| i + 1);
+    }
+    assert_eq!(v["sum_of_costs"].as_u64().unwrap(), soc as u64);
+    assert!(v["sum_of_costs"].as_u64() >= v["lower_bound_sum_of_costs"].as_u64());
+    assert!(v["stats"]["elapsed_ms"].as_f64().is_some());
+}
+
+#[test]
+fn crew_table_and_svg() {
+    let dir = std::env::temp_dir().join(format!("mason-crew-svg-{}", std::process::id()));
+    let svg = dir.join("paths.svg");
+    for (paths, resolve) in [("astar", "paper"), ("prm", "paper"), ("astar", "st")] {
+        let o = mason(&[
+            "crew",
+            &data("crew-room.map"),
+            "--scen",
+            &data("crew-room.scen"),
+            "--agents",
+            "2",
+            "--paths",
+            paths,
+            "--resolve",
+            resolve,
+            "--connectivity",
+            "8",
+            "--svg",
+            svg.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{paths}/{resolve}: {}", stderr(&o));
+        assert!(stdout(&o).contains("plan checked by crew::validate"));
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.starts_with("<svg") && text.matches("<polyline").count() == 2);
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn crew_infeasible_exits_1_with_the_reason() {
+    for resolve in ["paper", "st"] {
+        let o = mason(&[
+            "crew",
+            &data("crew-corridor.map"),
+            "--scen",
+            &data("crew-corridor.scen"),
+            "--resolve",
+            resolve,
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(stdout(&o).contains("status: infeasible"));
+        assert!(stderr(&o).contains("robot"), "{}", stderr(&o));
+    }
+}
+
+#[test]
+fn crew_bad_inputs_exit_2_with_one_line() {
+    let room = data("crew-room.map");
+    let scen = data("crew-room.scen");
+    let bad_map = data("crew-bad.map");
+    let bad_scen = data("crew-bad.scen");
+    assert_input_error(
+        &mason(&["crew", &bad_map, "--scen", &scen]),
+        &["crew-bad.map:6", "unknown terrain `#`"],
+    );
+    assert_input_error(
+        &mason(&["crew", &room, "--scen", &bad_scen]),
+        &["crew-bad.scen:2", "start (3, 1) is on an obstacle"],
+    );
+    assert_input_error(
+        &mason(&["crew", &room, "--scen", &scen, "--agents", "9"]),
+        &["--agents 9 asked"],
+    );
+    assert_input_error(&mason(&["crew", &room]), &["needs a scenario"]);
+    assert_input_error(
+        &mason(&[
+            "crew",
+            &room,
+            "--scen",
+            &scen,
+            "--assign",
+            "perm",
+            "--connectivity",
+            "6",
+        ]),
+        &["--connectivity"],
+    );
+    assert_input_error(
+        &mason(&[
+            "crew",
+            &room,
+            "--scen",
+            &scen,
+            "--paths",
+            "prm",
+            "--resolve",
+            "st",
+        ]),
+        &["use --paths astar"],
+    );
+    assert_input_error(
+        &mason(&["crew", &room, "--scen", &data("missing.scen")]),
+        &["missing.scen"],
+    );
+    assert_input_error(
+        &mason(&["crew", "--image", &data("not-a-png.png")]),
+        &["not-a-png.png", "cannot decode"],
+    );
+}
+
+#[test]
+fn crew_reads_a_birds_eye_image() {
+    use image::{Rgb, RgbImage};
+    let dir = std::env::temp_dir().join(format!("mason-crew-img-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut img = RgbImage::from_pixel(12, 8, Rgb([235, 235, 235]));
+    for y in 0..6 {
+        img.put_pixel(6, y, Rgb([15, 15, 15]));
+    }
+    img.put_pixel(1, 1, Rgb([220, 20, 20]));
+    img.put_pixel(1, 6, Rgb([220, 20, 20]));
+    img.put_pixel(10, 1, Rgb([20, 200, 30]));
+    img.put_pixel(10, 6, Rgb([20, 200, 30]));
+    let ok = dir.join("scene.png");
+    img.save(&ok).unwrap();
+    let o = mason(&[
+        "crew",
+        "--image",
+        ok.to_str().unwrap(),
+        "--assign",
+        "perm",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["agents"].as_array().unwrap().len(), 2);
+    // The perm assignment pairs each robot with the goal on its own side (Euclidean).
+    assert_eq!(v["agents"][0]["goal"], serde_json::json!([10, 1]));
+    img.put_pixel(3, 3, Rgb([220, 20, 20]));
+    let more = dir.join("more-robots.png");
+    img.save(&more).unwrap();
+    assert_input_error(
+        &mason(&["crew", "--image", more.to_str().unwrap()]),
+        &["3 robots (red) but only 2 goals"],
+    );
+    let blank = dir.join("blank.png");
+    RgbImage::from_pixel(5, 5, Rgb([255, 255, 255]))
+        .save(&blank)
+        .unwrap();
+    assert_input_error(
+        &mason(&["crew", "--image", blank.to_str().unwrap()]),
+        &["no robots"],
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
