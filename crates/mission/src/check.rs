@@ -1,0 +1,267 @@
+//! `mission::check_trace`: checks a mission's events knowing nothing of the policies.
+//!
+//! * the wall zone holds at most one UAV, or two carrying the same orange brick;
+//! * a brick is placed once, by a UAV in the zone holding it, after all its supports;
+//! * every grasped brick is placed or reported lost, unless its UAV is still flying when the
+//!   trace ends (a time limit).
+
+use crate::state::{Event, EventKind, Observer, UavState};
+use mason_wall::{BrickId, Wall};
+use thiserror::Error;
+
+/// A broken rule, with the time it was broken.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum TraceError {
+    /// Events out of time order.
+    #[error("t = {t}: events go back in time")]
+    OutOfOrder {
+        /// Time.
+        t: f64,
+    },
+    /// Two UAVs in the zone that are not one orange pair.
+    #[error("t = {t}: UAVs {a} and {b} are in the wall zone together")]
+    ZoneShared {
+        /// Time.
+        t: f64,
+        /// One UAV.
+        a: u32,
+        /// The other.
+        b: u32,
+    },
+    /// A zone event that does not match the UAV's whereabouts.
+    #[error("t = {t}: UAV {uav} {what}")]
+    Zone {
+        /// Time.
+        t: f64,
+        /// UAV.
+        uav: u32,
+        /// What is wrong.
+        what: &'static str,
+    },
+    /// A placement before a support.
+    #[error("t = {t}: brick {brick} placed before its support {support}")]
+    Precedence {
+        /// Time.
+        t: f64,
+        /// The brick (dense id).
+        brick: u32,
+        /// The missing support.
+        support: u32,
+    },
+    /// A brick placed twice, or not held, or outside the zone.
+    #[error("t = {t}: UAV {uav} places brick {brick}: {what}")]
+    Placement {
+        /// Time.
+        t: f64,
+        /// UAV.
+        uav: u32,
+        /// Brick.
+        brick: u32,
+        /// What is wrong.
+        what: &'static str,
+    },
+    /// A grasp while holding, or a brick left unaccounted.
+    #[error("UAV {uav}: brick {brick} {what}")]
+    Unaccounted {
+        /// UAV.
+        uav: u32,
+        /// Brick.
+        brick: u32,
+        /// What is wrong.
+        what: &'static str,
+    },
+}
+
+/// What a valid trace shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraceSummary {
+    /// Bricks placed.
+    pub placed: usize,
+    /// Bricks lost.
+    pub lost: usize,
+    /// Bricks still held by flying UAVs at the end.
+    pub in_flight: usize,
+}
+
+/// Checks events as they arrive; [`TraceChecker::finish`] gives the verdict.
+#[derive(Clone, Debug)]
+pub struct TraceChecker<'w> {
+    wall: &'w Wall,
+    placed: Vec<bool>,
+    holding: Vec<Option<BrickId>>,
+    in_zone: Vec<bool>,
+    last_state: Vec<UavState>,
+    last_t: f64,
+    summary: TraceSummary,
+    error: Option<TraceError>,
+}
+
+impl<'w> TraceChecker<'w> {
+    /// A checker for a team of `uavs` building `wall`.
+    pub fn new(wall: &'w Wall, uavs: usize) -> Self {
+        TraceChecker {
+            wall,
+            placed: vec![false; wall.len()],
+            holding: vec![None; uavs],
+            in_zone: vec![false; uavs],
+            last_state: vec![UavState::Check; uavs],
+            last_t: 0.0,
+            summary: TraceSummary::default(),
+            error: None,
+        }
+    }
+
+    fn check(&mut self, e: &Event) -> Result<(), TraceError> {
+        let t = e.t;
+        let u = e.uav as usize;
+        if t < self.last_t {
+            return Err(TraceError::OutOfOrder { t });
+        }
+        self.last_t = t;
+        match e.kind {
+            EventKind::State { state, .. } => self.last_state[u] = state,
+            EventKind::Grasp { brick } => {
+                if self.holding[u].is_some() {
+                    return Err(TraceError::Unaccounted {
+                        uav: e.uav,
+                        brick: brick.0,
+                        what: "grasped while holding another",
+                    });
+                }
+                self.holding[u] = Some(brick);
+            }
+            EventKind::ZoneEnter => {
+                if self.in_zone[u] {
+                    return Err(TraceError::Zone {
+                        t,
+                        uav: e.uav,
+                        what: "enters the zone twice",
+                    });
+                }
+                let Some(b) = self.holding[u] else {
+                    return Err(TraceError::Zone {
+                        t,
+                        uav: e.uav,
+                        what: "enters the zone without a brick",
+                    });
+                };
+                self.in_zone[u] = true;
+                let inside: Vec<usize> = (0..self.in_zone.len())
+                    .filter(|&i| self.in_zone[i])
+                    .collect();
+                if inside.len() > 1 {
+                    let pair = inside.len() == 2
+                        && self.wall.brick(b).kind.uavs_needed() == 2
+                        && inside.iter().all(|&i| self.holding[i] == Some(b));
+                    if !pair {
+                        let other = inside
+                            .iter()
+                            .copied()
+                            .find(|&i| i != u)
+                            .expect("two inside");
+                        return Err(TraceError::ZoneShared {
+                            t,
+                            a: other as u32,
+                            b: e.uav,
+                        });
+                    }
+                }
+            }
+            EventKind::ZoneLeave => {
+                if !self.in_zone[u] {
+                    return Err(TraceError::Zone {
+                        t,
+                        uav: e.uav,
+                        what: "leaves a zone it is not in",
+                    });
+                }
+                self.in_zone[u] = false;
+            }
+            EventKind::Place { brick } => {
+                let err = |what| TraceError::Placement {
+                    t,
+                    uav: e.uav,
+                    brick: brick.0,
+                    what,
+                };
+                if self.placed[brick.index()] {
+                    return Err(err("placed twice"));
+                }
+                if self.holding[u] != Some(brick) {
+                    return Err(err("the UAV does not hold it"));
+                }
+                if !self.in_zone[u] {
+                    return Err(err("the UAV is not in the zone"));
+                }
+                if let Some(s) = self
+                    .wall
+                    .supports(brick)
+                    .iter()
+                    .find(|s| !self.placed[s.index()])
+                {
+                    return Err(TraceError::Precedence {
+                        t,
+                        brick: brick.0,
+                        support: s.0,
+                    });
+                }
+                self.placed[brick.index()] = true;
+                self.summary.placed += 1;
+                for h in &mut self.holding {
+                    if *h == Some(brick) {
+                        *h = None;
+                    }
+                }
+            }
+            EventKind::Lost { brick } => {
+                self.summary.lost += 1;
+                for h in &mut self.holding {
+                    if *h == Some(brick) {
+                        *h = None;
+                    }
+                }
+            }
+            EventKind::Fail | EventKind::Comm { .. } => {}
+        }
+        Ok(())
+    }
+
+    /// The verdict.
+    pub fn finish(mut self) -> Result<TraceSummary, TraceError> {
+        if let Some(e) = self.error {
+            return Err(e);
+        }
+        for (u, h) in self.holding.iter().enumerate() {
+            if let Some(b) = h {
+                if matches!(self.last_state[u], UavState::Landed | UavState::Down) {
+                    return Err(TraceError::Unaccounted {
+                        uav: u as u32,
+                        brick: b.0,
+                        what: "is neither placed nor lost",
+                    });
+                }
+                self.summary.in_flight += 1;
+            }
+        }
+        Ok(self.summary)
+    }
+}
+
+impl Observer for TraceChecker<'_> {
+    fn event(&mut self, e: &Event) {
+        if self.error.is_none() {
+            if let Err(err) = self.check(e) {
+                self.error = Some(err);
+            }
+        }
+    }
+}
+
+/// Checks a whole trace of a team of `uavs` building `wall`.
+pub fn check_trace(wall: &Wall, uavs: usize, events: &[Event]) -> Result<TraceSummary, TraceError> {
+    let mut c = TraceChecker::new(wall, uavs);
+    for e in events {
+        c.event(e);
+    }
+    c.finish()
+}

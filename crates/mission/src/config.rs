@@ -1,0 +1,268 @@
+//! Mission settings: the UAV model, timings, coordination parameters and faults. Plain structs
+//! with `Default` and validation; TOML-readable.
+
+use crate::arena::Arena;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// The UAV model and per-state timings (seconds, metres per second).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UavModel {
+    /// Maximum speed on straight legs.
+    pub speed: f64,
+    /// Pre-flight check.
+    pub check_s: f64,
+    /// Take-off.
+    pub takeoff_s: f64,
+    /// Landing (and safe landing).
+    pub land_s: f64,
+    /// One detection attempt at a pile.
+    pub detect_s: f64,
+    /// Descending over a detected brick.
+    pub above_s: f64,
+    /// Flying into and out of the wall zone, together.
+    pub zone_transit_s: f64,
+    /// Detect or grasp failures tolerated on one brick before the UAV gives it back.
+    pub retries: u32,
+}
+
+impl Default for UavModel {
+    fn default() -> Self {
+        UavModel {
+            speed: 2.0,
+            check_s: 2.0,
+            takeoff_s: 5.0,
+            land_s: 5.0,
+            detect_s: 2.0,
+            above_s: 1.0,
+            zone_transit_s: 2.0,
+            retries: 3,
+        }
+    }
+}
+
+/// Coordination parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CoordParams {
+    /// Heartbeat (and status re-broadcast) period.
+    pub heartbeat_s: f64,
+    /// `auto`: fall back to windows when a live teammate is unheard for this long.
+    pub heartbeat_timeout_s: f64,
+    /// `windows`: slot length per UAV; `None` means 20 s, raised to the longest expected zone
+    /// time of the wall's bricks if that is longer.
+    pub slot_s: Option<f64>,
+}
+
+impl Default for CoordParams {
+    fn default() -> Self {
+        CoordParams {
+            heartbeat_s: 1.0,
+            heartbeat_timeout_s: 3.0,
+            slot_s: None,
+        }
+    }
+}
+
+/// A time window, seconds.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Window {
+    /// Start.
+    pub from: f64,
+    /// End.
+    pub to: f64,
+}
+
+impl Window {
+    /// Whether `t` lies in the window.
+    pub fn contains(&self, t: f64) -> bool {
+        t >= self.from && t < self.to
+    }
+}
+
+/// A UAV failing at a given time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct UavFailure {
+    /// 0-based UAV.
+    pub uav: usize,
+    /// Time, seconds.
+    pub at: f64,
+}
+
+/// Every fault of DESIGN §5.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Faults {
+    /// Probability that one grasp attempt fails.
+    pub grasp_fail: f64,
+    /// Probability that one detection attempt fails.
+    pub detect_fail: f64,
+    /// UAVs failing at set times.
+    pub uav_fail: Vec<UavFailure>,
+    /// Failures per hour per UAV (exponential).
+    pub uav_hazard: f64,
+    /// No message gets through in these windows.
+    pub blackout: Vec<Window>,
+    /// Probability that one message is lost.
+    pub msg_loss: f64,
+    /// Message latency, seconds.
+    pub latency: f64,
+}
+
+/// A setting out of range.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[error("{field} = {value}: {reason}")]
+pub struct ConfigError {
+    /// The setting.
+    pub field: String,
+    /// Its value.
+    pub value: String,
+    /// Why it is wrong.
+    pub reason: String,
+}
+
+fn err(field: &str, value: impl ToString, reason: &str) -> ConfigError {
+    ConfigError {
+        field: field.into(),
+        value: value.to_string(),
+        reason: reason.into(),
+    }
+}
+
+/// Everything a mission needs besides the wall, the order and the seed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MissionConfig {
+    /// Team size.
+    pub uavs: usize,
+    /// Layout.
+    pub arena: Arena,
+    /// UAV model.
+    pub uav: UavModel,
+    /// Coordination parameters.
+    pub coord: CoordParams,
+    /// Faults.
+    pub faults: Faults,
+    /// Give up after this much mission time (s).
+    pub max_time_s: f64,
+}
+
+impl Default for MissionConfig {
+    fn default() -> Self {
+        MissionConfig {
+            uavs: 3,
+            arena: Arena::default(),
+            uav: UavModel::default(),
+            coord: CoordParams::default(),
+            faults: Faults::default(),
+            max_time_s: 7200.0,
+        }
+    }
+}
+
+impl MissionConfig {
+    /// The defaults with `uavs` UAVs.
+    pub fn with_uavs(uavs: usize) -> Self {
+        MissionConfig {
+            uavs,
+            ..MissionConfig::default()
+        }
+    }
+
+    /// Checks every setting.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if self.uavs == 0 {
+            return Err(err("uavs", self.uavs, "a mission needs at least one UAV"));
+        }
+        if self.uavs > self.arena.uav_starts.len() {
+            return Err(err(
+                "uavs",
+                self.uavs,
+                &format!(
+                    "the arena has only {} start positions",
+                    self.arena.uav_starts.len()
+                ),
+            ));
+        }
+        self.arena.validate().map_err(|r| err("arena", "…", &r))?;
+        let u = &self.uav;
+        if !(u.speed.is_finite() && u.speed > 0.0) {
+            return Err(err("uav.speed", u.speed, "must be positive"));
+        }
+        for (name, v) in [
+            ("uav.check_s", u.check_s),
+            ("uav.takeoff_s", u.takeoff_s),
+            ("uav.land_s", u.land_s),
+            ("uav.detect_s", u.detect_s),
+            ("uav.above_s", u.above_s),
+            ("uav.zone_transit_s", u.zone_transit_s),
+            ("faults.latency", self.faults.latency),
+            ("faults.uav_hazard", self.faults.uav_hazard),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(err(name, v, "must be a number ≥ 0"));
+            }
+        }
+        let c = &self.coord;
+        for (name, v) in [
+            ("coord.heartbeat_s", c.heartbeat_s),
+            ("coord.heartbeat_timeout_s", c.heartbeat_timeout_s),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(err(name, v, "must be positive"));
+            }
+        }
+        if let Some(s) = c.slot_s {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(err("coord.slot_s", s, "must be positive"));
+            }
+        }
+        let f = &self.faults;
+        for (name, p) in [
+            ("faults.grasp_fail", f.grasp_fail),
+            ("faults.detect_fail", f.detect_fail),
+            ("faults.msg_loss", f.msg_loss),
+        ] {
+            if !(0.0..=1.0).contains(&p) {
+                return Err(err(name, p, "must be a probability in [0, 1]"));
+            }
+        }
+        if f.grasp_fail >= 1.0 || f.detect_fail >= 1.0 {
+            return Err(err(
+                "faults",
+                "1",
+                "a grasp or detection that always fails can never build the wall",
+            ));
+        }
+        for w in &f.blackout {
+            if !(w.from.is_finite() && w.to.is_finite() && 0.0 <= w.from && w.from < w.to) {
+                return Err(err(
+                    "faults.blackout",
+                    format!("{}-{}", w.from, w.to),
+                    "expected 0 ≤ A < B",
+                ));
+            }
+        }
+        for fail in &f.uav_fail {
+            if fail.uav >= self.uavs {
+                return Err(err(
+                    "faults.uav_fail",
+                    format!("{}@{}", fail.uav, fail.at),
+                    &format!("there are only {} UAVs (0-based)", self.uavs),
+                ));
+            }
+            if !(fail.at.is_finite() && fail.at >= 0.0) {
+                return Err(err(
+                    "faults.uav_fail",
+                    format!("{}@{}", fail.uav, fail.at),
+                    "the time must be ≥ 0",
+                ));
+            }
+        }
+        if !(self.max_time_s.is_finite() && self.max_time_s > 0.0) {
+            return Err(err("max_time_s", self.max_time_s, "must be positive"));
+        }
+        Ok(())
+    }
+}

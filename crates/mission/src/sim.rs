@@ -1,0 +1,788 @@
+//! The discrete-event simulation of a UAV team building a wall (thesis ch. 4–5).
+//!
+//! Each UAV runs the state machine of [`crate::state::UavState`]; timed states end by events
+//! on one queue ordered by (time, sequence), so runs are deterministic for a seed. Bricks are
+//! taken in the shared build order. The UAV (or orange pair) carrying the earliest taken,
+//! unplaced brick of the order may enter the zone once the brick's supports are placed, the
+//! zone is empty, and its coordination policy agrees; placement and leaving the zone happen
+//! at the same instant. If every live UAV is stuck waiting (a brick they need was lost), the
+//! one holding the latest brick puts it down and fetches what is needed.
+
+use crate::arena::Point;
+use crate::channel::Channel;
+use crate::config::MissionConfig;
+use crate::metrics::{Metrics, MetricsObserver};
+use crate::policy::{Coordination, EntryQuery};
+use crate::state::{CommMode, Event, EventKind, Observer, UavState};
+use mason_order::CostModel;
+use mason_wall::{BrickId, BrickType, Wall};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::cmp::{Ordering, Reverse};
+use std::collections::BinaryHeap;
+
+/// What a mission flies.
+#[derive(Clone, Copy)]
+pub struct MissionInput<'a> {
+    /// The wall.
+    pub wall: &'a Wall,
+    /// The shared build order (every brick once, supports first).
+    pub order: &'a [BrickId],
+    /// Grasp and placement times (t_g, t_d, κ) come from the cost model.
+    pub model: &'a CostModel,
+    /// Team, arena, UAV model, coordination parameters, faults.
+    pub config: &'a MissionConfig,
+}
+
+/// How a mission ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MissionStatus {
+    /// Every brick placed and every live UAV landed.
+    Complete,
+    /// The team landed or was lost with bricks left.
+    Incomplete,
+    /// The time limit came first.
+    Timeout,
+}
+
+/// A mission's result.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct MissionResult {
+    /// How it ended.
+    pub status: MissionStatus,
+    /// The metrics.
+    pub metrics: Metrics,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Brick {
+    Untaken,
+    Taken,
+    Placed,
+}
+
+#[derive(Clone, Debug)]
+struct Uav {
+    state: UavState,
+    pos: Point,
+    brick: Option<BrickId>,
+    partner: Option<usize>,
+    grasped: bool,
+    waiting_partner: bool,
+    failures: u32,
+    alive: bool,
+    token: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum What {
+    Timer,
+    Fail,
+    Heartbeat,
+    Enter,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Pending {
+    t: f64,
+    seq: u64,
+    uav: usize,
+    token: u64,
+    what: What,
+}
+
+impl PartialEq for Pending {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Pending {}
+impl PartialOrd for Pending {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Pending {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.t.total_cmp(&o.t).then(self.seq.cmp(&o.seq))
+    }
+}
+
+/// The cached decision for the UAV allowed next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct EntryPlan {
+    leader: usize,
+    free_since: f64,
+    mode: CommMode,
+    token: u64,
+}
+
+struct Sim<'a, 'o> {
+    input: MissionInput<'a>,
+    policy: &'a mut dyn Coordination,
+    channel: Channel,
+    rng: ChaCha8Rng,
+    rank: Vec<usize>,
+    bricks: Vec<Brick>,
+    carriers: Vec<Vec<usize>>,
+    placed: usize,
+    uavs: Vec<Uav>,
+    queue: BinaryHeap<Reverse<Pending>>,
+    seq: u64,
+    now: f64,
+    zone: Vec<usize>,
+    zone_free_since: f64,
+    entry: Option<EntryPlan>,
+    entry_token: u64,
+    modes: Vec<CommMode>,
+    last_heard: Vec<Vec<f64>>,
+    metrics: MetricsObserver,
+    observer: &'o mut dyn Observer,
+}
+
+/// Flies one mission and reports every event to `observer`.
+pub fn simulate(
+    input: MissionInput<'_>,
+    policy: &mut dyn Coordination,
+    seed: u64,
+    observer: &mut dyn Observer,
+) -> MissionResult {
+    let cfg = input.config;
+    let n = cfg.uavs;
+    let mut rank = vec![usize::MAX; input.wall.len()];
+    for (i, b) in input.order.iter().enumerate() {
+        rank[b.index()] = i;
+    }
+    let rewards = input
+        .wall
+        .bricks()
+        .iter()
+        .map(|b| b.kind.default_reward())
+        .collect();
+    let uses_heartbeats = policy.uses_heartbeats();
+    let mut sim = Sim {
+        channel: Channel::new(&cfg.faults, &cfg.coord),
+        rng: ChaCha8Rng::seed_from_u64(seed),
+        rank,
+        bricks: vec![Brick::Untaken; input.wall.len()],
+        carriers: vec![Vec::new(); input.wall.len()],
+        placed: 0,
+        uavs: (0..n)
+            .map(|i| Uav {
+                state: UavState::Check,
+                pos: cfg.arena.uav_starts[i],
+                brick: None,
+                partner: None,
+                grasped: false,
+                waiting_partner: false,
+                failures: 0,
+                alive: true,
+                token: 0,
+            })
+            .collect(),
+        queue: BinaryHeap::new(),
+        seq: 0,
+        now: 0.0,
+        zone: Vec::new(),
+        zone_free_since: 0.0,
+        entry: None,
+        entry_token: 0,
+        modes: vec![CommMode::Comm; n],
+        last_heard: vec![vec![0.0; n]; n],
+        metrics: MetricsObserver::new(n, rewards),
+        observer,
+        input,
+        policy,
+    };
+    sim.run(uses_heartbeats)
+}
+
+impl Sim<'_, '_> {
+    fn emit(&mut self, uav: usize, kind: EventKind) {
+        let e = Event {
+            t: self.now,
+            uav: uav as u32,
+            kind,
+        };
+        self.metrics.event(&e);
+        self.observer.event(&e);
+    }
+
+    fn push(&mut self, t: f64, uav: usize, token: u64, what: What) {
+        self.seq += 1;
+        self.queue.push(Reverse(Pending {
+            t,
+            seq: self.seq,
+            uav,
+            token,
+            what,
+        }));
+    }
+
+    fn kind_of(&self, b: BrickId) -> BrickType {
+        self.input.wall.brick(b).kind
+    }
+
+    fn speed(&self) -> f64 {
+        self.input.config.uav.speed
+    }
+
+    fn live(&self) -> usize {
+        self.uavs.iter().filter(|u| u.alive).count()
+    }
+
+    /// Moves `u` (and its partner, when they act together) to `state`.
+    fn go(&mut self, u: usize, state: UavState, outcome: &'static str, duration: Option<f64>) {
+        let mut who = vec![u];
+        if let Some(p) = self.together(u) {
+            who.push(p);
+        }
+        for &w in &who {
+            let uav = &mut self.uavs[w];
+            uav.state = state;
+            uav.token += 1;
+            let (x, y) = (uav.pos.x, uav.pos.y);
+            self.emit(
+                w,
+                EventKind::State {
+                    state,
+                    outcome,
+                    x,
+                    y,
+                },
+            );
+        }
+        if let Some(d) = duration {
+            let token = self.uavs[u].token;
+            self.push(self.now + d, u, token, What::Timer);
+        }
+    }
+
+    /// The partner of `u` when both are at the pile or beyond, acting as one.
+    fn together(&self, u: usize) -> Option<usize> {
+        let p = self.uavs[u].partner?;
+        let both_ready = !self.uavs[u].waiting_partner && !self.uavs[p].waiting_partner;
+        let p_alive = self.uavs[p].alive;
+        (both_ready && p_alive && self.uavs[p].brick == self.uavs[u].brick).then_some(p)
+    }
+
+    fn run(&mut self, heartbeats: bool) -> MissionResult {
+        let cfg = self.input.config;
+        let n = cfg.uavs;
+        for u in 0..n {
+            let (x, y) = (self.uavs[u].pos.x, self.uavs[u].pos.y);
+            self.emit(
+                u,
+                EventKind::State {
+                    state: UavState::Check,
+                    outcome: "start",
+                    x,
+                    y,
+                },
+            );
+            self.push(cfg.uav.check_s, u, 0, What::Timer);
+            let mut fail_at = cfg
+                .faults
+                .uav_fail
+                .iter()
+                .filter(|f| f.uav == u)
+                .map(|f| f.at)
+                .fold(f64::INFINITY, f64::min);
+            if cfg.faults.uav_hazard > 0.0 {
+                let rate = cfg.faults.uav_hazard / 3600.0;
+                let draw: f64 = self.rng.gen_range(f64::MIN_POSITIVE..1.0);
+                fail_at = fail_at.min(-draw.ln() / rate);
+            }
+            if fail_at.is_finite() {
+                self.push(fail_at, u, 0, What::Fail);
+            }
+            if heartbeats {
+                self.push(cfg.coord.heartbeat_s, u, 0, What::Heartbeat);
+            }
+        }
+        let mut status = MissionStatus::Complete;
+        while let Some(Reverse(p)) = self.queue.pop() {
+            if p.t > cfg.max_time_s {
+                self.now = cfg.max_time_s;
+                status = MissionStatus::Timeout;
+                break;
+            }
+            self.now = p.t;
+            match p.what {
+                What::Timer if p.token == self.uavs[p.uav].token && self.uavs[p.uav].alive => {
+                    self.timer(p.uav)
+                }
+                What::Timer
+                    if p.token == self.uavs[p.uav].token
+                        && self.uavs[p.uav].state == UavState::SafeLand =>
+                {
+                    self.safe_landed(p.uav)
+                }
+                What::Fail => self.fail(p.uav),
+                What::Heartbeat => self.heartbeat(p.uav),
+                What::Enter if p.token == self.entry_token => self.enter(),
+                _ => {}
+            }
+            if self
+                .uavs
+                .iter()
+                .all(|u| matches!(u.state, UavState::Landed | UavState::Down))
+            {
+                break;
+            }
+        }
+        if status == MissionStatus::Complete && self.placed < self.bricks.len() {
+            status = MissionStatus::Incomplete;
+        }
+        let metrics = std::mem::replace(&mut self.metrics, MetricsObserver::new(0, Vec::new()))
+            .finish(self.now);
+        MissionResult { status, metrics }
+    }
+
+    fn timer(&mut self, u: usize) {
+        let cfg = self.input.config;
+        let model = self.input.model;
+        match self.uavs[u].state {
+            UavState::Check => self.go(u, UavState::TakeOff, "ok", Some(cfg.uav.takeoff_s)),
+            UavState::TakeOff => self.choose(u, "airborne"),
+            UavState::FlyToPile => self.at_pile(u),
+            UavState::Detect => {
+                if self.rng.gen::<f64>() < cfg.faults.detect_fail {
+                    self.attempt_failed(u);
+                } else {
+                    self.go(u, UavState::FlyAbove, "found", Some(cfg.uav.above_s));
+                }
+            }
+            UavState::FlyAbove => {
+                let b = self.uavs[u].brick.expect("carrying");
+                let t_g = model.times(self.kind_of(b)).grasp;
+                self.go(u, UavState::Grasp, "above", Some(t_g));
+            }
+            UavState::Grasp => {
+                if self.rng.gen::<f64>() < cfg.faults.grasp_fail {
+                    self.attempt_failed(u);
+                } else {
+                    let b = self.uavs[u].brick.expect("carrying");
+                    let mut who = vec![u];
+                    who.extend(self.together(u));
+                    for &w in &who {
+                        self.uavs[w].grasped = true;
+                        self.emit(w, EventKind::Grasp { brick: b });
+                    }
+                    let wait = cfg.arena.wall_wait(u);
+                    let d = self.uavs[u].pos.distance(wait) / self.speed();
+                    self.go(u, UavState::FlyToWallWait, "grasped", Some(d));
+                }
+            }
+            UavState::FlyToWallWait => {
+                let wait = cfg.arena.wall_wait(u);
+                let mut who = vec![u];
+                who.extend(self.together(u));
+                for &w in &who {
+                    self.uavs[w].pos = wait;
+                }
+                self.go(u, UavState::WaitForZone, "arrived", None);
+                self.review();
+            }
+            UavState::EnterAndPlace => self.place(u),
+            UavState::Land => {
+                let start = cfg.arena.uav_starts[u];
+                self.uavs[u].pos = start;
+                self.go(u, UavState::Landed, "landed", None);
+            }
+            _ => {}
+        }
+    }
+
+    /// Takes the next brick of the order, joins an orange pair, idles, or lands.
+    fn choose(&mut self, u: usize, outcome: &'static str) {
+        let cfg = self.input.config;
+        self.uavs[u].brick = None;
+        self.uavs[u].partner = None;
+        self.uavs[u].grasped = false;
+        self.uavs[u].waiting_partner = false;
+        self.uavs[u].failures = 0;
+        if self.placed == self.bricks.len() {
+            return self.go_land(u, outcome);
+        }
+        // Join an open orange pair first: it was taken earlier in the order.
+        let open = self.input.order.iter().copied().find(|&b| {
+            self.bricks[b.index()] == Brick::Taken
+                && self.kind_of(b).uavs_needed() == 2
+                && self.carriers[b.index()].len() == 1
+        });
+        let pick = if let Some(b) = open {
+            Some(b)
+        } else {
+            let alone = self.live() < 2;
+            self.input.order.iter().copied().find(|&b| {
+                self.bricks[b.index()] == Brick::Untaken
+                    && (!alone
+                        || (self.kind_of(b).uavs_needed() == 1
+                            && self
+                                .input
+                                .wall
+                                .supports(b)
+                                .iter()
+                                .all(|s| self.bricks[s.index()] != Brick::Untaken)))
+            })
+        };
+        let Some(b) = pick else {
+            let untaken_left = self.bricks.contains(&Brick::Untaken);
+            if untaken_left && self.live() < 2 {
+                // What is left needs a pair that no longer exists.
+                return self.go_land(u, "cannot_finish");
+            }
+            if self.uavs[u].state != UavState::ChooseBrick {
+                self.go(u, UavState::ChooseBrick, "none_free", None);
+            }
+            return self.review();
+        };
+        if self.uavs[u].state != UavState::ChooseBrick {
+            self.go(u, UavState::ChooseBrick, outcome, None);
+        }
+        if let Some(&first) = self.carriers[b.index()].first() {
+            self.uavs[first].partner = Some(u);
+            self.uavs[u].partner = Some(first);
+        }
+        self.bricks[b.index()] = Brick::Taken;
+        self.carriers[b.index()].push(u);
+        self.uavs[u].brick = Some(b);
+        let pile = cfg.arena.pile(self.kind_of(b));
+        let d = self.uavs[u].pos.distance(pile) / self.speed();
+        self.go(u, UavState::FlyToPile, "chosen", Some(d));
+    }
+
+    fn go_land(&mut self, u: usize, outcome: &'static str) {
+        let cfg = self.input.config;
+        let d = self.uavs[u].pos.distance(cfg.arena.uav_starts[u]) / self.speed();
+        self.go(u, UavState::Land, outcome, Some(d + cfg.uav.land_s));
+    }
+
+    fn at_pile(&mut self, u: usize) {
+        let cfg = self.input.config;
+        let b = self.uavs[u].brick.expect("carrying");
+        self.uavs[u].pos = cfg.arena.pile(self.kind_of(b));
+        if self.kind_of(b).uavs_needed() == 1 {
+            return self.go(u, UavState::Detect, "arrived", Some(cfg.uav.detect_s));
+        }
+        match self.uavs[u].partner {
+            Some(p) if self.uavs[p].waiting_partner => {
+                // The partner was first; it leads from here.
+                self.uavs[p].waiting_partner = false;
+                self.uavs[u].waiting_partner = false;
+                self.go(
+                    p,
+                    UavState::Detect,
+                    "partner_arrived",
+                    Some(cfg.uav.detect_s),
+                );
+            }
+            _ => {
+                self.uavs[u].waiting_partner = true;
+                self.go(u, UavState::Detect, "waiting_partner", None);
+                self.review();
+            }
+        }
+    }
+
+    fn attempt_failed(&mut self, u: usize) {
+        let cfg = self.input.config;
+        self.uavs[u].failures += 1;
+        if self.uavs[u].failures > cfg.uav.retries {
+            let mut who = vec![u];
+            who.extend(self.together(u));
+            let b = self.uavs[u].brick.expect("carrying");
+            self.release(b);
+            for &w in &who {
+                self.uavs[w].partner = None;
+                self.go(w, UavState::ChooseBrick, "gave_up", None);
+            }
+            for &w in &who {
+                self.choose(w, "gave_up");
+            }
+            self.wake_idle();
+        } else {
+            self.go(u, UavState::Detect, "failed", Some(cfg.uav.detect_s));
+        }
+    }
+
+    fn release(&mut self, b: BrickId) {
+        self.bricks[b.index()] = Brick::Untaken;
+        self.carriers[b.index()].clear();
+    }
+
+    /// The expected time in the zone for brick `b` now.
+    fn zone_time(&self, b: BrickId) -> f64 {
+        let wall = self.input.wall;
+        let placed = wall
+            .neighbours(b)
+            .iter()
+            .filter(|n| self.bricks[n.index()] == Brick::Placed)
+            .count()
+            .min(2);
+        let model = self.input.model;
+        self.input.config.uav.zone_transit_s
+            + model.kappa[placed] * model.times(self.kind_of(b)).drop
+    }
+
+    /// The brick next needed: the earliest taken, unplaced brick of the order.
+    fn needed(&self) -> Option<BrickId> {
+        self.bricks
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| **s == Brick::Taken)
+            .min_by_key(|(i, _)| self.rank[*i])
+            .map(|(i, _)| BrickId(i as u32))
+    }
+
+    /// Re-decides who may enter next, and breaks deadlocks.
+    fn review(&mut self) {
+        if !self.zone.is_empty() {
+            return;
+        }
+        let Some(b) = self.needed() else {
+            self.entry = None;
+            return;
+        };
+        let carriers = &self.carriers[b.index()];
+        let ready = carriers.len() == self.kind_of(b).uavs_needed() as usize
+            && carriers.iter().all(|&c| {
+                let u = &self.uavs[c];
+                u.alive && u.grasped && u.state == UavState::WaitForZone
+            })
+            && self
+                .input
+                .wall
+                .supports(b)
+                .iter()
+                .all(|s| self.bricks[s.index()] == Brick::Placed);
+        if !ready {
+            self.entry = None;
+            self.entry_token += 1;
+            return self.break_deadlock();
+        }
+        let leader = carriers[0];
+        let mode = self.modes[leader];
+        if let Some(plan) = self.entry {
+            if plan.leader == leader && plan.free_since == self.zone_free_since && plan.mode == mode
+            {
+                return;
+            }
+        }
+        self.entry_token += 1;
+        let zone_time = self.zone_time(b);
+        let mut q = EntryQuery {
+            now: self.now,
+            uav: leader,
+            team: self.input.config.uavs,
+            zone_free_since: self.zone_free_since,
+            zone_time,
+            mode,
+            channel: &self.channel,
+            rng: &mut self.rng,
+        };
+        let t = self.policy.entry_time(&mut q);
+        self.entry = Some(EntryPlan {
+            leader,
+            free_since: self.zone_free_since,
+            mode,
+            token: self.entry_token,
+        });
+        if t.is_finite() {
+            self.push(t, leader, self.entry_token, What::Enter);
+        }
+    }
+
+    /// When every live UAV waits and nobody may enter, the holder of the latest brick puts it
+    /// down and goes to fetch what is missing.
+    fn break_deadlock(&mut self) {
+        let stuck = self.uavs.iter().filter(|u| u.alive).all(|u| {
+            u.state == UavState::WaitForZone || (u.state == UavState::Detect && u.waiting_partner)
+        });
+        if !stuck || self.live() == 0 {
+            return;
+        }
+        let holder = (0..self.uavs.len())
+            .filter(|&i| self.uavs[i].alive && self.uavs[i].state == UavState::WaitForZone)
+            .max_by_key(|&i| self.rank[self.uavs[i].brick.expect("carrying").index()]);
+        let Some(h) = holder else {
+            return;
+        };
+        let b = self.uavs[h].brick.expect("carrying");
+        let who = self.carriers[b.index()].clone();
+        self.emit(h, EventKind::Lost { brick: b });
+        self.release(b);
+        for &w in &who {
+            self.go(w, UavState::ChooseBrick, "put_down", None);
+        }
+        for &w in &who {
+            self.choose(w, "put_down");
+        }
+    }
+
+    fn enter(&mut self) {
+        let Some(plan) = self.entry.take() else {
+            return;
+        };
+        let b = self.uavs[plan.leader].brick.expect("carrying");
+        let zone_time = self.zone_time(b);
+        let who = self.carriers[b.index()].clone();
+        for &w in &who {
+            self.zone.push(w);
+            self.emit(w, EventKind::ZoneEnter);
+        }
+        self.go(
+            plan.leader,
+            UavState::EnterAndPlace,
+            "granted",
+            Some(zone_time),
+        );
+    }
+
+    fn place(&mut self, u: usize) {
+        let b = self.uavs[u].brick.expect("carrying");
+        self.bricks[b.index()] = Brick::Placed;
+        self.placed += 1;
+        self.emit(u, EventKind::Place { brick: b });
+        let who = std::mem::take(&mut self.carriers[b.index()]);
+        for &w in &who {
+            self.zone.retain(|&z| z != w);
+            self.emit(w, EventKind::ZoneLeave);
+        }
+        self.zone_free_since = self.now;
+        for &w in &who {
+            self.choose(w, "placed");
+        }
+        self.wake_idle();
+        self.review();
+    }
+
+    /// Idle UAVs look for work again.
+    fn wake_idle(&mut self) {
+        for i in 0..self.uavs.len() {
+            if self.uavs[i].alive
+                && self.uavs[i].state == UavState::ChooseBrick
+                && self.uavs[i].brick.is_none()
+            {
+                self.choose(i, "woken");
+            }
+        }
+    }
+
+    fn fail(&mut self, u: usize) {
+        if !self.uavs[u].alive || matches!(self.uavs[u].state, UavState::Landed | UavState::Land) {
+            return;
+        }
+        let cfg = self.input.config;
+        let partner = self.together(u).or(self.uavs[u].partner);
+        self.uavs[u].alive = false;
+        self.emit(u, EventKind::Fail);
+        if let Some(b) = self.uavs[u].brick {
+            if self.uavs[u].grasped {
+                self.emit(u, EventKind::Lost { brick: b });
+                self.release(b);
+                if let Some(p) = partner.filter(|&p| self.uavs[p].alive) {
+                    if self.zone.contains(&p) {
+                        self.zone.retain(|&z| z != p);
+                        self.emit(p, EventKind::ZoneLeave);
+                    }
+                    self.uavs[p].partner = None;
+                    self.go(p, UavState::ChooseBrick, "partner_failed", None);
+                    self.choose(p, "partner_failed");
+                }
+            } else {
+                self.carriers[b.index()].retain(|&c| c != u);
+                match partner.filter(|&p| self.uavs[p].alive) {
+                    Some(p) => {
+                        // The partner keeps the orange brick and waits for a new partner.
+                        self.uavs[p].partner = None;
+                        if self.uavs[p].state == UavState::Detect
+                            || self.uavs[p].state == UavState::FlyAbove
+                            || self.uavs[p].state == UavState::Grasp
+                        {
+                            self.uavs[p].waiting_partner = true;
+                            self.go(p, UavState::Detect, "partner_failed", None);
+                        }
+                    }
+                    None => self.release(b),
+                }
+            }
+        }
+        self.uavs[u].brick = None;
+        self.uavs[u].partner = None;
+        self.uavs[u].grasped = false;
+        // A UAV failing in the zone leaves it when it is down.
+        self.uavs[u].token += 1;
+        let (x, y) = (self.uavs[u].pos.x, self.uavs[u].pos.y);
+        self.uavs[u].state = UavState::SafeLand;
+        self.emit(
+            u,
+            EventKind::State {
+                state: UavState::SafeLand,
+                outcome: "fault",
+                x,
+                y,
+            },
+        );
+        let token = self.uavs[u].token;
+        self.push(self.now + cfg.uav.land_s, u, token, What::Timer);
+        self.wake_idle();
+        self.review();
+    }
+
+    fn safe_landed(&mut self, u: usize) {
+        if self.zone.contains(&u) {
+            self.zone.retain(|&z| z != u);
+            self.emit(u, EventKind::ZoneLeave);
+            if self.zone.is_empty() {
+                self.zone_free_since = self.now;
+            }
+        }
+        self.uavs[u].token += 1;
+        self.uavs[u].state = UavState::Down;
+        let (x, y) = (self.uavs[u].pos.x, self.uavs[u].pos.y);
+        self.emit(
+            u,
+            EventKind::State {
+                state: UavState::Down,
+                outcome: "down",
+                x,
+                y,
+            },
+        );
+        self.wake_idle();
+        self.review();
+    }
+
+    fn heartbeat(&mut self, u: usize) {
+        if !self.uavs[u].alive || matches!(self.uavs[u].state, UavState::Landed | UavState::Down) {
+            return;
+        }
+        let cfg = self.input.config;
+        let n = self.uavs.len();
+        for v in 0..n {
+            if v != u && self.uavs[v].alive && self.channel.delivers(self.now, &mut self.rng) {
+                self.last_heard[u][v] = self.now;
+            }
+        }
+        let lost = (0..n).any(|v| {
+            v != u
+                && self.uavs[v].alive
+                && !matches!(self.uavs[v].state, UavState::Landed)
+                && self.now - self.last_heard[u][v] > cfg.coord.heartbeat_timeout_s
+        });
+        let mode = if lost {
+            CommMode::Windows
+        } else {
+            CommMode::Comm
+        };
+        if mode != self.modes[u] {
+            self.modes[u] = mode;
+            self.emit(u, EventKind::Comm { mode });
+            self.review();
+        }
+        self.push(self.now + cfg.coord.heartbeat_s, u, 0, What::Heartbeat);
+    }
+}
