@@ -70,6 +70,7 @@ struct Uav {
     partner: Option<usize>,
     grasped: bool,
     waiting_partner: bool,
+    joined: bool,
     failures: u32,
     alive: bool,
     token: u64,
@@ -176,6 +177,7 @@ pub fn simulate(
                 partner: None,
                 grasped: false,
                 waiting_partner: false,
+                joined: false,
                 failures: 0,
                 alive: true,
                 token: 0,
@@ -262,9 +264,8 @@ impl Sim<'_, '_> {
     /// The partner of `u` when both are at the pile or beyond, acting as one.
     fn together(&self, u: usize) -> Option<usize> {
         let p = self.uavs[u].partner?;
-        let both_ready = !self.uavs[u].waiting_partner && !self.uavs[p].waiting_partner;
-        let p_alive = self.uavs[p].alive;
-        (both_ready && p_alive && self.uavs[p].brick == self.uavs[u].brick).then_some(p)
+        let joined = self.uavs[u].joined && self.uavs[p].joined;
+        (joined && self.uavs[p].alive && self.uavs[p].brick == self.uavs[u].brick).then_some(p)
     }
 
     fn run(&mut self, heartbeats: bool) -> MissionResult {
@@ -402,6 +403,7 @@ impl Sim<'_, '_> {
         self.uavs[u].partner = None;
         self.uavs[u].grasped = false;
         self.uavs[u].waiting_partner = false;
+        self.uavs[u].joined = false;
         self.uavs[u].failures = 0;
         if self.placed == self.bricks.len() {
             return self.go_land(u, outcome);
@@ -472,6 +474,8 @@ impl Sim<'_, '_> {
                 // The partner was first; it leads from here.
                 self.uavs[p].waiting_partner = false;
                 self.uavs[u].waiting_partner = false;
+                self.uavs[p].joined = true;
+                self.uavs[u].joined = true;
                 self.go(
                     p,
                     UavState::Detect,
@@ -497,6 +501,9 @@ impl Sim<'_, '_> {
             self.release(b);
             for &w in &who {
                 self.uavs[w].partner = None;
+                self.uavs[w].joined = false;
+            }
+            for &w in &who {
                 self.go(w, UavState::ChooseBrick, "gave_up", None);
             }
             for &w in &who {
@@ -698,6 +705,7 @@ impl Sim<'_, '_> {
                     Some(p) => {
                         // The partner keeps the orange brick and waits for a new partner.
                         self.uavs[p].partner = None;
+                        self.uavs[p].joined = false;
                         if self.uavs[p].state == UavState::Detect
                             || self.uavs[p].state == UavState::FlyAbove
                             || self.uavs[p].state == UavState::Grasp
