@@ -92,7 +92,7 @@ pub fn load_model(path: Option<&Path>) -> CliResult<CostModel> {
     let model: CostModel = toml::from_str(&text).map_err(|e| {
         let line = e
             .span()
-            .map(|s| text[..s.start.min(text.len())].lines().count().max(1));
+            .map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
         let msg = e.message().trim().to_string();
         match line {
             Some(l) => input_error(format!("{shown}:{l}: {msg}")),

@@ -10,7 +10,10 @@ mod crew_cmd;
 mod demo;
 mod fail;
 mod input;
+mod mission_bench;
 mod plan;
+mod progress;
+mod sim_cmd;
 mod wall_cmd;
 
 use clap::{Parser, Subcommand};
@@ -23,6 +26,9 @@ use std::process::ExitCode;
 #[derive(Parser)]
 #[command(name = "mason", version, about = "Plan and rehearse missions for robot construction crews", long_about = None)]
 struct Cli {
+    /// No progress bars
+    #[arg(long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -76,20 +82,79 @@ enum Command {
         #[arg(long)]
         svg: Option<PathBuf>,
     },
+    /// Fly a build order with a UAV team (discrete-event simulation, faults, Monte Carlo)
+    Simulate(SimArgs),
     /// Assign ground robots to goals and plan collision-free paths (seen from a UAV)
     Crew(CrewArgs),
     /// Reproduce published comparisons
     Bench {
-        /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time) or paper
-        /// (the crew paper's Table 2 setting and the MovingAI warehouse)
+        /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time), paper (the
+        /// crew paper's Table 2 setting and the MovingAI warehouse), thesis-mission (Table 5.1
+        /// setting) or missions (simulator throughput)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         time_limit: f64,
-        /// Repetitions per wall (planning)
+        /// Repetitions: per wall (planning), instances per row (paper), Monte Carlo runs
+        /// (thesis-mission, at least 100), thousands of missions per row (missions)
         #[arg(long, default_value_t = 20)]
         runs: usize,
     },
+}
+
+#[derive(clap::Args)]
+struct SimArgs {
+    #[command(flatten)]
+    design: DesignArgs,
+    /// Team size
+    #[arg(long, default_value_t = 3)]
+    uavs: usize,
+    /// Coordination: comm (messages), windows (fixed time slots) or auto (comm, windows
+    /// while heartbeats are lost)
+    #[arg(long, default_value = "comm")]
+    coord: String,
+    /// Planner for the shared build order (see `mason plan`)
+    #[arg(long, default_value = "exact")]
+    planner: String,
+    /// Cost model (grasp and placement times, κ)
+    #[arg(long)]
+    model: Option<PathBuf>,
+    /// Windows slot length in seconds (default 20, raised to the longest zone time)
+    #[arg(long)]
+    slot: Option<f64>,
+    /// Probability that one grasp attempt fails
+    #[arg(long)]
+    grasp_fail: Option<f64>,
+    /// Probability that one detection attempt fails
+    #[arg(long)]
+    detect_fail: Option<f64>,
+    /// UAV U (0-based) fails at T seconds, as U@T; repeatable
+    #[arg(long)]
+    uav_fail: Vec<String>,
+    /// UAV failures per hour (each UAV)
+    #[arg(long)]
+    uav_hazard: Option<f64>,
+    /// No message gets through from A to B seconds, as A-B; repeatable
+    #[arg(long)]
+    blackout: Vec<String>,
+    /// Probability that one message is lost
+    #[arg(long)]
+    msg_loss: Option<f64>,
+    /// Message latency in seconds
+    #[arg(long)]
+    latency: Option<f64>,
+    /// Faults from a TOML file (keys as the flags, with underscores); flags add to it
+    #[arg(long)]
+    faults: Option<PathBuf>,
+    /// Monte Carlo runs (seeds S, S+1, …), spread over the cores
+    #[arg(long, default_value_t = 1)]
+    runs: usize,
+    /// Seed of the first run
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(clap::Args)]
@@ -209,6 +274,7 @@ fn run(cli: Cli) -> CliResult<()> {
             }
             plan::exit_for(&checked)
         }
+        Command::Simulate(args) => simulate(args, cli.quiet),
         Command::Crew(args) => crew(args),
         Command::Bench {
             suite,
@@ -220,9 +286,11 @@ fn run(cli: Cli) -> CliResult<()> {
                 "thesis" => bench::thesis(limit)?,
                 "planning" => bench::planning(runs)?,
                 "paper" => crew_bench::paper(runs)?,
+                "thesis-mission" => mission_bench::thesis_mission(runs.max(100))?,
+                "missions" => mission_bench::throughput(runs)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis, planning or paper"
+                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission or missions"
                     )))
                 }
             };
@@ -230,6 +298,105 @@ fn run(cli: Cli) -> CliResult<()> {
             Ok(())
         }
     }
+}
+
+fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
+    let coord: mason_mission::Coord = a
+        .coord
+        .parse()
+        .map_err(|e| input_error(format!("--coord: {e}")))?;
+    let spec: PlannerSpec = a
+        .planner
+        .parse()
+        .map_err(|e| input_error(format!("--planner: {e}")))?;
+    if a.runs == 0 {
+        return Err(input_error("--runs must be at least 1"));
+    }
+    let cli_faults = sim_cmd::FaultSpec {
+        grasp_fail: a.grasp_fail,
+        detect_fail: a.detect_fail,
+        uav_fail: a.uav_fail.clone(),
+        uav_hazard: a.uav_hazard,
+        blackout: a.blackout.clone(),
+        msg_loss: a.msg_loss,
+        latency: a.latency,
+    };
+    let file_faults = match &a.faults {
+        Some(p) => sim_cmd::FaultSpec::read(p)?,
+        None => sim_cmd::FaultSpec::default(),
+    };
+    let faults = file_faults.merged(cli_faults).resolve()?;
+    let wall = load_wall(&a.design.design, a.design.format, a.design.cmcp_sizes)?;
+    let model = load_model(a.model.as_deref())?;
+    let problem =
+        BuildProblem::new(&wall, model.clone()).map_err(|e| input_error(e.to_string()))?;
+    let checked = plan::solve(&problem, spec, Some(60.0))?;
+    plan::exit_for(&checked)?;
+    let order = checked.outcome.order.clone().expect("checked order");
+    let mut config = mason_mission::MissionConfig::with_uavs(a.uavs);
+    config.faults = faults;
+    config.coord.slot_s = a.slot;
+    let slot = sim_cmd::prepare(&wall, &model, &config)?;
+    if a.runs == 1 {
+        let (r, trace) = sim_cmd::fly_once(&wall, &order, &model, &config, coord, slot, a.seed)?;
+        if a.json {
+            let events: Vec<_> = trace
+                .iter()
+                .map(|e| sim_cmd::event_json(&wall, e))
+                .collect();
+            let v = serde_json::json!({
+                "wall": wall.name(), "uavs": a.uavs, "coord": coord, "planner": spec.to_string(),
+                "order": order.iter().map(|b| wall.brick(*b).label).collect::<Vec<_>>(),
+                "seed": a.seed, "slot_s": slot, "faults": config.faults,
+                "metrics": sim_cmd::metrics_json(&r), "events": events,
+            });
+            println!("{}", serde_json::to_string_pretty(&v).expect("json"));
+        } else {
+            println!(
+                "{}: {} UAVs, coord {}, order from {} (seed {})",
+                wall.name(),
+                a.uavs,
+                a.coord,
+                spec,
+                a.seed
+            );
+            print!("{}", sim_cmd::result_table(&r, &trace));
+        }
+        return sim_cmd::exit_for(&r);
+    }
+    let pb = progress::bar(a.runs as u64, "simulating", !quiet && !a.json);
+    let results = sim_cmd::fly_many(
+        &wall,
+        &order,
+        &model,
+        &config,
+        coord,
+        slot,
+        a.seed,
+        a.runs,
+        &|| pb.inc(1),
+    )?;
+    pb.finish_and_clear();
+    let summary = mason_mission::summarise(&results);
+    if a.json {
+        let v = serde_json::json!({
+            "wall": wall.name(), "uavs": a.uavs, "coord": coord, "planner": spec.to_string(),
+            "first_seed": a.seed, "slot_s": slot, "faults": config.faults, "summary": summary,
+        });
+        println!("{}", serde_json::to_string_pretty(&v).expect("json"));
+    } else {
+        println!(
+            "{}: {} UAVs, coord {}, order from {}, seeds {}..{}",
+            wall.name(),
+            a.uavs,
+            a.coord,
+            spec,
+            a.seed,
+            a.seed + a.runs as u64 - 1
+        );
+        print!("{}", sim_cmd::summary_table(&summary));
+    }
+    Ok(())
 }
 
 fn crew(a: CrewArgs) -> CliResult<()> {

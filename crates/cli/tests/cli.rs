@@ -458,3 +458,144 @@ fn crew_reads_a_birds_eye_image() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn simulate_json_has_metrics_and_events() {
+    let o = mason(&[
+        "simulate",
+        "builtin:mbzirc",
+        "--coord",
+        "auto",
+        "--faults",
+        &data("faults-ok.toml"),
+        "--seed",
+        "4",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let m = &v["metrics"];
+    assert_eq!(m["bricks_placed"], 42);
+    assert_eq!(m["uavs_failed"], 1);
+    assert!(m["makespan_s"].as_f64().unwrap() > 600.0);
+    let events = v["events"].as_array().unwrap();
+    let kinds: std::collections::BTreeSet<&str> =
+        events.iter().map(|e| e["kind"].as_str().unwrap()).collect();
+    for k in [
+        "state",
+        "grasp",
+        "place",
+        "zone_enter",
+        "zone_leave",
+        "fail",
+        "comm",
+    ] {
+        assert!(kinds.contains(k), "no `{k}` event");
+    }
+    // Bricks are thesis ids in the JSON.
+    let placed: Vec<u64> = events
+        .iter()
+        .filter(|e| e["kind"] == "place")
+        .map(|e| e["brick"].as_u64().unwrap())
+        .collect();
+    assert!(placed.iter().all(|&id| id >= 101), "{placed:?}");
+    // Same seed, same output.
+    let again = mason(&[
+        "simulate",
+        "builtin:mbzirc",
+        "--coord",
+        "auto",
+        "--faults",
+        &data("faults-ok.toml"),
+        "--seed",
+        "4",
+        "--json",
+    ]);
+    assert_eq!(stdout(&o), stdout(&again));
+}
+
+#[test]
+fn simulate_monte_carlo_prints_mean_and_percentiles() {
+    let o = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--runs",
+        "50",
+        "--grasp-fail",
+        "0.3",
+        "--coord",
+        "windows",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("runs: 50, walls completed: 50"), "{out}");
+    assert!(out.contains("p5") && out.contains("p95"));
+    assert!(
+        stderr(&o).is_empty(),
+        "no progress bar in a pipe: {}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn simulate_bad_inputs_exit_2() {
+    assert_input_error(
+        &mason(&[
+            "simulate",
+            "builtin:thesis-2x5",
+            "--faults",
+            &data("faults-bad.toml"),
+        ]),
+        &["faults-bad.toml:2", "wind"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--uav-fail", "x@3"]),
+        &["--uav-fail `x@3`"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--uav-fail", "5@3"]),
+        &["there are only 3 UAVs"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--blackout", "50"]),
+        &["expected A-B"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--grasp-fail", "1.5"]),
+        &["grasp_fail", "probability"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--coord", "radio"]),
+        &["--coord"],
+    );
+    assert_input_error(
+        &mason(&[
+            "simulate",
+            "builtin:thesis-2x5",
+            "--coord",
+            "windows",
+            "--slot",
+            "5",
+        ]),
+        &["slot", "never enter"],
+    );
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--uavs", "0"]),
+        &["at least one UAV"],
+    );
+}
+
+#[test]
+fn simulate_with_one_uav_left_and_orange_bricks_exits_1() {
+    // Two of three UAVs fail early; the lone UAV cannot carry orange bricks.
+    let o = mason(&[
+        "simulate",
+        "builtin:mbzirc",
+        "--uav-fail",
+        "0@10",
+        "--uav-fail",
+        "1@10",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("mission incomplete"), "{}", stderr(&o));
+}

@@ -1,0 +1,118 @@
+//! `mason bench thesis-mission` (the thesis's Table 5.1 setting) and `mason bench missions`
+//! (simulator throughput).
+
+use crate::fail::{input_error, CliResult};
+use crate::plan::solve;
+use crate::sim_cmd::{clock, fly_many, fly_once, prepare};
+use mason_mission::{summarise, Coord, MissionConfig};
+use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use std::time::Instant;
+
+/// The thesis's Table 5.1 mission times (Gazebo, 3 UAVs, 2×5 wall), in the order the issue
+/// gives them: brute, greedy, improved:1,4.
+const THESIS_TABLE_5_1: [(&str, &str); 3] = [
+    ("brute", "5:10"),
+    ("greedy", "5:55"),
+    ("improved:1,4", "5:40"),
+];
+
+/// `bench thesis-mission`.
+pub fn thesis_mission(runs: usize) -> CliResult<String> {
+    if runs == 0 {
+        return Err(input_error("--runs must be at least 1"));
+    }
+    let wall = mason_wall::builtin("thesis-2x5").expect("built-in").wall();
+    let model = CostModel::default();
+    let problem = BuildProblem::new(&wall, model.clone()).expect("valid model");
+    let base = MissionConfig::with_uavs(3);
+    let mut faulty = base.clone();
+    faulty.faults.grasp_fail = 0.2;
+    let slot = prepare(&wall, &model, &base)?;
+    let mut text = format!(
+        "Thesis Table 5.1 setting: the 2×5 wall, 3 UAVs, default arena (pile→wall flights take the\n\
+         thesis's t_f), windows slot {slot:.0} s. `fault-free` is one deterministic run; `20% grasp\n\
+         failures` is {runs} seeded runs (mean [p5, p95]). The thesis's times are Gazebo runs, listed\n\
+         in the order the issue gives them.\n\n{:<14} {:<8} {:>11} {:>28}  {:>7}\n",
+        "plan", "coord", "fault-free", "20% grasp failures", "thesis"
+    );
+    for (name, thesis) in THESIS_TABLE_5_1 {
+        let spec: PlannerSpec = name.parse().expect("known planner");
+        let checked = solve(&problem, spec, Some(60.0))?;
+        let order = checked.outcome.order.clone().expect("an order");
+        for coord in [Coord::Comm, Coord::Windows] {
+            let (r, _) = fly_once(&wall, &order, &model, &base, coord, slot, 0)?;
+            let many = fly_many(&wall, &order, &model, &faulty, coord, slot, 0, runs, &|| {})?;
+            let s = summarise(&many);
+            text.push_str(&format!(
+                "{:<14} {:<8} {:>11} {:>28}  {:>7}\n",
+                name,
+                format!("{coord:?}").to_lowercase(),
+                r.metrics.makespan_s.map_or("-".into(), clock),
+                format!(
+                    "{} [{}, {}]",
+                    clock(s.makespan_s.mean),
+                    clock(s.makespan_s.p5),
+                    clock(s.makespan_s.p95)
+                ),
+                if coord == Coord::Comm { thesis } else { "" }
+            ));
+        }
+    }
+    Ok(text)
+}
+
+/// `bench missions`: missions per second on the 42-brick MBZIRC wall with 3 UAVs, both cores.
+pub fn throughput(runs: usize) -> CliResult<String> {
+    let missions = runs.max(1) * 1000;
+    let wall = mason_wall::builtin("mbzirc").expect("built-in").wall();
+    let model = CostModel::default();
+    let problem = BuildProblem::new(&wall, model.clone()).expect("valid model");
+    let order = solve(&problem, PlannerSpec::Exact, None)?
+        .outcome
+        .order
+        .expect("an order");
+    let mut text = format!(
+        "Simulator throughput: {} ({} bricks), 3 UAVs, {missions} seeded missions per row on {} threads,\n\
+         every trace checked by check_trace (included in the time).\n{:<8} {:<26} {:>10} {:>14}\n",
+        wall.name(),
+        wall.len(),
+        rayon::current_num_threads(),
+        "coord",
+        "faults",
+        "time",
+        "missions/s"
+    );
+    let mut faulty = MissionConfig::with_uavs(3);
+    faulty.faults.grasp_fail = 0.1;
+    faulty.faults.msg_loss = 0.1;
+    for (label, config) in [
+        ("none", MissionConfig::with_uavs(3)),
+        ("grasp 10%, msg loss 10%", faulty),
+    ] {
+        let slot = prepare(&wall, &model, &config)?;
+        for coord in [Coord::Comm, Coord::Windows, Coord::Auto] {
+            let started = Instant::now();
+            let results = fly_many(
+                &wall,
+                &order,
+                &model,
+                &config,
+                coord,
+                slot,
+                0,
+                missions,
+                &|| {},
+            )?;
+            let secs = started.elapsed().as_secs_f64();
+            debug_assert_eq!(results.len(), missions);
+            text.push_str(&format!(
+                "{:<8} {:<26} {:>8.3} s {:>14.0}\n",
+                format!("{coord:?}").to_lowercase(),
+                label,
+                secs,
+                missions as f64 / secs
+            ));
+        }
+    }
+    Ok(text)
+}
