@@ -10,6 +10,7 @@ use mason_crew::{
 };
 use mason_mission::{summarise, Coord, MissionConfig, Window};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use mason_report::{pre, Section, Series};
 use mason_wall::BUILTIN_WALLS;
 use std::path::Path;
 
@@ -66,6 +67,7 @@ pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
          Every order below was checked by order::validate; gap is against `exact`.\n",
     );
     let mut plans = Vec::new();
+    let mut wall_figures = String::new();
     for builtin in &BUILTIN_WALLS {
         let wall = builtin.wall();
         let problem = BuildProblem::new(&wall, model.clone()).expect("default model is valid");
@@ -96,25 +98,43 @@ pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
             &out.join(format!("wall-{}.svg", builtin.name)),
             svg.as_bytes(),
         )?;
+        wall_figures.push_str(&svg);
     }
     let json = serde_json::to_string_pretty(&plans).expect("plans serialise");
     write_file(&out.join("plans.json"), json.as_bytes())?;
     text.push_str(&format!(
         "\n(brute and improved stop after {brute_limit} s and report `timeout` with their best order.)\n"
     ));
-    text.push_str(&missions(&model)?);
-    text.push_str(&crew(out)?);
+    let planning_text = text.clone();
+    let (mission_text, mission_html) = missions(&model, out)?;
+    let (crew_text, crew_html) = crew(out)?;
+    text.push_str(&mission_text);
+    text.push_str(&crew_text);
+    let report = mason_report::report_page(
+        "Mason demo report",
+        "Everything below was produced by `mason demo` from built-in data; every plan and trace was checked by its validator.",
+        &[
+            Section {
+                heading: "Build orders".into(),
+                html: format!("{}{wall_figures}", pre(&planning_text)),
+            },
+            Section { heading: "Missions".into(), html: format!("{}{mission_html}", pre(&mission_text)) },
+            Section { heading: "Crew".into(), html: format!("{}{crew_html}", pre(&crew_text)) },
+        ],
+    );
+    let report_path = out.join("report.html");
+    write_file(&report_path, report.as_bytes())?;
     text.push_str(&format!(
-        "\nwrote {}/wall-*.svg, {}/plans.json and {}/crew.svg\n",
-        out.display(),
-        out.display(),
-        out.display()
+        "\nwrote {} (figures, tables and replays), with wall-*.svg, gantt-*.svg, reward.svg, crew.svg,\nreplay-mission.html, replay-crew.html and plans.json beside it\n",
+        report_path.display()
     ));
     Ok(text)
 }
 
 /// The mission comparison: 3 UAVs fly the exact order of two walls under each policy.
-fn missions(model: &CostModel) -> CliResult<String> {
+/// Returns the text and the report's figures.
+fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
+    let mut html = String::new();
     let mut text = String::from(
         "\nMissions: 3 UAVs fly the exact order (DESIGN §5). `clean` is one fault-free run; `faults` is\n\
          200 seeded runs with 10% grasp failures, 10% message loss and a blackout from 120 to 240 s\n\
@@ -143,8 +163,29 @@ fn missions(model: &CostModel) -> CliResult<String> {
             "clean",
             "faults"
         ));
+        let mut rewards = Vec::new();
         for coord in [Coord::Comm, Coord::Windows, Coord::Auto] {
             let (r, _) = fly_once(&wall, &order, model, &clean, coord, slot, 0)?;
+            if name == "mbzirc" {
+                let (f, trace) = fly_once(&wall, &order, model, &faulty, coord, slot, 0)?;
+                let label = format!("{coord:?}").to_lowercase();
+                let title = format!("{name} — 3 UAVs, {label}, faults (seed 0)");
+                let gantt = mason_report::gantt_svg(&title, &wall, 3, &trace, f.metrics.end_s);
+                write_file(&out.join(format!("gantt-{label}.svg")), gantt.as_bytes())?;
+                html.push_str(&gantt);
+                if coord == Coord::Auto {
+                    let page = mason_report::mission_replay_html(
+                        &title,
+                        &wall,
+                        &faulty.arena,
+                        3,
+                        &trace,
+                        f.metrics.end_s,
+                    );
+                    write_file(&out.join("replay-mission.html"), page.as_bytes())?;
+                }
+                rewards.push((label, f.metrics.reward_over_time.clone()));
+            }
             let s = summarise(&fly_many(
                 &wall,
                 &order,
@@ -168,12 +209,32 @@ fn missions(model: &CostModel) -> CliResult<String> {
                 )
             ));
         }
+        if !rewards.is_empty() {
+            let series: Vec<Series<'_>> = rewards
+                .iter()
+                .map(|(l, p)| Series {
+                    label: l,
+                    points: p,
+                })
+                .collect();
+            let total: f64 = wall.bricks().iter().map(|b| b.kind.default_reward()).sum();
+            let svg = mason_report::reward_svg(
+                &format!("{name} — reward over time with faults (seed 0)"),
+                &series,
+                total,
+            );
+            write_file(&out.join("reward.svg"), svg.as_bytes())?;
+            html.push_str(&svg);
+        }
     }
-    Ok(text)
+    html.push_str("<h3>Replay (auto, with faults)</h3><p><a href=\"replay-mission.html\">open the replay on its own page</a></p><iframe src=\"replay-mission.html\"></iframe>");
+    Ok((text, html))
 }
 
 /// The crew scenario: 40 robots in a generated warehouse, the paper's method against ours.
-fn crew(out: &Path) -> CliResult<String> {
+/// Returns the text and the report's figures.
+fn crew(out: &Path) -> CliResult<(String, String)> {
+    let mut html = String::new();
     let grid = warehouse(160, 100, 0.005, 7);
     let (robots, goals) = random_tasks(&grid, 40, 7);
     let inst = Instance::new(
@@ -228,9 +289,18 @@ fn crew(out: &Path) -> CliResult<String> {
             r.outcome.paths.as_deref().unwrap_or_default(),
         );
         write_file(&out.join("crew.svg"), svg.as_bytes())?;
+        html.push_str(&svg);
+        let page = mason_report::crew_replay_html(
+            "demo warehouse — 40 robots, astar + st",
+            &inst.grid,
+            &r.outcome.goals,
+            r.outcome.paths.as_deref().unwrap_or_default(),
+        );
+        write_file(&out.join("replay-crew.html"), page.as_bytes())?;
+        html.push_str("<h3>Replay</h3><p><a href=\"replay-crew.html\">open the replay on its own page</a></p><iframe src=\"replay-crew.html\"></iframe>");
     }
     text.push_str(
         "  (every plan was checked by crew::validate; a failed method shows its status)\n",
     );
-    Ok(text)
+    Ok((text, html))
 }

@@ -81,6 +81,9 @@ enum Command {
         /// Also draw the wall with its build order as SVG
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Also write an HTML page with the figure and the step table
+        #[arg(long)]
+        html: Option<PathBuf>,
     },
     /// Fly a build order with a UAV team (discrete-event simulation, faults, Monte Carlo)
     Simulate(SimArgs),
@@ -155,6 +158,12 @@ struct SimArgs {
     /// Print JSON instead of a table
     #[arg(long)]
     json: bool,
+    /// Draw the mission Gantt chart as SVG (single run)
+    #[arg(long)]
+    svg: Option<PathBuf>,
+    /// Write the self-contained HTML replay (single run)
+    #[arg(long)]
+    html: Option<PathBuf>,
 }
 
 #[derive(clap::Args)]
@@ -201,6 +210,9 @@ struct CrewArgs {
     /// Draw the map, starts, goals and paths as SVG
     #[arg(long)]
     svg: Option<PathBuf>,
+    /// Write the self-contained HTML replay of the plan
+    #[arg(long)]
+    html: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -249,6 +261,7 @@ fn run(cli: Cli) -> CliResult<()> {
             time_limit,
             json,
             svg,
+            html,
         } => {
             let spec: PlannerSpec = planner
                 .parse()
@@ -259,9 +272,23 @@ fn run(cli: Cli) -> CliResult<()> {
             let problem =
                 BuildProblem::new(&wall, model).map_err(|e| input_error(e.to_string()))?;
             let checked = plan::solve(&problem, spec, limit)?;
+            let figure = mason_report::wall_svg(&wall, checked.outcome.order.as_deref());
             if let Some(path) = svg {
-                let svg = mason_report::wall_svg(&wall, checked.outcome.order.as_deref());
-                write_file(&path, svg.as_bytes())?;
+                write_file(&path, figure.as_bytes())?;
+            }
+            if let Some(path) = html {
+                let page = mason_report::report_page(
+                    &format!("{} — {}", wall.name(), spec),
+                    "Build order (bold numbers: step; small: brick id), checked by order::validate.",
+                    &[
+                        mason_report::Section { heading: "Wall".into(), html: figure.clone() },
+                        mason_report::Section {
+                            heading: "Steps".into(),
+                            html: mason_report::pre(&plan::plan_table(&problem, &checked)),
+                        },
+                    ],
+                );
+                write_file(&path, page.as_bytes())?;
             }
             if json {
                 println!(
@@ -337,8 +364,35 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     config.faults = faults;
     config.coord.slot_s = a.slot;
     let slot = sim_cmd::prepare(&wall, &model, &config)?;
+    if a.runs > 1 && (a.svg.is_some() || a.html.is_some()) {
+        return Err(input_error(
+            "--svg and --html show one mission; drop --runs (or use --runs 1 --seed S)",
+        ));
+    }
     if a.runs == 1 {
         let (r, trace) = sim_cmd::fly_once(&wall, &order, &model, &config, coord, slot, a.seed)?;
+        let title = format!(
+            "{} — {} UAVs, {}, seed {}",
+            wall.name(),
+            a.uavs,
+            a.coord,
+            a.seed
+        );
+        if let Some(path) = &a.svg {
+            let svg = mason_report::gantt_svg(&title, &wall, a.uavs, &trace, r.metrics.end_s);
+            write_file(path, svg.as_bytes())?;
+        }
+        if let Some(path) = &a.html {
+            let page = mason_report::mission_replay_html(
+                &title,
+                &wall,
+                &config.arena,
+                a.uavs,
+                &trace,
+                r.metrics.end_s,
+            );
+            write_file(path, page.as_bytes())?;
+        }
         if a.json {
             let events: Vec<_> = trace
                 .iter()
@@ -438,6 +492,11 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             &paths,
         );
         write_file(path, svg.as_bytes())?;
+    }
+    if let (Some(path), Some(paths)) = (&a.html, &result.outcome.paths) {
+        let title = format!("{source} — {} robots ({})", inst.robot_count(), a.resolve);
+        let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
+        write_file(path, page.as_bytes())?;
     }
     if a.json {
         let v = crew_cmd::crew_json(&inst, &source, &choices.config, a.seed, &result);

@@ -140,6 +140,25 @@ fn demo_prints_the_comparison_and_writes_figures() {
     let plans: Value =
         serde_json::from_slice(&std::fs::read(out.join("plans.json")).unwrap()).unwrap();
     assert_eq!(plans.as_array().unwrap().len(), 20);
+    // The report embeds the figures and links the replays, which carry their data inline.
+    assert!(text.contains("report.html"));
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(
+        report.matches("<svg").count() >= 9,
+        "walls, Gantts, reward, crew"
+    );
+    assert!(report.contains("replay-mission.html") && report.contains("replay-crew.html"));
+    for fetch in ["src=\"http", "href=\"http", "url(http", "import "] {
+        assert!(!report.contains(fetch), "nothing fetched: {fetch}");
+    }
+    for page in ["replay-mission.html", "replay-crew.html"] {
+        let html = std::fs::read_to_string(out.join(page)).unwrap();
+        assert!(html.contains("id=\"mason-data\""), "{page}");
+        assert!(!html.contains("src=\"http"), "{page} fetches nothing");
+    }
+    for (name, row) in [("missions", "  comm "), ("crew", "astar + st (ours)")] {
+        assert!(text.contains(row), "{name} comparison missing: {text}");
+    }
     let _ = std::fs::remove_dir_all(out);
 }
 

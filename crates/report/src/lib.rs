@@ -1,5 +1,9 @@
 //! Mason reports: figures drawn from plain data, returned as strings. No I/O.
 //!
+//! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
+//! ([`gantt_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
+//! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
+//!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
 //! let svg = mason_report::wall_svg(&wall, None);
@@ -8,9 +12,17 @@
 #![deny(missing_docs)]
 
 mod crew_svg;
+mod gantt;
+mod page;
+mod replay;
+mod reward;
 mod svg;
 mod wall_svg;
 
 pub use crew_svg::crew_svg;
+pub use gantt::{gantt_svg, state_colour};
+pub use page::{pre, report_page, Section};
+pub use replay::{crew_replay_html, mission_replay_html};
+pub use reward::{reward_svg, Series};
 pub use svg::{escape, robot_colour};
 pub use wall_svg::wall_svg;
