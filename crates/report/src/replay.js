@@ -1,6 +1,7 @@
 "use strict";
 // Mason replay: plays the embedded mission or crew plan. Exposes its state on <body>:
-// data-t (the shown time), data-frames (frames drawn), data-errors (errors caught).
+// data-t (the shown time), data-frames (frames drawn), data-errors (errors caught),
+// data-draw-ms (mean time to draw a frame).
 (function () {
   const body = document.body;
   const data = JSON.parse(document.getElementById("mason-data").textContent);
@@ -102,7 +103,7 @@
     };
   }
 
-  let lastDrawn = 0;
+  let lastDrawn = 0, drawMs = 0;
   function frame(now, fromTimer) {
     lastDrawn = performance.now();
     if (last !== null && playing) {
@@ -112,8 +113,11 @@
     last = now;
     scrub.value = String(t);
     clock.textContent = fmt(t) + " / " + fmt(end);
+    const t0 = performance.now();
     draw();
+    drawMs += performance.now() - t0;
     frames++;
+    body.dataset.drawMs = (drawMs / frames).toFixed(2);
     body.dataset.t = t.toFixed(3);
     body.dataset.frames = String(frames);
     if (!fromTimer) requestAnimationFrame(frame);
