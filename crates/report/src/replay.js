@@ -104,10 +104,12 @@
   }
 
   let lastDrawn = 0, drawMs = 0;
-  function frame(now, fromTimer) {
-    lastDrawn = performance.now();
+  function frame(_, fromTimer) {
+    // One clock for animation frames and timer frames alike.
+    const now = performance.now();
+    lastDrawn = now;
     if (last !== null && playing) {
-      t = Math.min(end, t + ((now - last) / 1000) * parseFloat(speedSel.value));
+      t = Math.min(end, t + (Math.max(0, now - last) / 1000) * parseFloat(speedSel.value));
       if (t >= end) { playing = false; playBtn.textContent = "Play"; }
     }
     last = now;
@@ -125,5 +127,5 @@
   requestAnimationFrame(frame);
   // Where animation frames are throttled (background tabs, headless browsers), a timer keeps
   // the replay going at 10 frames per second.
-  setInterval(() => { if (performance.now() - lastDrawn > 90) frame(performance.now(), true); }, 100);
+  setInterval(() => { if (performance.now() - lastDrawn > 90) frame(0, true); }, 100);
 })();
