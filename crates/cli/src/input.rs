@@ -87,9 +87,18 @@ pub fn load_model(path: Option<&Path>) -> CliResult<CostModel> {
     let Some(path) = path else {
         return Ok(CostModel::default());
     };
+    let model: CostModel = read_toml(path)?;
+    model
+        .validate()
+        .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+    Ok(model)
+}
+
+/// Reads a TOML file into `T`; errors name the file and the line (exit 2).
+pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> CliResult<T> {
     let shown = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| input_error(format!("{shown}: {e}")))?;
-    let model: CostModel = toml::from_str(&text).map_err(|e| {
+    toml::from_str(&text).map_err(|e| {
         let line = e
             .span()
             .map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
@@ -98,9 +107,5 @@ pub fn load_model(path: Option<&Path>) -> CliResult<CostModel> {
             Some(l) => input_error(format!("{shown}:{l}: {msg}")),
             None => input_error(format!("{shown}: {msg}")),
         }
-    })?;
-    model
-        .validate()
-        .map_err(|e| input_error(format!("{shown}: {e}")))?;
-    Ok(model)
+    })
 }

@@ -37,19 +37,7 @@ pub struct FaultSpec {
 impl FaultSpec {
     /// Reads a faults TOML file (errors name the file and the line).
     pub fn read(path: &Path) -> CliResult<FaultSpec> {
-        let shown = path.display();
-        let text =
-            std::fs::read_to_string(path).map_err(|e| input_error(format!("{shown}: {e}")))?;
-        toml::from_str(&text).map_err(|e| {
-            let line = e
-                .span()
-                .map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
-            let msg = e.message().trim().to_string();
-            match line {
-                Some(l) => input_error(format!("{shown}:{l}: {msg}")),
-                None => input_error(format!("{shown}: {msg}")),
-            }
-        })
+        crate::input::read_toml(path)
     }
 
     /// The file's settings with the command line's on top (lists are joined).

@@ -131,28 +131,17 @@ pub fn gantt_svg(title: &str, wall: &Wall, uavs: usize, events: &[Event], end: f
         r##"<text x="8" y="{:.1}" fill="#222">zone</text>"##,
         y + lane * 0.65
     );
-    let mut inside = 0usize;
-    let mut since = 0.0;
+    for (from, to) in zone_intervals(events) {
+        let _ = write!(
+            svg,
+            r##"<rect x="{:.2}" y="{y:.1}" width="{:.2}" height="{lane}" fill="#43a047" opacity="0.75"/>"##,
+            x(from),
+            x(to) - x(from)
+        );
+    }
     for e in events {
-        match e.kind {
-            EventKind::ZoneEnter => {
-                if inside == 0 {
-                    since = e.t;
-                }
-                inside += 1;
-            }
-            EventKind::ZoneLeave => {
-                inside = inside.saturating_sub(1);
-                if inside == 0 {
-                    let _ = write!(
-                        svg,
-                        r##"<rect x="{:.2}" y="{y:.1}" width="{:.2}" height="{lane}" fill="#43a047" opacity="0.75"/>"##,
-                        x(since),
-                        x(e.t) - x(since)
-                    );
-                }
-            }
-            EventKind::Place { brick } => {
+        if let EventKind::Place { brick } = e.kind {
+            {
                 let b = wall.brick(brick);
                 let [r, g, bl] = mason_wall::brick_rgb(b.kind);
                 let _ = write!(
@@ -167,7 +156,6 @@ pub fn gantt_svg(title: &str, wall: &Wall, uavs: usize, events: &[Event], end: f
                     e.t
                 );
             }
-            _ => {}
         }
     }
     let _ = write!(
@@ -208,4 +196,67 @@ pub fn gantt_svg(title: &str, wall: &Wall, uavs: usize, events: &[Event], end: f
     }
     let _ = write!(svg, "</svg>");
     svg
+}
+
+/// The intervals (enter, leave) during which the wall zone was occupied.
+pub fn zone_intervals(events: &[Event]) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut inside = 0usize;
+    let mut since = 0.0;
+    for e in events {
+        match e.kind {
+            EventKind::ZoneEnter => {
+                if inside == 0 {
+                    since = e.t;
+                }
+                inside += 1;
+            }
+            EventKind::ZoneLeave => {
+                inside = inside.saturating_sub(1);
+                if inside == 0 {
+                    out.push((since, e.t));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mason_mission::{make_policy, simulate, Coord, MissionConfig, MissionInput};
+
+    #[test]
+    fn one_lane_per_uav_a_zone_lane_and_a_mark_per_placement() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let model = mason_order::CostModel::default();
+        let order: Vec<_> = wall.ids().collect();
+        let config = MissionConfig::with_uavs(3);
+        let input = MissionInput {
+            wall: &wall,
+            order: &order,
+            model: &model,
+            config: &config,
+        };
+        let mut trace = Vec::new();
+        let r = simulate(
+            input,
+            make_policy(Coord::Comm, 25.0).as_mut(),
+            0,
+            &mut trace,
+        );
+        let svg = gantt_svg("t", &wall, 3, &trace, r.metrics.end_s);
+        for u in 0..3 {
+            assert!(svg.contains(&format!(">UAV {u}<")));
+        }
+        assert_eq!(svg.matches("placed at").count(), 10);
+        let zone = zone_intervals(&trace);
+        assert_eq!(zone.len(), 10, "one zone visit per brick");
+        assert!(
+            zone.windows(2).all(|w| w[0].1 <= w[1].0),
+            "visits do not overlap"
+        );
+    }
 }

@@ -4,6 +4,7 @@
 //! speed and scrub controls, and expose their state on `<body>` (`data-t`, `data-frames`,
 //! `data-errors`) for tests.
 
+use crate::gantt::zone_intervals;
 use crate::svg::escape;
 use mason_crew::{Cell, Grid};
 use mason_mission::{Arena, Event, EventKind};
@@ -55,30 +56,19 @@ pub fn mission_replay_html(
 ) -> String {
     let mut tracks: Vec<Vec<Value>> = vec![Vec::new(); uavs];
     let mut placed_at: Vec<Option<f64>> = vec![None; wall.len()];
-    let mut zone = Vec::new();
-    let mut inside = 0usize;
-    let mut since = 0.0;
     for e in events {
         match e.kind {
             EventKind::State { state, x, y, .. } => {
                 tracks[e.uav as usize].push(json!([e.t, x, y, state.name()]))
             }
             EventKind::Place { brick } => placed_at[brick.index()] = Some(e.t),
-            EventKind::ZoneEnter => {
-                if inside == 0 {
-                    since = e.t;
-                }
-                inside += 1;
-            }
-            EventKind::ZoneLeave => {
-                inside = inside.saturating_sub(1);
-                if inside == 0 {
-                    zone.push(json!([since, e.t]));
-                }
-            }
             _ => {}
         }
     }
+    let zone: Vec<Value> = zone_intervals(events)
+        .into_iter()
+        .map(|(a, b)| json!([a, b]))
+        .collect();
     let bricks: Vec<Value> = wall
         .bricks()
         .iter()
@@ -147,4 +137,28 @@ pub fn crew_replay_html(title: &str, grid: &Grid, goals: &[Cell], paths: &[Vec<C
         "paths": paths.iter().map(|p| p.iter().map(|c| c.0).collect::<Vec<_>>()).collect::<Vec<_>>(),
     });
     page(title, "<div><canvas id=\"grid\"></canvas></div>", &data)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crew_page_embeds_its_data_safely_and_fetches_nothing() {
+        let mut grid = Grid::open(4, 3);
+        grid.set_blocked(Cell(5), true);
+        let page = crew_replay_html(
+            "a </script> title",
+            &grid,
+            &[Cell(3)],
+            &[vec![Cell(0), Cell(1), Cell(2), Cell(3)]],
+        );
+        assert_eq!(
+            page.matches("</script>").count(),
+            3,
+            "hook, data and player only"
+        );
+        assert!(page.contains("\"blocked\":[[1,1,1]]"));
+        assert!(!page.contains("src=\"http"));
+    }
 }
