@@ -98,7 +98,7 @@ impl Tally {
 }
 
 /// Runs the suite. `runs` random instances per robot count.
-pub fn paper(runs: usize) -> CliResult<String> {
+pub fn paper(runs: usize, show_progress: bool) -> CliResult<String> {
     if runs == 0 {
         return Err(input_error("--runs must be at least 1"));
     }
@@ -111,6 +111,7 @@ pub fn paper(runs: usize) -> CliResult<String> {
         grid.free_count()
     );
     let all = methods(0);
+    let bar = crate::progress::bar((ROBOTS.len() * runs) as u64, "bench paper", show_progress);
     text.push_str(&format!("{:>6}", "robots"));
     for m in &all {
         text.push_str(&format!("  {:<27}", m.name));
@@ -142,6 +143,7 @@ pub fn paper(runs: usize) -> CliResult<String> {
                     tally.lower += lb;
                 }
             }
+            bar.inc(1);
         }
         text.push_str(&format!("{n:>6}"));
         for t in &mut tallies {
@@ -153,6 +155,7 @@ pub fn paper(runs: usize) -> CliResult<String> {
             paper_figure(n, all[1].paper_column)
         ));
     }
+    bar.finish_and_clear();
     text.push('\n');
     text.push_str(&movingai_warehouse()?);
     Ok(text)

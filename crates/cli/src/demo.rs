@@ -60,8 +60,9 @@ pub fn format_ms(ms: f64) -> String {
 }
 
 /// Runs the demo; writes figures and plans under `out`.
-pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
+pub fn run(out: &Path, brute_limit: f64, show_progress: bool) -> CliResult<String> {
     let model = CostModel::default();
+    let bar = crate::progress::bar(BUILTIN_WALLS.len() as u64 + 2, "demo", show_progress);
     let mut text = String::from(
         "Build orders for the built-in walls (thesis cost model, DESIGN §4).\n\
          Every order below was checked by order::validate; gap is against `exact`.\n",
@@ -99,6 +100,7 @@ pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
             svg.as_bytes(),
         )?;
         wall_figures.push_str(&svg);
+        bar.inc(1);
     }
     let json = serde_json::to_string_pretty(&plans).expect("plans serialise");
     write_file(&out.join("plans.json"), json.as_bytes())?;
@@ -107,7 +109,9 @@ pub fn run(out: &Path, brute_limit: f64) -> CliResult<String> {
     ));
     let planning_text = text.clone();
     let (mission_text, mission_html) = missions(&model, out)?;
+    bar.inc(1);
     let (crew_text, crew_html) = crew(out)?;
+    bar.finish_and_clear();
     text.push_str(&mission_text);
     text.push_str(&crew_text);
     let report = mason_report::report_page(

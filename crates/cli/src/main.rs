@@ -149,6 +149,10 @@ struct SimArgs {
     /// Faults from a TOML file (keys as the flags, with underscores); flags add to it
     #[arg(long)]
     faults: Option<PathBuf>,
+    /// Arena, UAV model and coordination settings from a TOML file (see README); its
+    /// [faults] are used unless --faults or a fault flag is given
+    #[arg(long)]
+    mission: Option<PathBuf>,
     /// Monte Carlo runs (seeds S, S+1, …), spread over the cores
     #[arg(long, default_value_t = 1)]
     runs: usize,
@@ -234,7 +238,7 @@ fn run(cli: Cli) -> CliResult<()> {
     match cli.command {
         Command::Demo { out, time_limit } => {
             let limit = plan::time_limit(Some(time_limit))?.unwrap_or(2.0);
-            print!("{}", demo::run(&out, limit)?);
+            print!("{}", demo::run(&out, limit, !cli.quiet)?);
             Ok(())
         }
         Command::Wall {
@@ -312,7 +316,7 @@ fn run(cli: Cli) -> CliResult<()> {
             let text = match suite.as_str() {
                 "thesis" => bench::thesis(limit)?,
                 "planning" => bench::planning(runs)?,
-                "paper" => crew_bench::paper(runs)?,
+                "paper" => crew_bench::paper(runs, !cli.quiet)?,
                 "thesis-mission" => mission_bench::thesis_mission(runs.max(100))?,
                 "missions" => mission_bench::throughput(runs)?,
                 other => {
@@ -352,6 +356,14 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         Some(p) => sim_cmd::FaultSpec::read(p)?,
         None => sim_cmd::FaultSpec::default(),
     };
+    let any_fault_option = a.faults.is_some()
+        || cli_faults.grasp_fail.is_some()
+        || cli_faults.detect_fail.is_some()
+        || !cli_faults.uav_fail.is_empty()
+        || cli_faults.uav_hazard.is_some()
+        || !cli_faults.blackout.is_empty()
+        || cli_faults.msg_loss.is_some()
+        || cli_faults.latency.is_some();
     let faults = file_faults.merged(cli_faults).resolve()?;
     let wall = load_wall(&a.design.design, a.design.format, a.design.cmcp_sizes)?;
     let model = load_model(a.model.as_deref())?;
@@ -360,9 +372,17 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     let checked = plan::solve(&problem, spec, Some(60.0))?;
     plan::exit_for(&checked)?;
     let order = checked.outcome.order.clone().expect("checked order");
-    let mut config = mason_mission::MissionConfig::with_uavs(a.uavs);
-    config.faults = faults;
-    config.coord.slot_s = a.slot;
+    let mut config: mason_mission::MissionConfig = match &a.mission {
+        Some(p) => input::read_toml(p)?,
+        None => mason_mission::MissionConfig::default(),
+    };
+    config.uavs = a.uavs;
+    if any_fault_option || a.mission.is_none() {
+        config.faults = faults;
+    }
+    if a.slot.is_some() {
+        config.coord.slot_s = a.slot;
+    }
     let slot = sim_cmd::prepare(&wall, &model, &config)?;
     if a.runs > 1 && (a.svg.is_some() || a.html.is_some()) {
         return Err(input_error(

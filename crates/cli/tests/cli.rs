@@ -618,3 +618,39 @@ fn simulate_with_one_uav_left_and_orange_bricks_exits_1() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("mission incomplete"), "{}", stderr(&o));
 }
+
+#[test]
+fn simulate_reads_a_mission_file() {
+    let small = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--mission",
+        &data("mission-small-arena.toml"),
+        "--json",
+    ]);
+    assert!(small.status.success(), "{}", stderr(&small));
+    let default = mason(&["simulate", "builtin:thesis-2x5", "--json"]);
+    let span = |o: &Output| {
+        let v: Value = serde_json::from_str(&stdout(o)).unwrap();
+        (
+            v["metrics"]["makespan_s"].as_f64().unwrap(),
+            v["faults"]["grasp_fail"].as_f64().unwrap(),
+        )
+    };
+    let (s, g) = span(&small);
+    let (d, g0) = span(&default);
+    assert!(
+        s < d,
+        "a smaller arena with faster UAVs is quicker: {s} vs {d}"
+    );
+    assert_eq!((g, g0), (0.1, 0.0), "the file's faults apply");
+    assert_input_error(
+        &mason(&[
+            "simulate",
+            "builtin:thesis-2x5",
+            "--mission",
+            &data("mission-bad-arena.toml"),
+        ]),
+        &["arena", "outside"],
+    );
+}

@@ -30,7 +30,7 @@ impl Point {
 
 /// The arena's layout.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct Arena {
     /// Width (x), metres.
     pub width: f64,

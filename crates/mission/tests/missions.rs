@@ -220,8 +220,17 @@ fn check_trace_rejects_a_shared_zone_and_a_premature_placement() {
     assert!(check_trace(&w, 3, &forged).is_err());
 }
 
+/// 150 random missions in CI; the stress command sets more:
+/// `MASON_STRESS_CASES=5000 cargo test --release -p mason-mission --test missions random_faulty`.
+fn stress_cases() -> u32 {
+    std::env::var("MASON_STRESS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(150)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(150))]
+    #![proptest_config(ProptestConfig::with_cases(stress_cases()))]
 
     /// `check_trace` passes on random fault-injected missions with every policy.
     #[test]
