@@ -137,7 +137,7 @@ pub fn paper(runs: usize, show_progress: bool) -> CliResult<String> {
                 tally
                     .times_ms
                     .push(r.outcome.stats.elapsed.as_secs_f64() * 1e3);
-                if let (Some(metrics), Some(lb)) = (r.metrics, r.lower_bound) {
+                if let (Some(metrics), Some(lb)) = (r.metrics, r.lower_bound()) {
                     tally.ok += 1;
                     tally.soc += metrics.sum_of_costs;
                     tally.lower += lb;
@@ -228,7 +228,7 @@ fn movingai_warehouse() -> CliResult<String> {
                 prm: PrmConfig::default(),
             };
             let r = run_solve(&inst, &config, Some(600.0))?;
-            let (soc, ratio) = match (r.metrics, r.lower_bound) {
+            let (soc, ratio) = match (r.metrics, r.lower_bound()) {
                 (Some(m), Some(lb)) => (
                     m.sum_of_costs.to_string(),
                     format!("{:.3}", m.sum_of_costs as f64 / lb as f64),
@@ -241,7 +241,7 @@ fn movingai_warehouse() -> CliResult<String> {
             };
             text.push_str(&format!(
                 "{n:>6}  {label:<22} {status:<10} {soc:>8} {:>10} {ratio:>7} {:>8.1} ms\n",
-                r.lower_bound.map_or("-".into(), |b| b.to_string()),
+                r.lower_bound().map_or("-".into(), |b| b.to_string()),
                 r.outcome.stats.elapsed.as_secs_f64() * 1e3
             ));
         }

@@ -149,9 +149,16 @@ pub struct CrewResult {
     pub outcome: CrewOutcome,
     /// The validator's metrics, when there is a plan.
     pub metrics: Option<PlanMetrics>,
-    /// Σ of each robot's shortest step distance to its assigned goal (a lower bound on the sum
-    /// of costs); `None` when some goal is unreachable.
-    pub lower_bound: Option<u64>,
+    /// Each robot's fewest steps to its assigned goal; `None` when unreachable.
+    pub shortest: Vec<Option<u64>>,
+}
+
+impl CrewResult {
+    /// Σ of the robots' shortest step distances (a lower bound on the sum of costs); `None`
+    /// when some goal is unreachable.
+    pub fn lower_bound(&self) -> Option<u64> {
+        self.shortest.iter().copied().sum()
+    }
 }
 
 /// Solves and validates (a plan the validator rejects is a bug, reported as such).
@@ -182,7 +189,7 @@ pub fn run_solve(
         ),
         None => None,
     };
-    let lower_bound = inst
+    let shortest = inst
         .robots
         .iter()
         .zip(&outcome.goals)
@@ -190,11 +197,11 @@ pub fn run_solve(
             let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
             (d != UNREACHABLE).then_some(u64::from(d))
         })
-        .sum();
+        .collect();
     Ok(CrewResult {
         outcome,
         metrics,
-        lower_bound,
+        shortest,
     })
 }
 
@@ -236,7 +243,7 @@ pub fn crew_json(
         "agents": agents,
         "sum_of_costs": r.metrics.map(|m| m.sum_of_costs),
         "makespan": r.metrics.map(|m| m.makespan),
-        "lower_bound_sum_of_costs": r.lower_bound,
+        "lower_bound_sum_of_costs": r.lower_bound(),
         "stats": {
             "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
             "expanded": o.stats.expanded,
@@ -268,14 +275,13 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
                 "robot", "start", "goal", "arrives", "shortest"
             ));
             for (i, p) in paths.iter().enumerate() {
-                let d = step_distances(g, inst.connectivity, inst.robots[i])[o.goals[i].0 as usize];
                 s.push_str(&format!(
                     "  {:>5} {:>12} {:>12} {:>8} {:>9}\n",
                     i,
                     format!("{:?}", g.xy(inst.robots[i])),
                     format!("{:?}", g.xy(o.goals[i])),
                     mason_crew::validate::arrival(p),
-                    d
+                    r.shortest[i].map_or("-".into(), |d| d.to_string())
                 ));
             }
         }
@@ -288,7 +294,7 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
         s.push_str(&format!(
             "sum of costs: {} (lower bound {}), makespan: {}\n",
             m.sum_of_costs,
-            r.lower_bound.map_or("-".into(), |b| b.to_string()),
+            r.lower_bound().map_or("-".into(), |b| b.to_string()),
             m.makespan
         ));
     }

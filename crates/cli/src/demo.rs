@@ -3,7 +3,7 @@
 use crate::crew_cmd::run_solve;
 use crate::fail::{write_file, CliResult};
 use crate::plan::{plan_json, solve, Checked};
-use crate::sim_cmd::{clock, fly_many, fly_once, prepare};
+use crate::sim_cmd::{clock, fly_many, fly_once, prepare, spread_clock};
 use mason_crew::generate::{random_tasks, warehouse};
 use mason_crew::{
     AssignMethod, Connectivity, CrewConfig, Instance, PathMethod, PrmConfig, Resolution,
@@ -205,12 +205,7 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
                 "  {:<8} {:>9} {:>30}\n",
                 format!("{coord:?}").to_lowercase(),
                 r.metrics.makespan_s.map_or("-".into(), clock),
-                format!(
-                    "{} [{}, {}]",
-                    clock(s.makespan_s.mean),
-                    clock(s.makespan_s.p5),
-                    clock(s.makespan_s.p95)
-                )
+                spread_clock(&s.makespan_s)
             ));
         }
         if !rewards.is_empty() {

@@ -3,7 +3,7 @@
 
 use crate::fail::{input_error, CliResult};
 use crate::plan::solve;
-use crate::sim_cmd::{clock, fly_many, fly_once, prepare};
+use crate::sim_cmd::{clock, fly_many, fly_once, prepare, spread_clock};
 use mason_mission::{summarise, Coord, MissionConfig};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use std::time::Instant;
@@ -48,12 +48,7 @@ pub fn thesis_mission(runs: usize) -> CliResult<String> {
                 name,
                 format!("{coord:?}").to_lowercase(),
                 r.metrics.makespan_s.map_or("-".into(), clock),
-                format!(
-                    "{} [{}, {}]",
-                    clock(s.makespan_s.mean),
-                    clock(s.makespan_s.p5),
-                    clock(s.makespan_s.p95)
-                ),
+                spread_clock(&s.makespan_s),
                 if coord == Coord::Comm { thesis } else { "" }
             ));
         }

@@ -3,8 +3,8 @@
 use crate::fail::{input_error, no_solution, CliResult};
 use mason_mission::{
     check_trace, make_policy, run_many, simulate, slot_length, Coord, Event, EventKind, Faults,
-    MissionConfig, MissionInput, MissionResult, MissionStatus, Summary, UavFailure, UavState,
-    Window,
+    MissionConfig, MissionInput, MissionResult, MissionStatus, Spread, Summary, UavFailure,
+    UavState, Window,
 };
 use mason_order::CostModel;
 use mason_wall::{BrickId, Wall};
@@ -162,6 +162,11 @@ pub fn clock(t: f64) -> String {
     }
     let m = (t / 60.0).floor();
     format!("{}:{:04.1}", m as u64, t - 60.0 * m)
+}
+
+/// `mean [p5, p95]` of a time spread, as clocks.
+pub fn spread_clock(s: &Spread) -> String {
+    format!("{} [{}, {}]", clock(s.mean), clock(s.p5), clock(s.p95))
 }
 
 /// The trace event as the JSON of DESIGN §7 (bricks as thesis ids).

@@ -84,13 +84,11 @@ pub fn space_time_plan(
             grid,
             conn,
             &table,
-            starts[r],
-            goals[r],
+            (r, starts[r], goals[r]),
             &mut to_goal[r],
             budget,
             &mut expanded,
-        )
-        .map_err(|f| f.for_robot(r));
+        );
         match result {
             Ok(path) => {
                 table.reserve(r as u32, &path);
@@ -102,34 +100,22 @@ pub fn space_time_plan(
     (Ok(paths), expanded)
 }
 
-impl StFailure {
-    fn for_robot(self, robot: usize) -> StFailure {
-        match self {
-            StFailure::Unreachable { .. } => StFailure::Unreachable { robot },
-            StFailure::GoalTaken { .. } => StFailure::GoalTaken { robot },
-            StFailure::NoPath { horizon, .. } => StFailure::NoPath { robot, horizon },
-            StFailure::Budget { .. } => StFailure::Budget { robot },
-        }
-    }
-}
-
 #[allow(clippy::too_many_arguments)]
 fn plan_one(
     grid: &Grid,
     conn: Connectivity,
     table: &ReservationTable,
-    start: Cell,
-    goal: Cell,
+    (robot, start, goal): (usize, Cell, Cell),
     h: &mut GoalDistance,
     budget: &Budget,
     expanded: &mut u64,
 ) -> Result<Vec<Cell>, StFailure> {
     let h0 = h.get(grid, start);
     if h0 == UNREACHABLE {
-        return Err(StFailure::Unreachable { robot: 0 });
+        return Err(StFailure::Unreachable { robot });
     }
     let Some(rest_from) = table.free_for_good_from(goal) else {
-        return Err(StFailure::GoalTaken { robot: 0 });
+        return Err(StFailure::GoalTaken { robot });
     };
     let horizon = table.horizon().max(rest_from) + h0 + grid.width() + grid.height() + 1;
     let mut parent: FxHashMap<(u32, u32), u32> = FxHashMap::default();
@@ -147,7 +133,7 @@ fn plan_one(
         if budget.node_limit.is_some_and(|cap| local > cap)
             || (local % 4096 == 0 && budget.out_of_time())
         {
-            return Err(StFailure::Budget { robot: 0 });
+            return Err(StFailure::Budget { robot });
         }
         if cell == goal.0 && t >= rest_from {
             let mut path = vec![Cell(cell)];
@@ -185,5 +171,5 @@ fn plan_one(
         push(here);
         grid.for_each_move(here, conn, |n, _| push(n));
     }
-    Err(StFailure::NoPath { robot: 0, horizon })
+    Err(StFailure::NoPath { robot, horizon })
 }

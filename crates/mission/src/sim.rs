@@ -234,13 +234,17 @@ impl Sim<'_, '_> {
         self.uavs.iter().filter(|u| u.alive).count()
     }
 
+    /// `u` and, when they act together, its partner. Owns its items, so `self` stays free.
+    fn team(
+        &self,
+        u: usize,
+    ) -> std::iter::Chain<std::iter::Once<usize>, std::option::IntoIter<usize>> {
+        std::iter::once(u).chain(self.together(u))
+    }
+
     /// Moves `u` (and its partner, when they act together) to `state`.
     fn go(&mut self, u: usize, state: UavState, outcome: &'static str, duration: Option<f64>) {
-        let mut who = vec![u];
-        if let Some(p) = self.together(u) {
-            who.push(p);
-        }
-        for &w in &who {
+        for w in self.team(u) {
             let uav = &mut self.uavs[w];
             uav.state = state;
             uav.token += 1;
@@ -365,9 +369,7 @@ impl Sim<'_, '_> {
                     self.attempt_failed(u);
                 } else {
                     let b = self.uavs[u].brick.expect("carrying");
-                    let mut who = vec![u];
-                    who.extend(self.together(u));
-                    for &w in &who {
+                    for w in self.team(u) {
                         self.uavs[w].grasped = true;
                         self.emit(w, EventKind::Grasp { brick: b });
                     }
@@ -378,9 +380,7 @@ impl Sim<'_, '_> {
             }
             UavState::FlyToWallWait => {
                 let wait = cfg.arena.wall_wait(u);
-                let mut who = vec![u];
-                who.extend(self.together(u));
-                for &w in &who {
+                for w in self.team(u) {
                     self.uavs[w].pos = wait;
                 }
                 self.go(u, UavState::WaitForZone, "arrived", None);
@@ -495,18 +495,17 @@ impl Sim<'_, '_> {
         let cfg = self.input.config;
         self.uavs[u].failures += 1;
         if self.uavs[u].failures > cfg.uav.retries {
-            let mut who = vec![u];
-            who.extend(self.together(u));
+            let who = self.team(u);
             let b = self.uavs[u].brick.expect("carrying");
             self.release(b);
-            for &w in &who {
+            for w in who.clone() {
                 self.uavs[w].partner = None;
                 self.uavs[w].joined = false;
             }
-            for &w in &who {
+            for w in who.clone() {
                 self.go(w, UavState::ChooseBrick, "gave_up", None);
             }
-            for &w in &who {
+            for w in who {
                 self.choose(w, "gave_up");
             }
             self.wake_idle();
