@@ -299,7 +299,20 @@ fn find_layers(st: &Strength, name: &str, count: Option<usize>) -> Result<Layers
             }
         }
         for (s, e) in runs(&mask) {
-            widths.push(((s + e) as f64 / 2.0, deficit(&column[s..e], 1.0)));
+            // Only a dip between full colour above and below measures the border: at a
+            // brick's corner the vertical border beside it adds its own deficit.
+            let above = column[s.saturating_sub(DIP_REACH)..s]
+                .iter()
+                .copied()
+                .fold(0.0, f32::max);
+            let below = column[e..(e + DIP_REACH).min(st.height)]
+                .iter()
+                .copied()
+                .fold(0.0, f32::max);
+            let shoulder = above.min(below);
+            if shoulder >= STRONG {
+                widths.push(((s + e) as f64 / 2.0, deficit(&column[s..e], shoulder)));
+            }
         }
     }
     // A separator row dips in a good part of the columns lit on both of its sides: upper
@@ -1022,15 +1035,22 @@ fn grid_positions(found: &[Found], unit: f64) -> Vec<u32> {
     positions.iter().map(|p| p - least).collect()
 }
 
-/// The border that makes a lone layer of isolated bricks 2/3 of a unit tall. With `m` bricks
+/// The border that makes a lone layer of isolated bricks 2/3 of a unit tall. With `m` runs
 /// of total nominal length `Σn` units, coloured widths `Σr` and coloured height `T` (all
 /// measured as area, which blur keeps): `T + b = (2/3)·(Σr + m·b)/Σn`.
 fn implied_border(band_runs: &[Vec<Run>], heights: &[f64]) -> f64 {
     let ([runs], [colour_height]) = (band_runs, heights) else {
         return 0.0;
     };
+    // A run may be bricks of one colour whose shared border left no mark: count its units
+    // from its width against the narrowest run per unit. Each run loses one border.
+    let per_unit = |r: &Run| r.area / f64::from(r.kind.units());
+    let narrowest = runs.iter().map(per_unit).fold(f64::INFINITY, f64::min);
     let m = runs.len() as f64;
-    let sum_n: f64 = runs.iter().map(|r| f64::from(r.kind.units())).sum();
+    let sum_n: f64 = runs
+        .iter()
+        .map(|r| f64::from(r.kind.units()) * (per_unit(r) / narrowest).round().max(1.0))
+        .sum();
     let sum_r: f64 = runs.iter().map(|r| r.area).sum();
     if sum_n == 0.0 {
         return 0.0;
@@ -1189,6 +1209,39 @@ mod tests {
                 (BrickType::Red, 20.0, 40.0),
             ]
         );
+    }
+
+    fn run(start: usize, end: usize, column_heights: Vec<f64>) -> Run {
+        Run {
+            start,
+            end,
+            kind: BrickType::Red,
+            gap: f64::INFINITY,
+            area: (end - start) as f64,
+            column_heights,
+            faint_dips: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn coloured_pixels_outside_every_brick_are_found() {
+        let mut img = RgbImage::from_pixel(40, 10, image::Rgb([255, 255, 255]));
+        for (x, y) in (2..10)
+            .chain(20..30)
+            .flat_map(|x| (2..8).map(move |y| (x, y)))
+        {
+            img.put_pixel(x, y, image::Rgb([230, 20, 20]));
+        }
+        let st = Strength::of(&img).unwrap();
+        let both = vec![vec![run(2, 10, vec![6.0; 8]), run(20, 30, vec![6.0; 10])]];
+        assert_eq!(uncovered(&st, &[(0, 10)], &both), None);
+        let first_only = vec![vec![run(2, 10, vec![6.0; 8])]];
+        assert_eq!(uncovered(&st, &[(0, 10)], &first_only), Some((20, 2)));
+        // Columns twice as tall as the rest: a layer on top was missed.
+        let mut heights = vec![6.0; 10];
+        heights[3..7].iter_mut().for_each(|h| *h = 13.0);
+        let tall = vec![vec![run(2, 10, vec![6.0; 8]), run(20, 30, heights)]];
+        assert_eq!(uncovered(&st, &[(0, 10)], &tall), Some((23, 0)));
     }
 
     #[test]
