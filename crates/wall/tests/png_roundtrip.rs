@@ -256,3 +256,38 @@ fn stress_round_trip_many_seeds() {
         failures.join("\n")
     );
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 300,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6e6f_7061_6e69),
+        ..ProptestConfig::default()
+    })]
+    /// No image makes the reader panic: random rectangles of brick colours, black, white and
+    /// grey on random backgrounds either read as some wall or give an error.
+    #[test]
+    fn arbitrary_images_never_panic(
+        width in 1u32..60,
+        height in 1u32..40,
+        rects in proptest::collection::vec((0u32..60, 0u32..40, 1u32..30, 1u32..15, 0usize..7), 0..12),
+        noise in 0i16..30,
+        seed in any::<u64>(),
+    ) {
+        let palette = [
+            [230, 20, 20], [20, 200, 40], [30, 40, 220], [255, 165, 0],
+            [0, 0, 0], [255, 255, 255], [128, 128, 128],
+        ];
+        let mut img = RgbImage::from_pixel(width, height, Rgb([255, 255, 255]));
+        for (x, y, w, h, c) in rects {
+            for yy in y..(y + h).min(height) {
+                for xx in x..(x + w).min(width) {
+                    img.put_pixel(xx, yy, Rgb(palette[c]));
+                }
+            }
+        }
+        add_noise(&mut img, &mut ChaCha8Rng::seed_from_u64(seed), noise.max(1));
+        if let Err(e) = read_image(&img, "random.png") {
+            prop_assert!(e.to_string().starts_with("random.png"), "{e}");
+        }
+    }
+}
