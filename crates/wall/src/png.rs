@@ -170,17 +170,7 @@ impl Strength {
 fn dip_mask(profile: &[f32], floor: f32, noise: Option<f32>, plateau: f32) -> Vec<bool> {
     let min_depth = noise.map_or(0.0, |n| 4.0 * n);
     let n = profile.len();
-    let shoulder = |i: usize| {
-        let left = profile[i.saturating_sub(DIP_REACH)..i]
-            .iter()
-            .copied()
-            .fold(0.0, f32::max);
-        let right = profile[(i + 1).min(n)..(i + 1 + DIP_REACH).min(n)]
-            .iter()
-            .copied()
-            .fold(0.0, f32::max);
-        left.min(right)
-    };
+    let shoulder = |i: usize| shoulders(profile, i, i + 1);
     let candidate: Vec<bool> = (0..n)
         .map(|i| {
             let s = shoulder(i);
@@ -226,6 +216,15 @@ fn dip_mask(profile: &[f32], floor: f32, noise: Option<f32>, plateau: f32) -> Ve
         }
     }
     mask
+}
+
+/// The level on both sides of `profile[start..end]`: the lower of the highest values within
+/// `DIP_REACH` before it and after it.
+fn shoulders(profile: &[f32], start: usize, end: usize) -> f32 {
+    let n = profile.len();
+    let highest = |r: std::ops::Range<usize>| profile[r].iter().copied().fold(0.0, f32::max);
+    highest(start.saturating_sub(DIP_REACH)..start)
+        .min(highest(end.min(n)..(end + DIP_REACH).min(n)))
 }
 
 /// The width of a gap as the area it lacks below the plateau. Blur and anti-aliasing move
@@ -301,15 +300,7 @@ fn find_layers(st: &Strength, name: &str, count: Option<usize>) -> Result<Layers
         for (s, e) in runs(&mask) {
             // Only a dip between full colour above and below measures the border: at a
             // brick's corner the vertical border beside it adds its own deficit.
-            let above = column[s.saturating_sub(DIP_REACH)..s]
-                .iter()
-                .copied()
-                .fold(0.0, f32::max);
-            let below = column[e..(e + DIP_REACH).min(st.height)]
-                .iter()
-                .copied()
-                .fold(0.0, f32::max);
-            let shoulder = above.min(below);
+            let shoulder = shoulders(&column, s, e);
             if shoulder >= STRONG {
                 widths.push(((s + e) as f64 / 2.0, deficit(&column[s..e], shoulder)));
             }
@@ -507,8 +498,9 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
         .zip(&dips)
         .map(|(&p, &d)| p >= floor && !d)
         .collect();
-    // Each column's colour, voted over the band's core rows by strength.
-    let column_kind: Vec<Option<usize>> = (0..st.width)
+    // Each column's colour votes, over the band's core rows by strength; a run's colour is
+    // the sum of its columns' votes.
+    let column_votes: Vec<[f32; 4]> = (0..st.width)
         .map(|x| {
             let mut votes = [0f32; 4];
             for (y, w) in (y0..y1).zip(&weights) {
@@ -516,28 +508,26 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
                     votes[kind.index()] += w * st.at(x, y);
                 }
             }
-            (0..4)
-                .filter(|&k| votes[k] > 0.0)
-                .max_by(|&a, &b| votes[a].total_cmp(&votes[b]))
+            votes
         })
         .collect();
+    let winner = |votes: &[f32; 4]| {
+        (0..4)
+            .filter(|&k| votes[k] > 0.0)
+            .max_by(|&a, &b| votes[a].total_cmp(&votes[b]))
+    };
+    let column_kind: Vec<Option<usize>> = column_votes.iter().map(winner).collect();
     let found: Vec<(usize, usize)> = runs(&on)
         .into_iter()
         .flat_map(|run| split_by_colour(&column_kind, run))
         .collect();
     let mut out = Vec::new();
     for (k, &(s, e)) in found.iter().enumerate() {
-        let mut votes = [0f32; 4];
-        for x in s..e {
-            for y in y0..y1 {
-                if let Some(kind) = st.kind[y * st.width + x] {
-                    votes[kind.index()] += st.at(x, y);
-                }
-            }
-        }
-        let best = (0..4)
-            .max_by(|&a, &b| votes[a].total_cmp(&votes[b]))
-            .unwrap_or(0);
+        let votes = column_votes[s..e].iter().fold([0f32; 4], |mut sum, v| {
+            sum.iter_mut().zip(v).for_each(|(a, b)| *a += b);
+            sum
+        });
+        let best = winner(&votes).unwrap_or(0);
         // The gap before this run, measured as missing area.
         let gap = if k == 0 {
             f64::INFINITY
@@ -606,20 +596,11 @@ fn colour_height(st: &Strength, columns: &[usize], rows: std::ops::Range<usize>)
 /// Columns of `profile[s..e]` that are a local minimum below `DIP_CANDIDATE` of their
 /// shoulders: where a border may have left only a faint mark.
 fn faint_dips(profile: &[f32], s: usize, e: usize) -> Vec<usize> {
-    let n = profile.len();
     (s + 1..e.saturating_sub(1))
         .filter(|&j| {
-            let left = profile[j.saturating_sub(DIP_REACH)..j]
-                .iter()
-                .copied()
-                .fold(0.0, f32::max);
-            let right = profile[j + 1..(j + 1 + DIP_REACH).min(n)]
-                .iter()
-                .copied()
-                .fold(0.0, f32::max);
             profile[j] <= profile[j - 1]
                 && profile[j] <= profile[j + 1]
-                && profile[j] < DIP_CANDIDATE * left.min(right)
+                && profile[j] < DIP_CANDIDATE * shoulders(profile, j, j + 1)
         })
         .collect()
 }
