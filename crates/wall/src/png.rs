@@ -13,8 +13,12 @@
 //! dips, or by a change of colour. A dip is a border when it is deep, or when it stands well
 //! clear of the band's noise: a 1 px border at 8 px per 0.30 m, blurred, may dim two columns
 //! by only a quarter. A brick's length is its run plus one border width; the border comes
-//! from the layer separators, from the narrowest gaps, or, for one layer of isolated bricks,
-//! from the 2/3 height rule applied to blur-proof area measurements. The length unit (pixels
+//! from the layer separators or from the narrowest gaps. One layer of bricks that touch
+//! nothing has neither: on a light background each pixel then unmixes linearly into shares
+//! of colour, background and black, and the dark ring they leave around each brick is a dark
+//! border's width (blur keeps it); a border as light as the background leaves no ring, and
+//! the border comes from the lengths of bricks of different colours (`r = n·unit − b`), or,
+//! for bricks all of one length, from the 2/3 height rule. The length unit (pixels
 //! per 0.30 m) is a median over all bricks weighted by length. Lengths then repair the two
 //! ways a border can mislead: touching same-coloured pieces that only together make the
 //! colour's length are merged, and a run k times its colour's length is split in k. Every
@@ -66,6 +70,14 @@ const TALL_RUN: f64 = 1.6;
 const STRONG: f32 = 0.8;
 /// A column is part of a brick when its strength is at least this.
 const ON: f32 = 0.5;
+/// A background is light when its channels average at least this.
+const LIGHT_BACKGROUND: f32 = 160.0;
+/// The light cluster of unsaturated pixels spans this much of the channel sum below its top.
+const LIGHT_SPREAD: f32 = 60.0;
+/// How far past a lone edge a run's dark ring is summed (px).
+const RING_REACH: usize = 6;
+/// A dark ring at least this wide (px) beside a brick shows a dark border.
+const RING_MIN: f64 = 0.5;
 /// Allowed mismatch between a brick's measured and nominal length (units of 0.30 m).
 const LENGTH_TOLERANCE: f64 = 0.35;
 
@@ -110,6 +122,13 @@ struct Strength {
     height: usize,
     kind: Vec<Option<BrickType>>,
     value: Vec<f32>,
+    /// The pixels, for the linear mixture measurements of `mixture`.
+    rgb: Vec<[f32; 3]>,
+    /// Each colour's typical pixel: the per-channel mean of its strongly saturated pixels.
+    colour: [[f32; 3]; 4],
+    /// The background's typical pixel, when it is light: only then can a dark border be told
+    /// from it.
+    background: Option<[f32; 3]>,
 }
 
 impl Strength {
@@ -151,17 +170,95 @@ impl Strength {
                 ((s - NOISE_SATURATION) / (r - NOISE_SATURATION).max(1.0)).clamp(0.0, 1.0)
             })
             .collect();
+        let rgb: Vec<[f32; 3]> = img.pixels().map(|p| p.0.map(f32::from)).collect();
+        let mut colour = [[0f32; 3]; 4];
+        for (k, typical) in colour.iter_mut().enumerate() {
+            let strong = rgb
+                .iter()
+                .zip(&kind)
+                .zip(&raw)
+                .filter(|((_, c), &s)| {
+                    c.map(BrickType::index) == Some(k) && s >= STRONG * reference[k]
+                })
+                .map(|((p, _), _)| *p);
+            *typical = channel_means(strong).unwrap_or([0.0; 3]);
+        }
+        // The background is the light cluster of the unsaturated pixels (borders may be as
+        // many as it at small scales, so a plain median could land on them).
+        let mut plain: Vec<[f32; 3]> = rgb
+            .iter()
+            .zip(&raw)
+            .filter(|(_, &s)| s < MIN_SATURATION)
+            .map(|(p, _)| *p)
+            .collect();
+        let sum = |p: &[f32; 3]| p.iter().sum::<f32>();
+        plain.sort_by(|a, b| sum(a).total_cmp(&sum(b)));
+        let light = plain.get(plain.len() * 9 / 10).map(sum);
+        let background = light
+            .and_then(|top| {
+                channel_means(
+                    plain
+                        .iter()
+                        .copied()
+                        .filter(|p| sum(p) >= top - LIGHT_SPREAD),
+                )
+            })
+            .filter(|w| sum(w) >= 3.0 * LIGHT_BACKGROUND);
         Some(Strength {
             width,
             height,
             kind,
             value,
+            rgb,
+            colour,
+            background,
         })
+    }
+
+    /// How much of pixel (x, y) is a brick of `kind` and how much is background, as the
+    /// shares (κ, β) of the mixture κ·colour + β·background + (1 − κ − β)·black that explains
+    /// it. Blur and anti-aliasing mix pixels linearly, so the shares summed along a row keep
+    /// the widths of what was drawn. Needs a light background.
+    fn mixture(&self, x: usize, y: usize, kind: BrickType) -> Option<(f32, f32)> {
+        let w = self.background?;
+        let c = self.colour[kind.index()];
+        // The colour's strongest and weakest channels tell it from light and dark.
+        let (hi, lo) = strongest_and_weakest(c);
+        let det = c[hi] * w[lo] - c[lo] * w[hi];
+        if det.abs() < 1.0 {
+            return None;
+        }
+        let v = self.rgb[y * self.width + x];
+        Some((
+            (v[hi] * w[lo] - v[lo] * w[hi]) / det,
+            (c[hi] * v[lo] - c[lo] * v[hi]) / det,
+        ))
     }
 
     fn at(&self, x: usize, y: usize) -> f32 {
         self.value[y * self.width + x]
     }
+}
+
+/// The per-channel means of some pixels (means, since noise clipped at 0 or 255 shifts the
+/// mean of every pixel alike); `None` when there are none.
+fn channel_means(pixels: impl Iterator<Item = [f32; 3]>) -> Option<[f32; 3]> {
+    let mut n = 0.0;
+    let mut sum = [0f64; 3];
+    for p in pixels {
+        n += 1.0;
+        sum.iter_mut().zip(p).for_each(|(s, v)| *s += f64::from(v));
+    }
+    (n > 0.0).then(|| sum.map(|s| (s / n) as f32))
+}
+
+/// The indices of a pixel's strongest and weakest channels.
+fn strongest_and_weakest(p: [f32; 3]) -> (usize, usize) {
+    let by = |a: &usize, b: &usize| p[*a].total_cmp(&p[*b]);
+    (
+        (0..3).max_by(by).unwrap_or(0),
+        (0..3).min_by(by).unwrap_or(0),
+    )
 }
 
 /// Marks dips in a profile: runs of values below `DIP_CANDIDATE` of both shoulders whose
@@ -438,6 +535,9 @@ struct Run {
     area: f64,
     /// The colour's height in each of the run's columns, as area (px).
     column_heights: Vec<f64>,
+    /// The width of the dark ring on the run's left and right (px), where it could be
+    /// measured (see `dark_rings`).
+    rings: [Option<f64>; 2],
     /// Columns that dip a little below their shoulders, too little to count as a border.
     faint_dips: Vec<usize>,
 }
@@ -534,6 +634,8 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
         } else {
             deficit(&profile[found[k - 1].1..s], plateau)
         };
+        let kind = BrickType::ALL[best];
+        let inner = if e - s > 2 { s + 1..e - 1 } else { s..e };
         let from = if k == 0 {
             s.saturating_sub(AREA_REACH)
         } else {
@@ -543,17 +645,26 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
             .get(k + 1)
             .map_or((e + AREA_REACH).min(st.width), |next| (e + next.0) / 2);
         // The run's own level, from its inner columns (noise averages out; no clipping).
-        let inner = if e - s > 2 { s + 1..e - 1 } else { s..e };
         let level = profile[inner.clone()].iter().sum::<f32>() / inner.len() as f32;
         let area = profile[from..to].iter().map(|&p| f64::from(p)).sum::<f64>()
             / f64::from(level.max(f32::EPSILON));
+        // The dark ring, summed a little further out: blur spreads it past the colour.
+        let reach = |side: usize| side.min(RING_REACH);
+        let window = s - reach(if k == 0 {
+            s
+        } else {
+            s - (found[k - 1].1 + s).div_ceil(2)
+        })
+            ..e + reach(found.get(k + 1).map_or(st.width, |next| (e + next.0) / 2) - e);
+        let rings = dark_rings(st, kind, (y0, &weights), window, inner).unwrap_or([None; 2]);
         out.push(Run {
             start: s,
             end: e,
-            kind: BrickType::ALL[best],
+            kind,
             gap,
             area,
             column_heights: Vec::new(),
+            rings,
             faint_dips: faint_dips(&profile, s, e),
         });
     }
@@ -569,6 +680,51 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
             .collect();
     }
     (out, colour_height(st, &columns, rows))
+}
+
+/// The width of the dark ring on each side of a run of `kind` (px), measured over a band's
+/// rows (`band.0` is its first row, `band.1` the rows' weights) in the `window` of columns
+/// around it: a dark border's width where the run stands alone, zero for a border as light
+/// as the background. A side is `None` where the image edge cuts its ring off; both are
+/// `None` on a dark background.
+///
+/// Each pixel splits into its shares of colour and of background (`Strength::mixture`); each
+/// share is summed along the window and divided by its median level in the `inner` columns,
+/// where the colour is whole. Blur keeps these sums, so they are the widths of the colour and
+/// of the colour with its ring, and the ring is their difference.
+fn dark_rings(
+    st: &Strength,
+    kind: BrickType,
+    (y0, weights): (usize, &[f32]),
+    window: std::ops::Range<usize>,
+    inner: std::ops::Range<usize>,
+) -> Option<[Option<f64>; 2]> {
+    let total = weights.iter().sum::<f32>().max(f32::EPSILON);
+    let shares: Vec<(f64, f64)> = window
+        .clone()
+        .map(|x| {
+            let (mut colour, mut filled) = (0.0, 0.0);
+            for (y, &w) in (y0..).zip(weights).filter(|(_, &w)| w > 0.0) {
+                let (kappa, beta) = st.mixture(x, y, kind)?;
+                colour += w * kappa;
+                filled += w * (1.0 - beta);
+            }
+            Some((f64::from(colour / total), f64::from(filled / total)))
+        })
+        .collect::<Option<_>>()?;
+    let inside = &shares[inner.start - window.start..inner.end - window.start];
+    let level = |share: fn(&(f64, f64)) -> f64| {
+        median(inside.iter().map(share).collect())
+            .unwrap_or(1.0)
+            .max(f64::EPSILON)
+    };
+    let (colour, filled) = (level(|s| s.0), level(|s| s.1));
+    let ring = |side: &[(f64, f64)]| side.iter().map(|s| s.1 / filled - s.0 / colour).sum();
+    let (left, right) = shares.split_at((inner.start + inner.end) / 2 - window.start);
+    Some([
+        (inner.start > RING_REACH).then(|| ring(left)),
+        (inner.end + RING_REACH < st.width).then(|| ring(right)),
+    ])
 }
 
 /// The height of the colour in `rows` over `columns`, as area: each row's mean strength over
@@ -804,7 +960,9 @@ fn read_layers(
         if narrowest <= 6.0 {
             median(gaps.into_iter().filter(|&g| g <= narrowest + 3.0).collect()).unwrap_or(0.0)
         } else {
-            implied_border(&band_runs, &heights)
+            dark_border(&band_runs)
+                .or_else(|| fitted_border(&band_runs))
+                .unwrap_or_else(|| implied_border(&band_runs, &heights))
         }
     });
     let joined = |gap: f64| gap <= border + 3.0;
@@ -1016,6 +1174,56 @@ fn grid_positions(found: &[Found], unit: f64) -> Vec<u32> {
     positions.iter().map(|p| p - least).collect()
 }
 
+/// The border width from the dark rings around bricks that stand alone, when the border is
+/// dark (half the median ring; `None` when there is no ring to see).
+fn dark_border(band_runs: &[Vec<Run>]) -> Option<f64> {
+    let rings = band_runs.iter().flatten().flat_map(|r| r.rings).flatten();
+    median(rings.collect()).filter(|&ring| ring >= RING_MIN)
+}
+
+/// The border width from the lengths of isolated bricks of different colours: each run's
+/// coloured width is its nominal length less one border, `r = n·unit − b`, fitted by least
+/// squares. `None` when every run has the same nominal length (the fit is then undetermined).
+fn fitted_border(band_runs: &[Vec<Run>]) -> Option<f64> {
+    let runs: Vec<&Run> = band_runs.iter().flatten().collect();
+    let units = run_units(&runs);
+    let m = runs.len() as f64;
+    let (sn, snn) = units
+        .iter()
+        .fold((0.0, 0.0), |(a, b), n| (a + n, b + n * n));
+    let (sr, snr) = runs
+        .iter()
+        .zip(&units)
+        .fold((0.0, 0.0), |(a, b), (r, n)| (a + r.area, b + n * r.area));
+    let spread = m * snn - sn * sn;
+    if spread < 0.5 * m {
+        return None;
+    }
+    let unit = (m * snr - sn * sr) / spread;
+    // Longer bricks must be wider; anything else is not a wall this fit can read.
+    if !unit.is_finite() || unit <= 0.0 {
+        return None;
+    }
+    let border = unit * sn / m - sr / m;
+    Some(border.clamp(0.0, 0.5 * unit))
+}
+
+/// Each run's nominal length in units. A run may be bricks of one colour whose shared border
+/// left no mark: its multiple is its width against the narrowest run of its colour. (Not
+/// against other colours: a border takes a larger share of a short brick.)
+fn run_units(runs: &[&Run]) -> Vec<f64> {
+    runs.iter()
+        .map(|r| {
+            let narrowest = runs
+                .iter()
+                .filter(|o| o.kind == r.kind)
+                .map(|o| o.area)
+                .fold(r.area, f64::min);
+            f64::from(r.kind.units()) * (r.area / narrowest).round().max(1.0)
+        })
+        .collect()
+}
+
 /// The border that makes a lone layer of isolated bricks 2/3 of a unit tall. With `m` runs
 /// of total nominal length `Σn` units, coloured widths `Σr` and coloured height `T` (all
 /// measured as area, which blur keeps): `T + b = (2/3)·(Σr + m·b)/Σn`.
@@ -1023,15 +1231,9 @@ fn implied_border(band_runs: &[Vec<Run>], heights: &[f64]) -> f64 {
     let ([runs], [colour_height]) = (band_runs, heights) else {
         return 0.0;
     };
-    // A run may be bricks of one colour whose shared border left no mark: count its units
-    // from its width against the narrowest run per unit. Each run loses one border.
-    let per_unit = |r: &Run| r.area / f64::from(r.kind.units());
-    let narrowest = runs.iter().map(per_unit).fold(f64::INFINITY, f64::min);
+    // Each run loses one border.
     let m = runs.len() as f64;
-    let sum_n: f64 = runs
-        .iter()
-        .map(|r| f64::from(r.kind.units()) * (per_unit(r) / narrowest).round().max(1.0))
-        .sum();
+    let sum_n: f64 = run_units(&runs.iter().collect::<Vec<_>>()).iter().sum();
     let sum_r: f64 = runs.iter().map(|r| r.area).sum();
     if sum_n == 0.0 {
         return 0.0;
@@ -1200,8 +1402,87 @@ mod tests {
             gap: f64::INFINITY,
             area: (end - start) as f64,
             column_heights,
+            rings: [None; 2],
             faint_dips: Vec::new(),
         }
+    }
+
+    fn lone(kind: BrickType, area: f64, rings: [Option<f64>; 2]) -> Run {
+        Run {
+            kind,
+            area,
+            rings,
+            ..run(0, 1, Vec::new())
+        }
+    }
+
+    #[test]
+    fn bricks_of_different_lengths_fix_the_border_and_equal_ones_do_not() {
+        // At 8 px per unit with a 3 px border: red shows 5 px of colour, orange 45 px.
+        let runs = vec![vec![
+            lone(BrickType::Red, 5.0, [None; 2]),
+            lone(BrickType::Orange, 45.0, [None; 2]),
+            lone(BrickType::Red, 5.0, [None; 2]),
+        ]];
+        let border = fitted_border(&runs).unwrap();
+        assert!((border - 3.0).abs() < 1e-9, "{border}");
+        // Against the red, an orange is 1.5 "red units" per unit; it is still one brick.
+        let all: Vec<&Run> = runs.iter().flatten().collect();
+        assert_eq!(run_units(&all), vec![1.0, 6.0, 1.0]);
+        let reds = vec![vec![
+            lone(BrickType::Red, 5.0, [None; 2]),
+            lone(BrickType::Red, 5.2, [None; 2]),
+        ]];
+        assert_eq!(fitted_border(&reds), None);
+        // A run twice as wide as its colour's narrowest is two bricks.
+        let pair = [
+            lone(BrickType::Red, 5.0, [None; 2]),
+            lone(BrickType::Red, 10.5, [None; 2]),
+        ];
+        assert_eq!(run_units(&pair.iter().collect::<Vec<_>>()), vec![1.0, 2.0]);
+    }
+
+    #[test]
+    fn a_dark_ring_beside_lone_bricks_is_their_border() {
+        let ringed = vec![vec![
+            lone(BrickType::Red, 5.0, [None, Some(2.9)]),
+            lone(BrickType::Red, 5.0, [Some(3.1), Some(3.0)]),
+        ]];
+        assert_eq!(dark_border(&ringed), Some(3.0));
+        // A light border leaves no ring, and nothing measured says nothing.
+        let light = vec![vec![lone(BrickType::Red, 5.0, [Some(0.1), Some(-0.1)])]];
+        assert_eq!(dark_border(&light), None);
+        assert_eq!(
+            dark_border(&[vec![lone(BrickType::Red, 5.0, [None; 2])]]),
+            None
+        );
+    }
+
+    #[test]
+    fn pixels_unmix_into_colour_background_and_dark() {
+        // A 4×1 image: background, brick, and a pixel that is half brick, a quarter
+        // background and a quarter black.
+        let red: [f32; 3] = [235.0, 20.0, 20.0];
+        let mix = red.map(|c| 0.5 * c + 0.25 * 255.0);
+        let mut img = RgbImage::from_pixel(4, 1, image::Rgb([255, 255, 255]));
+        img.put_pixel(1, 0, image::Rgb(red.map(|c| c as u8)));
+        img.put_pixel(2, 0, image::Rgb(red.map(|c| c as u8)));
+        img.put_pixel(3, 0, image::Rgb(mix.map(|c| c.round() as u8)));
+        let st = Strength::of(&img).unwrap();
+        let close = |(k, b): (f32, f32), (ek, eb): (f32, f32)| {
+            (k - ek).abs() < 0.01 && (b - eb).abs() < 0.01
+        };
+        assert!(close(st.mixture(0, 0, BrickType::Red).unwrap(), (0.0, 1.0)));
+        assert!(close(st.mixture(1, 0, BrickType::Red).unwrap(), (1.0, 0.0)));
+        assert!(close(
+            st.mixture(3, 0, BrickType::Red).unwrap(),
+            (0.5, 0.25)
+        ));
+        // On a black background there is nothing to measure a dark border against.
+        let dark = RgbImage::from_fn(4, 1, |x, _| {
+            image::Rgb(if x == 0 { [0, 0, 0] } else { [235, 20, 20] })
+        });
+        assert!(Strength::of(&dark).unwrap().background.is_none());
     }
 
     #[test]
