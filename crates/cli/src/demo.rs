@@ -8,7 +8,7 @@ use mason_crew::generate::{random_tasks, warehouse};
 use mason_crew::{
     AssignMethod, Connectivity, CrewConfig, Instance, PathMethod, PrmConfig, Resolution,
 };
-use mason_mission::{summarise, Coord, MissionConfig, Window};
+use mason_mission::{summarise, Coord, MissionConfig, MissionInput, Window};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_report::{pre, Section, Series};
 use mason_wall::BUILTIN_WALLS;
@@ -167,11 +167,17 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
             "clean",
             "faults"
         ));
+        let flight = |config| MissionInput {
+            wall: &wall,
+            order: &order,
+            model,
+            config,
+        };
         let mut rewards = Vec::new();
         for coord in [Coord::Comm, Coord::Windows, Coord::Auto] {
-            let (r, _) = fly_once(&wall, &order, model, &clean, coord, slot, 0)?;
+            let (r, _) = fly_once(flight(&clean), coord, slot, 0)?;
             if name == "mbzirc" {
-                let (f, trace) = fly_once(&wall, &order, model, &faulty, coord, slot, 0)?;
+                let (f, trace) = fly_once(flight(&faulty), coord, slot, 0)?;
                 let label = format!("{coord:?}").to_lowercase();
                 let title = format!("{name} — 3 UAVs, {label}, faults (seed 0)");
                 let gantt = mason_report::gantt_svg(&title, &wall, 3, &trace, f.metrics.end_s);
@@ -190,17 +196,7 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
                 }
                 rewards.push((label, f.metrics.reward_over_time.clone()));
             }
-            let s = summarise(&fly_many(
-                &wall,
-                &order,
-                model,
-                &faulty,
-                coord,
-                slot,
-                0,
-                200,
-                &|| {},
-            )?);
+            let s = summarise(&fly_many(flight(&faulty), coord, slot, 0, 200, &|| {})?);
             text.push_str(&format!(
                 "  {:<8} {:>9} {:>30}\n",
                 format!("{coord:?}").to_lowercase(),

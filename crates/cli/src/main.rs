@@ -389,8 +389,14 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
             "--svg and --html show one mission; drop --runs (or use --runs 1 --seed S)",
         ));
     }
+    let input = mason_mission::MissionInput {
+        wall: &wall,
+        order: &order,
+        model: &model,
+        config: &config,
+    };
     if a.runs == 1 {
-        let (r, trace) = sim_cmd::fly_once(&wall, &order, &model, &config, coord, slot, a.seed)?;
+        let (r, trace) = sim_cmd::fly_once(input, coord, slot, a.seed)?;
         let title = format!(
             "{} — {} UAVs, {}, seed {}",
             wall.name(),
@@ -439,17 +445,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         return sim_cmd::exit_for(&r);
     }
     let pb = progress::bar(a.runs as u64, "simulating", !quiet && !a.json);
-    let results = sim_cmd::fly_many(
-        &wall,
-        &order,
-        &model,
-        &config,
-        coord,
-        slot,
-        a.seed,
-        a.runs,
-        &|| pb.inc(1),
-    )?;
+    let results = sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?;
     pb.finish_and_clear();
     let summary = mason_mission::summarise(&results);
     if a.json {

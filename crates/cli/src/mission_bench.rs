@@ -4,7 +4,7 @@
 use crate::fail::{input_error, CliResult};
 use crate::plan::solve;
 use crate::sim_cmd::{clock, fly_many, fly_once, prepare, spread_clock};
-use mason_mission::{summarise, Coord, MissionConfig};
+use mason_mission::{summarise, Coord, MissionConfig, MissionInput};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use std::time::Instant;
 
@@ -40,8 +40,14 @@ pub fn thesis_mission(runs: usize) -> CliResult<String> {
         let checked = solve(&problem, spec, Some(60.0))?;
         let order = checked.outcome.order.clone().expect("an order");
         for coord in [Coord::Comm, Coord::Windows] {
-            let (r, _) = fly_once(&wall, &order, &model, &base, coord, slot, 0)?;
-            let many = fly_many(&wall, &order, &model, &faulty, coord, slot, 0, runs, &|| {})?;
+            let flight = |config| MissionInput {
+                wall: &wall,
+                order: &order,
+                model: &model,
+                config,
+            };
+            let (r, _) = fly_once(flight(&base), coord, slot, 0)?;
+            let many = fly_many(flight(&faulty), coord, slot, 0, runs, &|| {})?;
             let s = summarise(&many);
             text.push_str(&format!(
                 "{:<14} {:<8} {:>11} {:>28}  {:>7}\n",
@@ -87,17 +93,13 @@ pub fn throughput(runs: usize) -> CliResult<String> {
         let slot = prepare(&wall, &model, &config)?;
         for coord in [Coord::Comm, Coord::Windows, Coord::Auto] {
             let started = Instant::now();
-            let results = fly_many(
-                &wall,
-                &order,
-                &model,
-                &config,
-                coord,
-                slot,
-                0,
-                missions,
-                &|| {},
-            )?;
+            let input = MissionInput {
+                wall: &wall,
+                order: &order,
+                model: &model,
+                config: &config,
+            };
+            let results = fly_many(input, coord, slot, 0, missions, &|| {})?;
             let secs = started.elapsed().as_secs_f64();
             debug_assert_eq!(results.len(), missions);
             text.push_str(&format!(

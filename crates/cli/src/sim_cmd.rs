@@ -105,23 +105,14 @@ pub fn prepare(wall: &Wall, model: &CostModel, config: &MissionConfig) -> CliRes
 
 /// One checked mission and its trace.
 pub fn fly_once(
-    wall: &Wall,
-    order: &[BrickId],
-    model: &CostModel,
-    config: &MissionConfig,
+    input: MissionInput,
     coord: Coord,
     slot: f64,
     seed: u64,
 ) -> CliResult<(MissionResult, Vec<Event>)> {
-    let input = MissionInput {
-        wall,
-        order,
-        model,
-        config,
-    };
     let mut trace = Vec::new();
     let r = simulate(input, make_policy(coord, slot).as_mut(), seed, &mut trace);
-    check_trace(wall, config.uavs, &trace).map_err(|e| {
+    check_trace(input.wall, input.config.uavs, &trace).map_err(|e| {
         input_error(format!(
             "internal error: mission trace failed check_trace: {e}"
         ))
@@ -130,24 +121,14 @@ pub fn fly_once(
 }
 
 /// A Monte Carlo batch, every trace checked.
-#[allow(clippy::too_many_arguments)]
 pub fn fly_many(
-    wall: &Wall,
-    order: &[BrickId],
-    model: &CostModel,
-    config: &MissionConfig,
+    input: MissionInput,
     coord: Coord,
     slot: f64,
     seed: u64,
     runs: usize,
     progress: &(dyn Fn() + Sync),
 ) -> CliResult<Vec<MissionResult>> {
-    let input = MissionInput {
-        wall,
-        order,
-        model,
-        config,
-    };
     run_many(input, coord, slot, seed, runs, progress).map_err(|(s, e)| {
         input_error(format!(
             "internal error: mission seed {s} failed check_trace: {e}"
