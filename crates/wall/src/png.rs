@@ -122,13 +122,10 @@ struct Strength {
     height: usize,
     kind: Vec<Option<BrickType>>,
     value: Vec<f32>,
-    /// The pixels, for the linear mixture measurements of `mixture`.
-    rgb: Vec<[f32; 3]>,
-    /// Each colour's typical pixel: the per-channel mean of its strongly saturated pixels.
-    colour: [[f32; 3]; 4],
-    /// The background's typical pixel, when it is light: only then can a dark border be told
-    /// from it.
-    background: Option<[f32; 3]>,
+    /// The pixels, for `Mixing`.
+    rgb: Vec<[u8; 3]>,
+    /// Each colour's typical saturation (the median of its pixels').
+    reference: [f32; 4],
 }
 
 impl Strength {
@@ -170,73 +167,76 @@ impl Strength {
                 ((s - NOISE_SATURATION) / (r - NOISE_SATURATION).max(1.0)).clamp(0.0, 1.0)
             })
             .collect();
-        let rgb: Vec<[f32; 3]> = img.pixels().map(|p| p.0.map(f32::from)).collect();
-        let mut colour = [[0f32; 3]; 4];
-        for (k, typical) in colour.iter_mut().enumerate() {
-            let strong = rgb
-                .iter()
-                .zip(&kind)
-                .zip(&raw)
-                .filter(|((_, c), &s)| {
-                    c.map(BrickType::index) == Some(k) && s >= STRONG * reference[k]
-                })
-                .map(|((p, _), _)| *p);
-            *typical = channel_means(strong).unwrap_or([0.0; 3]);
-        }
-        // The background is the light cluster of the unsaturated pixels (borders may be as
-        // many as it at small scales, so a plain median could land on them).
-        let mut plain: Vec<[f32; 3]> = rgb
-            .iter()
-            .zip(&raw)
-            .filter(|(_, &s)| s < MIN_SATURATION)
-            .map(|(p, _)| *p)
-            .collect();
-        let sum = |p: &[f32; 3]| p.iter().sum::<f32>();
-        plain.sort_by(|a, b| sum(a).total_cmp(&sum(b)));
-        let light = plain.get(plain.len() * 9 / 10).map(sum);
-        let background = light
-            .and_then(|top| {
-                channel_means(
-                    plain
-                        .iter()
-                        .copied()
-                        .filter(|p| sum(p) >= top - LIGHT_SPREAD),
-                )
-            })
-            .filter(|w| sum(w) >= 3.0 * LIGHT_BACKGROUND);
+        let rgb = img.pixels().map(|p| p.0).collect();
         Some(Strength {
             width,
             height,
             kind,
             value,
             rgb,
-            colour,
-            background,
+            reference: [0, 1, 2, 3].map(|k| reference[k]),
         })
     }
 
-    /// How much of pixel (x, y) is a brick of `kind` and how much is background, as the
-    /// shares (κ, β) of the mixture κ·colour + β·background + (1 − κ − β)·black that explains
-    /// it. Blur and anti-aliasing mix pixels linearly, so the shares summed along a row keep
-    /// the widths of what was drawn. Needs a light background.
-    fn mixture(&self, x: usize, y: usize, kind: BrickType) -> Option<(f32, f32)> {
-        let w = self.background?;
-        let c = self.colour[kind.index()];
+    fn at(&self, x: usize, y: usize) -> f32 {
+        self.value[y * self.width + x]
+    }
+}
+
+/// The linear mixing model of an image on a light background: each pixel is a mixture
+/// κ·colour + β·background + (1 − κ − β)·black. Blur and anti-aliasing mix pixels linearly,
+/// so shares summed along a row keep the widths of what was drawn.
+struct Mixing {
+    /// Each colour's typical pixel: the per-channel mean of its strongly saturated pixels.
+    colour: [[f32; 3]; 4],
+    /// The background's typical pixel.
+    background: [f32; 3],
+}
+
+impl Mixing {
+    /// The model of an image; `None` when its background is dark (a dark border cannot be
+    /// told from it).
+    fn of(st: &Strength) -> Option<Mixing> {
+        let saturation = |p: &[u8; 3]| {
+            f32::from(p.iter().max().copied().unwrap_or(0) - p.iter().min().copied().unwrap_or(0))
+        };
+        let pixel = |p: &[u8; 3]| p.map(f32::from);
+        let colour = [0, 1, 2, 3].map(|k| {
+            let strong = st.rgb.iter().zip(&st.kind).filter(|(p, c)| {
+                c.map(BrickType::index) == Some(k) && saturation(p) >= STRONG * st.reference[k]
+            });
+            channel_means(strong.map(|(p, _)| pixel(p))).unwrap_or([0.0; 3])
+        });
+        // The background is the light cluster of the unsaturated pixels (borders may be as
+        // many as it at small scales, so a plain median could land on them).
+        let sum = |p: &[u8; 3]| p.iter().map(|&c| f32::from(c)).sum::<f32>();
+        let mut plain: Vec<&[u8; 3]> = st
+            .rgb
+            .iter()
+            .filter(|p| saturation(p) < MIN_SATURATION)
+            .collect();
+        plain.sort_by(|a, b| sum(a).total_cmp(&sum(b)));
+        let top = sum(plain.get(plain.len() * 9 / 10)?);
+        let light = plain.into_iter().filter(|p| sum(p) >= top - LIGHT_SPREAD);
+        let background = channel_means(light.map(pixel))?;
+        (background.iter().sum::<f32>() >= 3.0 * LIGHT_BACKGROUND)
+            .then_some(Mixing { colour, background })
+    }
+
+    /// The shares (κ, β) of a brick of `kind` and of background in pixel (x, y).
+    fn shares(&self, st: &Strength, x: usize, y: usize, kind: BrickType) -> Option<(f32, f32)> {
+        let (c, w) = (self.colour[kind.index()], self.background);
         // The colour's strongest and weakest channels tell it from light and dark.
         let (hi, lo) = strongest_and_weakest(c);
         let det = c[hi] * w[lo] - c[lo] * w[hi];
         if det.abs() < 1.0 {
             return None;
         }
-        let v = self.rgb[y * self.width + x];
+        let v = st.rgb[y * st.width + x].map(f32::from);
         Some((
             (v[hi] * w[lo] - v[lo] * w[hi]) / det,
             (c[hi] * v[lo] - c[lo] * v[hi]) / det,
         ))
-    }
-
-    fn at(&self, x: usize, y: usize) -> f32 {
-        self.value[y * self.width + x]
     }
 }
 
@@ -535,11 +535,38 @@ struct Run {
     area: f64,
     /// The colour's height in each of the run's columns, as area (px).
     column_heights: Vec<f64>,
-    /// The width of the dark ring on the run's left and right (px), where it could be
-    /// measured (see `dark_rings`).
-    rings: [Option<f64>; 2],
     /// Columns that dip a little below their shoulders, too little to count as a border.
     faint_dips: Vec<usize>,
+}
+
+/// The weights of a band's rows: each core row's strength, measured on the columns lit in
+/// most of the band's rows; zero for the other rows.
+fn core_weights(st: &Strength, (y0, y1): (usize, usize)) -> Vec<f32> {
+    let lit_in_most: Vec<usize> = (0..st.width)
+        .filter(|&x| 2 * (y0..y1).filter(|&y| st.at(x, y) >= ON).count() >= y1 - y0)
+        .collect();
+    let columns: Vec<usize> = if lit_in_most.is_empty() {
+        (0..st.width).collect()
+    } else {
+        lit_in_most
+    };
+    let strength: Vec<f32> = (y0..y1)
+        .map(|y| columns.iter().map(|&x| st.at(x, y)).sum::<f32>() / columns.len() as f32)
+        .collect();
+    let core = strength.iter().copied().fold(0.0, f32::max) * CORE_ROW;
+    strength
+        .iter()
+        .map(|&w| if w >= core { w } else { 0.0 })
+        .collect()
+}
+
+/// A run's inner columns, where its colour is whole: all but the first and last.
+fn inner_columns(start: usize, end: usize) -> std::ops::Range<usize> {
+    if end - start > 2 {
+        start + 1..end - 1
+    } else {
+        start..end
+    }
 }
 
 /// The runs of brick columns in a band, left to right, and the band's colour height as area
@@ -553,22 +580,7 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
     // whose brick borders would show as phantom dips. A row's strength is measured on the
     // columns lit in most of the band's rows, so that a narrow layer is not outweighed by a
     // blurred sliver of a wide one.
-    let lit_in_most: Vec<usize> = (0..st.width)
-        .filter(|&x| 2 * (y0..y1).filter(|&y| st.at(x, y) >= ON).count() >= y1 - y0)
-        .collect();
-    let columns: Vec<usize> = if lit_in_most.is_empty() {
-        (0..st.width).collect()
-    } else {
-        lit_in_most
-    };
-    let strength: Vec<f32> = (y0..y1)
-        .map(|y| columns.iter().map(|&x| st.at(x, y)).sum::<f32>() / columns.len() as f32)
-        .collect();
-    let core = strength.iter().copied().fold(0.0, f32::max) * CORE_ROW;
-    let weights: Vec<f32> = strength
-        .iter()
-        .map(|&w| if w >= core { w } else { 0.0 })
-        .collect();
+    let weights = core_weights(st, (y0, y1));
     let total = weights.iter().sum::<f32>().max(f32::EPSILON);
     let profile: Vec<f32> = (0..st.width)
         .map(|x| {
@@ -634,8 +646,7 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
         } else {
             deficit(&profile[found[k - 1].1..s], plateau)
         };
-        let kind = BrickType::ALL[best];
-        let inner = if e - s > 2 { s + 1..e - 1 } else { s..e };
+        let inner = inner_columns(s, e);
         let from = if k == 0 {
             s.saturating_sub(AREA_REACH)
         } else {
@@ -648,23 +659,13 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
         let level = profile[inner.clone()].iter().sum::<f32>() / inner.len() as f32;
         let area = profile[from..to].iter().map(|&p| f64::from(p)).sum::<f64>()
             / f64::from(level.max(f32::EPSILON));
-        // The dark ring, summed a little further out: blur spreads it past the colour.
-        let reach = |side: usize| side.min(RING_REACH);
-        let window = s - reach(if k == 0 {
-            s
-        } else {
-            s - (found[k - 1].1 + s).div_ceil(2)
-        })
-            ..e + reach(found.get(k + 1).map_or(st.width, |next| (e + next.0) / 2) - e);
-        let rings = dark_rings(st, kind, (y0, &weights), window, inner).unwrap_or([None; 2]);
         out.push(Run {
             start: s,
             end: e,
-            kind,
+            kind: BrickType::ALL[best],
             gap,
             area,
             column_heights: Vec::new(),
-            rings,
             faint_dips: faint_dips(&profile, s, e),
         });
     }
@@ -685,15 +686,15 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
 /// The width of the dark ring on each side of a run of `kind` (px), measured over a band's
 /// rows (`band.0` is its first row, `band.1` the rows' weights) in the `window` of columns
 /// around it: a dark border's width where the run stands alone, zero for a border as light
-/// as the background. A side is `None` where the image edge cuts its ring off; both are
-/// `None` on a dark background.
+/// as the background. A side is `None` where the image edge cuts its ring off.
 ///
-/// Each pixel splits into its shares of colour and of background (`Strength::mixture`); each
+/// Each pixel splits into its shares of colour and of background (`Mixing`); each
 /// share is summed along the window and divided by its median level in the `inner` columns,
 /// where the colour is whole. Blur keeps these sums, so they are the widths of the colour and
 /// of the colour with its ring, and the ring is their difference.
 fn dark_rings(
     st: &Strength,
+    mixing: &Mixing,
     kind: BrickType,
     (y0, weights): (usize, &[f32]),
     window: std::ops::Range<usize>,
@@ -705,7 +706,7 @@ fn dark_rings(
         .map(|x| {
             let (mut colour, mut filled) = (0.0, 0.0);
             for (y, &w) in (y0..).zip(weights).filter(|(_, &w)| w > 0.0) {
-                let (kappa, beta) = st.mixture(x, y, kind)?;
+                let (kappa, beta) = mixing.shares(st, x, y, kind)?;
                 colour += w * kappa;
                 filled += w * (1.0 - beta);
             }
@@ -960,7 +961,7 @@ fn read_layers(
         if narrowest <= 6.0 {
             median(gaps.into_iter().filter(|&g| g <= narrowest + 3.0).collect()).unwrap_or(0.0)
         } else {
-            dark_border(&band_runs)
+            dark_border(st, &layers.bands, &band_runs)
                 .or_else(|| fitted_border(&band_runs))
                 .unwrap_or_else(|| implied_border(&band_runs, &heights))
         }
@@ -1175,10 +1176,26 @@ fn grid_positions(found: &[Found], unit: f64) -> Vec<u32> {
 }
 
 /// The border width from the dark rings around bricks that stand alone, when the border is
-/// dark (half the median ring; `None` when there is no ring to see).
-fn dark_border(band_runs: &[Vec<Run>]) -> Option<f64> {
-    let rings = band_runs.iter().flatten().flat_map(|r| r.rings).flatten();
-    median(rings.collect()).filter(|&ring| ring >= RING_MIN)
+/// dark: the median ring (`None` on a dark background or when there is no ring to see).
+fn dark_border(st: &Strength, bands: &[(usize, usize)], band_runs: &[Vec<Run>]) -> Option<f64> {
+    let mixing = Mixing::of(st)?;
+    let mut rings = Vec::new();
+    for (&band, runs) in bands.iter().zip(band_runs) {
+        let weights = core_weights(st, band);
+        for (k, r) in runs.iter().enumerate() {
+            // From the middle of the gaps beside the run, at most `RING_REACH` past it: blur
+            // spreads the ring past the colour.
+            let from = k
+                .checked_sub(1)
+                .map_or(0, |p| (runs[p].end + r.start).div_ceil(2));
+            let to = runs.get(k + 1).map_or(st.width, |n| (r.end + n.start) / 2);
+            let window = from.max(r.start.saturating_sub(RING_REACH))..to.min(r.end + RING_REACH);
+            let inner = inner_columns(r.start, r.end);
+            let sides = dark_rings(st, &mixing, r.kind, (band.0, &weights), window, inner);
+            rings.extend(sides.into_iter().flatten().flatten());
+        }
+    }
+    median(rings).filter(|&ring| ring >= RING_MIN)
 }
 
 /// The border width from the lengths of isolated bricks of different colours: each run's
@@ -1402,16 +1419,14 @@ mod tests {
             gap: f64::INFINITY,
             area: (end - start) as f64,
             column_heights,
-            rings: [None; 2],
             faint_dips: Vec::new(),
         }
     }
 
-    fn lone(kind: BrickType, area: f64, rings: [Option<f64>; 2]) -> Run {
+    fn lone(kind: BrickType, area: f64) -> Run {
         Run {
             kind,
             area,
-            rings,
             ..run(0, 1, Vec::new())
         }
     }
@@ -1420,42 +1435,53 @@ mod tests {
     fn bricks_of_different_lengths_fix_the_border_and_equal_ones_do_not() {
         // At 8 px per unit with a 3 px border: red shows 5 px of colour, orange 45 px.
         let runs = vec![vec![
-            lone(BrickType::Red, 5.0, [None; 2]),
-            lone(BrickType::Orange, 45.0, [None; 2]),
-            lone(BrickType::Red, 5.0, [None; 2]),
+            lone(BrickType::Red, 5.0),
+            lone(BrickType::Orange, 45.0),
+            lone(BrickType::Red, 5.0),
         ]];
         let border = fitted_border(&runs).unwrap();
         assert!((border - 3.0).abs() < 1e-9, "{border}");
         // Against the red, an orange is 1.5 "red units" per unit; it is still one brick.
         let all: Vec<&Run> = runs.iter().flatten().collect();
         assert_eq!(run_units(&all), vec![1.0, 6.0, 1.0]);
-        let reds = vec![vec![
-            lone(BrickType::Red, 5.0, [None; 2]),
-            lone(BrickType::Red, 5.2, [None; 2]),
-        ]];
+        let reds = vec![vec![lone(BrickType::Red, 5.0), lone(BrickType::Red, 5.2)]];
         assert_eq!(fitted_border(&reds), None);
         // A run twice as wide as its colour's narrowest is two bricks.
-        let pair = [
-            lone(BrickType::Red, 5.0, [None; 2]),
-            lone(BrickType::Red, 10.5, [None; 2]),
-        ];
+        let pair = [lone(BrickType::Red, 5.0), lone(BrickType::Red, 10.5)];
         assert_eq!(run_units(&pair.iter().collect::<Vec<_>>()), vec![1.0, 2.0]);
     }
 
+    /// A one-row image: white, a 2 px ring of `ring` colour, 6 px of red, the ring, white.
+    fn ringed_red(ring: [u8; 3]) -> RgbImage {
+        RgbImage::from_fn(24, 1, |x, _| {
+            image::Rgb(match x {
+                8..=13 => [235, 20, 20],
+                6 | 7 | 14 | 15 => ring,
+                _ => [255, 255, 255],
+            })
+        })
+    }
+
     #[test]
-    fn a_dark_ring_beside_lone_bricks_is_their_border() {
-        let ringed = vec![vec![
-            lone(BrickType::Red, 5.0, [None, Some(2.9)]),
-            lone(BrickType::Red, 5.0, [Some(3.1), Some(3.0)]),
-        ]];
-        assert_eq!(dark_border(&ringed), Some(3.0));
-        // A light border leaves no ring, and nothing measured says nothing.
-        let light = vec![vec![lone(BrickType::Red, 5.0, [Some(0.1), Some(-0.1)])]];
-        assert_eq!(dark_border(&light), None);
-        assert_eq!(
-            dark_border(&[vec![lone(BrickType::Red, 5.0, [None; 2])]]),
-            None
+    fn a_dark_ring_beside_a_lone_brick_is_its_border() {
+        let st = Strength::of(&ringed_red([0, 0, 0])).unwrap();
+        let mixing = Mixing::of(&st).unwrap();
+        let rings = dark_rings(&st, &mixing, BrickType::Red, (0, &[1.0]), 2..20, 9..13);
+        let [Some(left), Some(right)] = rings.unwrap() else {
+            panic!("both sides are inside the image");
+        };
+        assert!(
+            (left - 2.0).abs() < 0.05 && (right - 2.0).abs() < 0.05,
+            "{left} {right}"
         );
+        // Cut off by the image edge: that side is not measured.
+        let edge = dark_rings(&st, &mixing, BrickType::Red, (0, &[1.0]), 2..20, 3..13).unwrap();
+        assert_eq!(edge[0], None);
+        // A white border leaves no ring.
+        let st = Strength::of(&ringed_red([255, 255, 255])).unwrap();
+        let mixing = Mixing::of(&st).unwrap();
+        let rings = dark_rings(&st, &mixing, BrickType::Red, (0, &[1.0]), 2..20, 9..13).unwrap();
+        assert!(rings.iter().flatten().all(|r| r.abs() < 0.05), "{rings:?}");
     }
 
     #[test]
@@ -1469,20 +1495,19 @@ mod tests {
         img.put_pixel(2, 0, image::Rgb(red.map(|c| c as u8)));
         img.put_pixel(3, 0, image::Rgb(mix.map(|c| c.round() as u8)));
         let st = Strength::of(&img).unwrap();
+        let mixing = Mixing::of(&st).unwrap();
         let close = |(k, b): (f32, f32), (ek, eb): (f32, f32)| {
             (k - ek).abs() < 0.01 && (b - eb).abs() < 0.01
         };
-        assert!(close(st.mixture(0, 0, BrickType::Red).unwrap(), (0.0, 1.0)));
-        assert!(close(st.mixture(1, 0, BrickType::Red).unwrap(), (1.0, 0.0)));
-        assert!(close(
-            st.mixture(3, 0, BrickType::Red).unwrap(),
-            (0.5, 0.25)
-        ));
+        let shares = |x| mixing.shares(&st, x, 0, BrickType::Red).unwrap();
+        assert!(close(shares(0), (0.0, 1.0)));
+        assert!(close(shares(1), (1.0, 0.0)));
+        assert!(close(shares(3), (0.5, 0.25)));
         // On a black background there is nothing to measure a dark border against.
         let dark = RgbImage::from_fn(4, 1, |x, _| {
             image::Rgb(if x == 0 { [0, 0, 0] } else { [235, 20, 20] })
         });
-        assert!(Strength::of(&dark).unwrap().background.is_none());
+        assert!(Mixing::of(&Strength::of(&dark).unwrap()).is_none());
     }
 
     #[test]
