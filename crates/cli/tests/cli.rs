@@ -480,17 +480,19 @@ fn crew_reads_a_birds_eye_image() {
 
 #[test]
 fn simulate_json_has_metrics_and_events() {
-    let o = mason(&[
+    let faults = data("faults-ok.toml");
+    let args = [
         "simulate",
         "builtin:mbzirc",
         "--coord",
         "auto",
         "--faults",
-        &data("faults-ok.toml"),
+        &faults,
         "--seed",
         "4",
         "--json",
-    ]);
+    ];
+    let o = mason(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     let m = &v["metrics"];
@@ -519,18 +521,7 @@ fn simulate_json_has_metrics_and_events() {
         .collect();
     assert!(placed.iter().all(|&id| id >= 101), "{placed:?}");
     // Same seed, same output.
-    let again = mason(&[
-        "simulate",
-        "builtin:mbzirc",
-        "--coord",
-        "auto",
-        "--faults",
-        &data("faults-ok.toml"),
-        "--seed",
-        "4",
-        "--json",
-    ]);
-    assert_eq!(stdout(&o), stdout(&again));
+    assert_eq!(stdout(&o), stdout(&mason(&args)));
 }
 
 #[test]
