@@ -80,6 +80,8 @@ const RING_REACH: usize = 6;
 const RING_MIN: f64 = 0.5;
 /// Allowed mismatch between a brick's measured and nominal length (units of 0.30 m).
 const LENGTH_TOLERANCE: f64 = 0.35;
+/// The most units tried between the outer bricks of a lone layer (`grid_border`).
+const MAX_GRID_CANDIDATES: usize = 256;
 
 /// Classifies one pixel by the thesis rules plus orange; returns the type and saturation.
 pub fn classify_pixel(p: [u8; 3]) -> Option<(BrickType, f32)> {
@@ -533,6 +535,9 @@ struct Run {
     /// The run's coloured width as area (px): its profile summed out to the middle of the gaps
     /// beside it, over the plateau. Blur keeps this sum, so it is the true colour width.
     area: f64,
+    /// The middle of its colour (px from the image's left edge): the centroid of the profile
+    /// summed for `area`. Blur spreads a brick evenly to both sides, so this does not move.
+    middle: f64,
     /// The colour's height in each of the run's columns, as area (px).
     column_heights: Vec<f64>,
     /// Columns that dip a little below their shoulders, too little to count as a border.
@@ -657,14 +662,19 @@ fn bricks_in_band(st: &Strength, (y0, y1): (usize, usize), outer: (bool, bool)) 
             .map_or((e + AREA_REACH).min(st.width), |next| (e + next.0) / 2);
         // The run's own level, from its inner columns (noise averages out; no clipping).
         let level = profile[inner.clone()].iter().sum::<f32>() / inner.len() as f32;
-        let area = profile[from..to].iter().map(|&p| f64::from(p)).sum::<f64>()
-            / f64::from(level.max(f32::EPSILON));
+        let mass = profile[from..to].iter().map(|&p| f64::from(p)).sum::<f64>();
+        let area = mass / f64::from(level.max(f32::EPSILON));
+        let middle = (from..to)
+            .map(|x| (x as f64 + 0.5) * f64::from(profile[x]))
+            .sum::<f64>()
+            / mass.max(f64::EPSILON);
         out.push(Run {
             start: s,
             end: e,
             kind: BrickType::ALL[best],
             gap,
             area,
+            middle,
             column_heights: Vec::new(),
             faint_dips: faint_dips(&profile, s, e),
         });
@@ -961,9 +971,17 @@ fn read_layers(
         if narrowest <= 6.0 {
             median(gaps.into_iter().filter(|&g| g <= narrowest + 3.0).collect()).unwrap_or(0.0)
         } else {
-            dark_border(st, &layers.bands, &band_runs)
+            // Bricks that touch nothing, which only a wall of one layer has (every upper brick
+            // stands on a lower one): the dark ring around them, else their lengths, else the
+            // grid they sit on.
+            let mixing = Mixing::of(st);
+            mixing
+                .as_ref()
+                .and_then(|mixing| dark_border(st, mixing, &layers.bands, &band_runs))
                 .or_else(|| fitted_border(&band_runs))
-                .unwrap_or_else(|| implied_border(&band_runs, &heights))
+                .unwrap_or_else(|| {
+                    lone_layer_border(st, mixing.as_ref(), &layers.bands, &band_runs, &heights)
+                })
         }
     });
     let joined = |gap: f64| gap <= border + 3.0;
@@ -975,11 +993,11 @@ fn read_layers(
             let (s, e, kind) = (run.start, run.end, run.kind);
             let left = match i.checked_sub(1).map(|p| runs[p].end) {
                 Some(prev) if joined(run.gap) => (prev + s) as f64 / 2.0,
-                _ => s as f64 - border / 2.0,
+                _ => run.middle - (run.area + border) / 2.0,
             };
             let right = match runs.get(i + 1) {
                 Some(next) if joined(next.gap) => (e + next.start) as f64 / 2.0,
-                _ => e as f64 + border / 2.0,
+                _ => run.middle + (run.area + border) / 2.0,
             };
             found.push(Found {
                 level,
@@ -1176,9 +1194,13 @@ fn grid_positions(found: &[Found], unit: f64) -> Vec<u32> {
 }
 
 /// The border width from the dark rings around bricks that stand alone, when the border is
-/// dark: the median ring (`None` on a dark background or when there is no ring to see).
-fn dark_border(st: &Strength, bands: &[(usize, usize)], band_runs: &[Vec<Run>]) -> Option<f64> {
-    let mixing = Mixing::of(st)?;
+/// dark: the median ring (`None` when there is no ring to see).
+fn dark_border(
+    st: &Strength,
+    mixing: &Mixing,
+    bands: &[(usize, usize)],
+    band_runs: &[Vec<Run>],
+) -> Option<f64> {
     let mut rings = Vec::new();
     for (&band, runs) in bands.iter().zip(band_runs) {
         let weights = core_weights(st, band);
@@ -1191,7 +1213,7 @@ fn dark_border(st: &Strength, bands: &[(usize, usize)], band_runs: &[Vec<Run>]) 
             let to = runs.get(k + 1).map_or(st.width, |n| (r.end + n.start) / 2);
             let window = from.max(r.start.saturating_sub(RING_REACH))..to.min(r.end + RING_REACH);
             let inner = inner_columns(r.start, r.end);
-            let sides = dark_rings(st, &mixing, r.kind, (band.0, &weights), window, inner);
+            let sides = dark_rings(st, mixing, r.kind, (band.0, &weights), window, inner);
             rings.extend(sides.into_iter().flatten().flatten());
         }
     }
@@ -1241,22 +1263,125 @@ fn run_units(runs: &[&Run]) -> Vec<f64> {
         .collect()
 }
 
-/// The border that makes a lone layer of isolated bricks 2/3 of a unit tall. With `m` runs
-/// of total nominal length `Σn` units, coloured widths `Σr` and coloured height `T` (all
-/// measured as area, which blur keeps): `T + b = (2/3)·(Σr + m·b)/Σn`.
-fn implied_border(band_runs: &[Vec<Run>], heights: &[f64]) -> f64 {
-    let ([runs], [colour_height]) = (band_runs, heights) else {
+/// The border of one layer of isolated bricks of one length whose border is as light as the
+/// background: no ring to measure and no lengths to fit (`grid_border`). Each brick's width
+/// is measured as linear colour share where the background is light (`linear_width`), else
+/// as strength area.
+fn lone_layer_border(
+    st: &Strength,
+    mixing: Option<&Mixing>,
+    bands: &[(usize, usize)],
+    band_runs: &[Vec<Run>],
+    heights: &[f64],
+) -> f64 {
+    let ([band], [runs], [colour_height]) = (bands, band_runs, heights) else {
         return 0.0;
     };
-    // Each run loses one border.
-    let m = runs.len() as f64;
-    let sum_n: f64 = run_units(&runs.iter().collect::<Vec<_>>()).iter().sum();
-    let sum_r: f64 = runs.iter().map(|r| r.area).sum();
-    if sum_n == 0.0 {
+    let widths: Vec<f64> = runs
+        .iter()
+        .map(|r| {
+            mixing
+                .and_then(|mixing| linear_width(st, mixing, *band, r))
+                .unwrap_or(r.area)
+        })
+        .collect();
+    grid_border(runs, &widths, *colour_height)
+}
+
+/// A lone run's coloured width (px) from the linear colour share κ of `Mixing`: the share
+/// summed over a window around it (the colour's area, which blur keeps) over the mean column
+/// sum of its inner columns (its height). Their ratio does not depend on how pure the colour
+/// reference is, which the strength's clipping and a thin blurred layer both bias.
+/// `None` when the colour cannot be unmixed or shows no height.
+fn linear_width(
+    st: &Strength,
+    mixing: &Mixing,
+    (y0, y1): (usize, usize),
+    run: &Run,
+) -> Option<f64> {
+    let rows = y0.saturating_sub(AREA_REACH)..(y1 + AREA_REACH).min(st.height);
+    let columns = run.start.saturating_sub(AREA_REACH)..(run.end + AREA_REACH).min(st.width);
+    let column_sums: Vec<f64> = columns
+        .clone()
+        .map(|x| {
+            rows.clone()
+                .map(|y| {
+                    mixing
+                        .shares(st, x, y, run.kind)
+                        .map(|(kappa, _)| f64::from(kappa))
+                })
+                .sum::<Option<f64>>()
+        })
+        .collect::<Option<_>>()?;
+    let inner = inner_columns(run.start, run.end);
+    let height = column_sums[inner.start - columns.start..inner.end - columns.start]
+        .iter()
+        .sum::<f64>()
+        / inner.len() as f64;
+    (height > 0.0).then(|| column_sums.iter().sum::<f64>() / height)
+}
+
+/// The border of one layer of isolated bricks of one length (`widths` are their coloured
+/// widths, `colour_height` the layer's; px), when it leaves no trace. Two facts fix it:
+/// - every brick's left edge, its middle less half its nominal length, lies on the grid, so
+///   the unit divides the distance between the outer bricks' edges into whole units;
+/// - a layer is 2/3 of a unit tall, so each unit `u` implies a border `b = n·u − r` (mean over
+///   the runs) and a colour height `2u/3 − b`.
+///
+/// Each whole number of units between the outer bricks gives a candidate unit. The one whose
+/// bricks sit nearest to grid lines and whose implied colour height is nearest the measured
+/// one wins (least squares in px): the span pins the unit far better than the height alone,
+/// which only has to pick the right whole number. A lone brick has no span; its unit comes
+/// from the height rule `u = 3(r − T)` (for one unit). The border returned is the one that
+/// makes each run's strength area (`Run::area`, which places the bricks) span its units.
+fn grid_border(runs: &[Run], widths: &[f64], colour_height: f64) -> f64 {
+    let (Some(first), Some(last)) = (runs.first(), runs.last()) else {
         return 0.0;
+    };
+    let units = run_units(&runs.iter().collect::<Vec<_>>());
+    let m = runs.len() as f64;
+    let mean_gap = |unit: f64, width: &dyn Fn(usize) -> f64| {
+        units
+            .iter()
+            .enumerate()
+            .map(|(i, n)| n * unit - width(i))
+            .sum::<f64>()
+            / m
+    };
+    let border_for = |unit: f64| mean_gap(unit, &|i| widths[i]);
+    let placed = |unit: f64| mean_gap(unit, &|i| runs[i].area).clamp(0.0, 0.5 * unit);
+    let (n0, nl) = (units[0], units[units.len() - 1]);
+    let span = last.middle - first.middle;
+    if runs.len() < 2 || span <= 0.0 {
+        // T = 2u/3 − b and r = n·u − b, averaged over the runs: u = (r̄ − T)/(n̄ − 2/3).
+        let mean_n = units.iter().sum::<f64>() / m;
+        let mean_r = widths.iter().sum::<f64>() / m;
+        return placed(((mean_r - colour_height) / (mean_n - 2.0 / 3.0)).max(0.0));
     }
-    let b = (2.0 / 3.0 * sum_r / sum_n - colour_height) / (1.0 - 2.0 * m / (3.0 * sum_n));
-    b.clamp(0.0, 0.5 * sum_r / sum_n)
+    // The fewest units the span can hold: the bricks before the last, end to end. The most:
+    // a unit no shorter than 3/2 of the colour's height (a border is never negative).
+    let fewest = units[..units.len() - 1].iter().sum::<f64>() as usize;
+    let shortest = (1.5 * colour_height).max(1.0);
+    let score = |unit: f64| {
+        let border = border_for(unit);
+        let height = 2.0 * unit / 3.0 - border - colour_height;
+        let origin = first.middle - n0 * unit / 2.0;
+        let off_grid: f64 = runs
+            .iter()
+            .zip(&units)
+            .map(|(r, n)| {
+                let k = (r.middle - n * unit / 2.0 - origin) / unit;
+                ((k - k.round()) * unit).powi(2)
+            })
+            .sum();
+        height * height + off_grid + border.min(0.0).powi(2)
+    };
+    (fewest.max(1)..)
+        .map(|k| span / (k as f64 + (nl - n0) / 2.0))
+        .take_while(|&unit| unit >= shortest)
+        .take(MAX_GRID_CANDIDATES)
+        .min_by(|&a, &b| score(a).total_cmp(&score(b)))
+        .map_or(0.0, placed)
 }
 
 /// Turns snapped bricks into a wall: segments from empty columns, labels `100·l + p`.
@@ -1418,6 +1543,7 @@ mod tests {
             kind: BrickType::Red,
             gap: f64::INFINITY,
             area: (end - start) as f64,
+            middle: (start + end) as f64 / 2.0,
             column_heights,
             faint_dips: Vec::new(),
         }
@@ -1452,6 +1578,28 @@ mod tests {
     }
 
     /// A one-row image: white, a 2 px ring of `ring` colour, 6 px of red, the ring, white.
+    #[test]
+    fn equal_lone_bricks_take_their_unit_from_the_grid_they_sit_on() {
+        // `R . . . . R` at 8 px per unit with a 3 px border: 5 px of colour, 2.33 px tall,
+        // middles 40 px apart. A height 0.2 px off either way still picks 5 units between
+        // them (the height rule alone would put the unit at 7.4 or 8.6 px).
+        let red_at = |middle: f64| Run {
+            middle,
+            ..lone(BrickType::Red, 5.0)
+        };
+        let runs = [red_at(12.5), red_at(52.5)];
+        for height in [2.13, 2.33, 2.53] {
+            let border = grid_border(&runs, &[5.0, 5.0], height);
+            assert!(
+                (border - 3.0).abs() < 1e-9,
+                "height {height}: border {border}"
+            );
+        }
+        // Alone, a brick has only the height rule: u = 3(r − T) = 8 px.
+        let border = grid_border(&runs[..1], &[5.0], 7.0 / 3.0);
+        assert!((border - 3.0).abs() < 1e-9, "{border}");
+    }
+
     fn ringed_red(ring: [u8; 3]) -> RgbImage {
         RgbImage::from_fn(24, 1, |x, _| {
             image::Rgb(match x {

@@ -143,13 +143,24 @@ fn two_lone_reds_with_a_3_px_black_border_keep_their_empty_slot() {
     }
 }
 
+/// Regression (issue #2): `R . R` at 8.0 px per 0.30 m with a 3 px white border. Two bricks
+/// of one length with a border as light as the background leave only the layer's height to
+/// find the unit by; the clipped strength took 0.4 px off each brick's width, and the second
+/// brick moved one slot right. The unit now comes from the grid the two bricks sit on, and
+/// the widths from the linear colour share.
+#[test]
+fn two_lone_reds_with_a_3_px_white_border_keep_their_empty_slot() {
+    check_round_trip(79839 ^ 0x5eed).unwrap();
+}
+
 /// One layer of bricks that touch nothing: the border must come from the dark ring (black
-/// borders) or from the lengths of different colours (white borders), never from the joins.
+/// borders), from the lengths of different colours, or from the grid the bricks sit on
+/// (white borders), never from the joins.
 #[test]
 fn lone_bricks_in_one_layer_at_small_scales() {
     let cases: [(&str, &[[u8; 3]]); 4] = [
-        ("R . R", &[[0, 0, 0]]),
-        ("B . . B", &[[0, 0, 0]]),
+        ("R . R", &[[0, 0, 0], [255, 255, 255]]),
+        ("B . . B", &[[0, 0, 0], [255, 255, 255]]),
         ("R . . G . O", &[[0, 0, 0], [255, 255, 255]]),
         ("O . . R", &[[0, 0, 0], [255, 255, 255]]),
     ];
