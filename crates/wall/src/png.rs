@@ -12,13 +12,16 @@
 //! (weighted to its core rows), bricks are runs of coloured columns split by background, by
 //! dips, or by a change of colour. A dip is a border when it is deep, or when it stands well
 //! clear of the band's noise: a 1 px border at 8 px per 0.30 m, blurred, may dim two columns
-//! by only a quarter. A brick's length is its run plus one border width; the border comes
-//! from the layer separators or from the narrowest gaps. One layer of bricks that touch
-//! nothing has neither: on a light background each pixel then unmixes linearly into shares
-//! of colour, background and black, and the dark ring they leave around each brick is a dark
-//! border's width (blur keeps it); a border as light as the background leaves no ring, and
-//! the border comes from the lengths of bricks of different colours (`r = n·unit − b`), or,
-//! for bricks all of one length, from the 2/3 height rule. The length unit (pixels
+//! by only a quarter. A brick's length is its colour plus one border width (a lone side is
+//! placed from the colour's centroid and area, which blur keeps); the border comes from the
+//! layer separators or from the narrowest gaps. One layer of bricks that touch nothing has
+//! neither: on a light background each pixel then unmixes linearly into shares of colour,
+//! background and black, and the dark ring they leave around each brick is a dark border's
+//! width (blur keeps it); a border as light as the background leaves no ring, and the
+//! border comes from the lengths of bricks of different colours (`r = n·unit − b`), or, for
+//! bricks all of one length, from the grid they sit on: the whole number of units between
+//! them whose unit puts every brick on a grid line and makes the layer 2/3 of a unit tall.
+//! The length unit (pixels
 //! per 0.30 m) is a median over all bricks weighted by length. Lengths then repair the two
 //! ways a border can mislead: touching same-coloured pieces that only together make the
 //! colour's length are merged, and a run k times its colour's length is split in k. Every
