@@ -1343,16 +1343,17 @@ fn grid_border(runs: &[Run], widths: &[f64], colour_height: f64) -> f64 {
     };
     let units = run_units(&runs.iter().collect::<Vec<_>>());
     let m = runs.len() as f64;
-    let mean_gap = |unit: f64, width: &dyn Fn(usize) -> f64| {
+    let areas: Vec<f64> = runs.iter().map(|r| r.area).collect();
+    let mean_gap = |unit: f64, widths: &[f64]| {
         units
             .iter()
-            .enumerate()
-            .map(|(i, n)| n * unit - width(i))
+            .zip(widths)
+            .map(|(n, w)| n * unit - w)
             .sum::<f64>()
             / m
     };
-    let border_for = |unit: f64| mean_gap(unit, &|i| widths[i]);
-    let placed = |unit: f64| mean_gap(unit, &|i| runs[i].area).clamp(0.0, 0.5 * unit);
+    let border_for = |unit: f64| mean_gap(unit, widths);
+    let placed = |unit: f64| mean_gap(unit, &areas).clamp(0.0, 0.5 * unit);
     let (n0, nl) = (units[0], units[units.len() - 1]);
     let span = last.middle - first.middle;
     if runs.len() < 2 || span <= 0.0 {
