@@ -4,8 +4,8 @@ use crate::fail::{input_error, CliResult};
 use clap::ValueEnum;
 use mason_order::CostModel;
 use mason_wall::{
-    builtin, looks_like_cmcp, parse_cmcp, parse_layer_text, parse_mbzirc, read_png, CmcpSizes,
-    Wall, BUILTIN_WALLS,
+    builtin, looks_like_cmcp, parse_cmcp, parse_cmcp_strict, parse_layer_text, parse_mbzirc,
+    read_png, CmcpSizes, Wall, BUILTIN_WALLS,
 };
 use std::path::Path;
 
@@ -33,8 +33,9 @@ pub enum Sizes {
     Swapped,
 }
 
-/// Loads `design`: a path, or `builtin:NAME`.
-pub fn load_wall(design: &str, format: Format, sizes: Sizes) -> CliResult<Wall> {
+/// Loads `design`: a path, or `builtin:NAME`. A CMCP wall's warnings (floating bricks,
+/// overlapping same-level bricks) go to stderr, or are errors when `strict`.
+pub fn load_wall(design: &str, format: Format, sizes: Sizes, strict: bool) -> CliResult<Wall> {
     if let Some(name) = design.strip_prefix("builtin:") {
         return builtin(name).map(|b| b.wall()).ok_or_else(|| {
             let names: Vec<&str> = BUILTIN_WALLS.iter().map(|b| b.name).collect();
@@ -77,9 +78,31 @@ pub fn load_wall(design: &str, format: Format, sizes: Sizes) -> CliResult<Wall> 
         Format::Png => read_png(&bytes, design),
         Format::Text | Format::Auto => parse_layer_text(&text()?, design),
         Format::Mbzirc => parse_mbzirc(&text()?, design),
+        Format::Cmcp if strict => parse_cmcp_strict(&text()?, design, cmcp_sizes),
         Format::Cmcp => parse_cmcp(&text()?, design, cmcp_sizes),
     };
-    wall.map_err(|e| input_error(e.to_string()))
+    let wall = wall.map_err(|e| input_error(e.to_string()))?;
+    if format == Format::Cmcp {
+        if let (true, Some(w)) = (strict, wall.warnings().first()) {
+            return Err(input_error(format!("{design}: {w} (--strict)")));
+        }
+        let (overlaps, other): (Vec<&String>, Vec<&String>) = wall
+            .warnings()
+            .iter()
+            .partition(|w| w.contains(" overlap by "));
+        match overlaps.as_slice() {
+            [] => {}
+            [one] => eprintln!("mason: warning: {design}: {one}"),
+            [first, ..] => eprintln!(
+                "mason: warning: {design}: {} pairs of same-level bricks overlap, e.g. {first} (`mason wall show` lists them)",
+                overlaps.len()
+            ),
+        }
+        for w in other {
+            eprintln!("mason: warning: {design}: {w}");
+        }
+    }
+    Ok(wall)
 }
 
 /// Loads a cost model from TOML, or the defaults.

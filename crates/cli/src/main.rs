@@ -13,12 +13,14 @@ mod input;
 mod mission_bench;
 mod plan;
 mod progress;
+mod schedule_cmd;
 mod sim_cmd;
 mod wall_cmd;
 
 use clap::{Parser, Subcommand};
 use fail::{input_error, write_file, CliResult};
 use input::{load_model, load_wall, Format, Sizes};
+use mason_order::team::Objective;
 use mason_order::{BuildProblem, PlannerSpec};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -44,6 +46,15 @@ struct DesignArgs {
     /// Size table for CMCP walls
     #[arg(long, value_enum, default_value = "yaml")]
     cmcp_sizes: Sizes,
+    /// CMCP walls: refuse floating bricks and overlapping same-level bricks instead of warning
+    #[arg(long)]
+    strict: bool,
+}
+
+impl DesignArgs {
+    fn load(&self) -> CliResult<mason_wall::Wall> {
+        load_wall(&self.design, self.format, self.cmcp_sizes, self.strict)
+    }
 }
 
 #[derive(Subcommand)]
@@ -69,10 +80,28 @@ enum Command {
         /// brute, greedy, improved:N,K (e.g. improved:1,4) or exact
         #[arg(long, default_value = "exact")]
         planner: String,
-        /// Cost model parameters (TOML); defaults are the thesis's
+        /// Cost model parameters (TOML); defaults are the thesis's. With --objective: the team
+        /// model, thesis, cmcp or a TOML file (default thesis)
         #[arg(long)]
-        model: Option<PathBuf>,
-        /// Search budget in seconds (brute, improved); the best order so far is reported
+        model: Option<String>,
+        /// Plan a team schedule instead of a build order: makespan (whole wall, shortest),
+        /// reward (most reward by --budget), expected (most expected reward by --budget when
+        /// UAVs fail at --uav-hazard)
+        #[arg(long)]
+        objective: Option<String>,
+        /// Team size for --objective
+        #[arg(long, default_value_t = 3)]
+        uavs: usize,
+        /// Time budget T in seconds for --objective reward|expected (bricks count if placed by T)
+        #[arg(long, allow_negative_numbers = true)]
+        budget: Option<f64>,
+        /// UAV failures per hour per UAV, for --objective expected
+        #[arg(long, allow_negative_numbers = true)]
+        uav_hazard: Option<f64>,
+        /// Seed of the schedule search (same seed, same schedule unless --time-limit stops it)
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Search budget in seconds (brute, improved, schedules); the best so far is reported
         #[arg(long, allow_negative_numbers = true)]
         time_limit: Option<f64>,
         /// Print JSON instead of a table
@@ -244,7 +273,7 @@ fn run(cli: Cli) -> CliResult<()> {
         Command::Wall {
             command: WallCommand::Show { design, svg, json },
         } => {
-            let wall = load_wall(&design.design, design.format, design.cmcp_sizes)?;
+            let wall = design.load()?;
             if let Some(path) = svg {
                 write_file(&path, mason_report::wall_svg(&wall, None).as_bytes())?;
             }
@@ -262,17 +291,38 @@ fn run(cli: Cli) -> CliResult<()> {
             design,
             planner,
             model,
+            objective,
+            uavs,
+            budget,
+            uav_hazard,
+            seed,
             time_limit,
             json,
             svg,
             html,
         } => {
+            if let Some(objective) = objective {
+                let req = ScheduleArgs {
+                    objective,
+                    uavs,
+                    budget,
+                    uav_hazard,
+                    seed,
+                    time_limit,
+                };
+                return plan_schedule(design, model, req, json, svg, html);
+            }
+            if uav_hazard.is_some() || budget.is_some() {
+                return Err(input_error(
+                    "--budget and --uav-hazard belong to team schedules: add --objective",
+                ));
+            }
             let spec: PlannerSpec = planner
                 .parse()
                 .map_err(|e| input_error(format!("--planner: {e}")))?;
             let limit = plan::time_limit(time_limit)?;
-            let wall = load_wall(&design.design, design.format, design.cmcp_sizes)?;
-            let model = load_model(model.as_deref())?;
+            let wall = design.load()?;
+            let model = load_model(model.as_deref().map(std::path::Path::new))?;
             let problem =
                 BuildProblem::new(&wall, model).map_err(|e| input_error(e.to_string()))?;
             let checked = plan::solve(&problem, spec, limit)?;
@@ -331,6 +381,93 @@ fn run(cli: Cli) -> CliResult<()> {
     }
 }
 
+/// The raw team-schedule flags of `mason plan`.
+struct ScheduleArgs {
+    objective: String,
+    uavs: usize,
+    budget: Option<f64>,
+    uav_hazard: Option<f64>,
+    seed: u64,
+    time_limit: Option<f64>,
+}
+
+impl ScheduleArgs {
+    fn resolve(&self) -> CliResult<schedule_cmd::ScheduleRequest> {
+        let mut objective: Objective = self
+            .objective
+            .parse()
+            .map_err(|e| input_error(format!("--objective: {e}")))?;
+        match (&mut objective, self.uav_hazard) {
+            (Objective::Expected { hazard_per_hour }, Some(h)) => *hazard_per_hour = h,
+            (Objective::Expected { .. }, None) => {
+                return Err(input_error(
+                    "--objective expected needs --uav-hazard λ (failures per hour)",
+                ))
+            }
+            (_, Some(_)) => return Err(input_error("--uav-hazard is for --objective expected")),
+            _ => {}
+        }
+        Ok(schedule_cmd::ScheduleRequest {
+            objective,
+            uavs: self.uavs,
+            budget_s: self.budget,
+            time_limit: plan::time_limit(self.time_limit)?,
+            seed: self.seed,
+        })
+    }
+}
+
+fn plan_schedule(
+    design: DesignArgs,
+    model: Option<String>,
+    args: ScheduleArgs,
+    json: bool,
+    svg: Option<PathBuf>,
+    html: Option<PathBuf>,
+) -> CliResult<()> {
+    let req = args.resolve()?;
+    let team = schedule_cmd::load_team_model(model.as_deref())?;
+    let wall = design.load()?;
+    let problem = schedule_cmd::problem(&wall, team, &req)?;
+    let checked = schedule_cmd::solve(&problem, &req)?;
+    let schedule = checked.outcome.schedule.clone().unwrap_or_default();
+    let title = format!(
+        "{} — {} schedule, {} UAVs, model {}",
+        wall.name(),
+        problem.objective(),
+        problem.uavs(),
+        problem.model().name
+    );
+    let figure = mason_report::schedule_svg(&title, &problem, &schedule);
+    if let Some(path) = svg {
+        write_file(&path, figure.as_bytes())?;
+    }
+    if let Some(path) = html {
+        let page = mason_report::report_page(
+            &title,
+            &schedule_cmd::summary_line(&problem, &checked.outcome),
+            &[
+                mason_report::Section {
+                    heading: "Schedule".into(),
+                    html: figure.clone(),
+                },
+                mason_report::Section {
+                    heading: "Placements".into(),
+                    html: mason_report::pre(&schedule_cmd::schedule_table(&problem, &checked)),
+                },
+            ],
+        );
+        write_file(&path, page.as_bytes())?;
+    }
+    if json {
+        let v = schedule_cmd::schedule_json(&problem, &checked, req.seed);
+        println!("{}", serde_json::to_string_pretty(&v).expect("json"));
+    } else {
+        print!("{}", schedule_cmd::schedule_table(&problem, &checked));
+    }
+    Ok(())
+}
+
 fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     let coord: mason_mission::Coord = a
         .coord
@@ -365,7 +502,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         || cli_faults.msg_loss.is_some()
         || cli_faults.latency.is_some();
     let faults = file_faults.merged(cli_faults).resolve()?;
-    let wall = load_wall(&a.design.design, a.design.format, a.design.cmcp_sizes)?;
+    let wall = a.design.load()?;
     let model = load_model(a.model.as_deref())?;
     let problem =
         BuildProblem::new(&wall, model.clone()).map_err(|e| input_error(e.to_string()))?;

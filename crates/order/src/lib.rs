@@ -34,6 +34,7 @@ mod model;
 mod outcome;
 mod planner;
 mod problem;
+pub mod team;
 mod tree_search;
 mod validate;
 

@@ -1,7 +1,7 @@
 //! Mason reports: figures drawn from plain data, returned as strings. No I/O.
 //!
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
-//! ([`gantt_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
+//! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
 //!
 //! ```
@@ -16,6 +16,7 @@ mod gantt;
 mod page;
 mod replay;
 mod reward;
+mod schedule_svg;
 mod svg;
 mod wall_svg;
 
@@ -24,5 +25,6 @@ pub use gantt::{gantt_svg, state_colour};
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
 pub use reward::{reward_svg, Series};
+pub use schedule_svg::schedule_svg;
 pub use svg::{escape, robot_colour};
 pub use wall_svg::wall_svg;

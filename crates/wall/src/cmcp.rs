@@ -122,6 +122,16 @@ fn parse_line(fields: &[&str], sizes: CmcpSizes) -> Result<(u32, Brick), WallErr
 /// assert_eq!(wall.supports(mason_wall::BrickId(1)).len(), 1);
 /// ```
 pub fn parse_cmcp(src: &str, name: &str, sizes: CmcpSizes) -> Result<Wall, WallError> {
+    Wall::from_bricks_allowing_floating(name, read_bricks(src, name, sizes)?)
+}
+
+/// [`parse_cmcp`] with floating bricks as errors naming their line (`--strict`); overlapping
+/// same-level bricks stay in [`Wall::warnings`] for the caller to refuse.
+pub fn parse_cmcp_strict(src: &str, name: &str, sizes: CmcpSizes) -> Result<Wall, WallError> {
+    Wall::from_bricks(name, read_bricks(src, name, sizes)?)
+}
+
+fn read_bricks(src: &str, name: &str, sizes: CmcpSizes) -> Result<Vec<Brick>, WallError> {
     let mut bricks = Vec::new();
     let mut seen: HashMap<u32, usize> = HashMap::new();
     for (i, raw) in src.lines().enumerate() {
@@ -139,7 +149,7 @@ pub fn parse_cmcp(src: &str, name: &str, sizes: CmcpSizes) -> Result<Wall, WallE
         brick.origin = Origin::Line(i + 1);
         bricks.push(brick);
     }
-    Wall::from_bricks(name, bricks)
+    Ok(bricks)
 }
 
 /// True when `src` looks like a CMCP file: its first data line has six numeric fields.

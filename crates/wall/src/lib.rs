@@ -33,7 +33,7 @@ pub use brick::{
     OVERLAP_EPS, UNIT_LENGTH,
 };
 pub use builtin::{builtin, BuiltinWall, BUILTIN_WALLS};
-pub use cmcp::{looks_like_cmcp, parse_cmcp, CmcpSizes};
+pub use cmcp::{looks_like_cmcp, parse_cmcp, parse_cmcp_strict, CmcpSizes};
 pub use error::{Location, WallError, WallErrorKind};
 pub use png::{classify_pixel, read_image, read_png};
 pub use raster::{brick_rgb, render, RasterStyle};

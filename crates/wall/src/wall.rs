@@ -76,6 +76,23 @@ impl Wall {
     /// `source_name` names the input in errors. Fails on an empty wall and on a floating
     /// brick. Same-level bricks whose footprints overlap are reported in [`Wall::warnings`].
     pub fn from_bricks(source_name: &str, bricks: Vec<Brick>) -> Result<Wall, WallError> {
+        Self::build(source_name, bricks, false)
+    }
+
+    /// [`Wall::from_bricks`], except that a brick above level 1 with nothing under it is
+    /// accepted with no supports (CMCP walls, DESIGN §3); one warning counts such bricks.
+    pub fn from_bricks_allowing_floating(
+        source_name: &str,
+        bricks: Vec<Brick>,
+    ) -> Result<Wall, WallError> {
+        Self::build(source_name, bricks, true)
+    }
+
+    fn build(
+        source_name: &str,
+        bricks: Vec<Brick>,
+        allow_floating: bool,
+    ) -> Result<Wall, WallError> {
         if bricks.is_empty() {
             return Err(WallError::new(
                 source_name,
@@ -98,6 +115,7 @@ impl Wall {
         let mut carried = vec![Vec::new(); n];
         let mut neighbours = vec![Vec::new(); n];
         let mut warnings = Vec::new();
+        let mut floating = 0usize;
 
         for (i, b) in bricks.iter().enumerate() {
             let f = &b.footprint;
@@ -110,7 +128,9 @@ impl Wall {
                         carried[j].push(BrickId(i as u32));
                     }
                 }
-                if supports[i].is_empty() {
+                if supports[i].is_empty() && allow_floating {
+                    floating += 1;
+                } else if supports[i].is_empty() {
                     return Err(WallError::new(
                         source_name,
                         location_of(b.origin),
@@ -143,6 +163,11 @@ impl Wall {
                     neighbours[j].push(BrickId(i as u32));
                 }
             }
+        }
+        if floating > 0 {
+            warnings.push(format!(
+                "{floating} brick(s) above level 1 rest on nothing in the layer below; they are planned with no predecessor"
+            ));
         }
         for list in supports
             .iter_mut()

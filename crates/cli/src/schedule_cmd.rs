@@ -1,0 +1,218 @@
+//! `mason plan --objective …`: team schedules — solve, validate, print a table or JSON.
+
+use crate::fail::{input_error, CliResult};
+use crate::input::read_toml;
+use mason_order::team::{
+    plan_schedule, validate_schedule_claim, Objective, ScheduleEvaluation, TeamModel,
+    TeamModelPatch, TeamOutcome, TeamProblem,
+};
+use mason_order::Budget;
+use mason_wall::Wall;
+use serde_json::{json, Value};
+use std::path::Path;
+use std::time::Duration;
+
+/// Reads `--model` for schedules: `thesis`, `cmcp`, or a TOML file (see README).
+pub fn load_team_model(spec: Option<&str>) -> CliResult<TeamModel> {
+    let spec = spec.unwrap_or("thesis");
+    if let Some(m) = TeamModel::builtin(spec) {
+        return Ok(m);
+    }
+    let path = Path::new(spec);
+    if !path.exists() {
+        return Err(input_error(format!(
+            "--model {spec}: expected thesis, cmcp or a TOML file (no such file)"
+        )));
+    }
+    let patch: TeamModelPatch = read_toml(path)?;
+    TeamModel::from_patch(&patch, spec).map_err(|e| input_error(format!("{spec}: {e}")))
+}
+
+/// What `mason plan --objective` was asked.
+pub struct ScheduleRequest {
+    /// The objective (with its hazard for `expected`).
+    pub objective: Objective,
+    /// Team size.
+    pub uavs: usize,
+    /// The budget T.
+    pub budget_s: Option<f64>,
+    /// Deadline of the search.
+    pub time_limit: Option<f64>,
+    /// Seed.
+    pub seed: u64,
+}
+
+/// A planned, validated schedule.
+pub struct CheckedSchedule {
+    /// The planner's outcome.
+    pub outcome: TeamOutcome,
+    /// The validator's recomputation.
+    pub evaluation: ScheduleEvaluation,
+}
+
+/// Poses the problem (bad parameters: exit 2).
+pub fn problem<'w>(
+    wall: &'w Wall,
+    model: TeamModel,
+    req: &ScheduleRequest,
+) -> CliResult<TeamProblem<'w>> {
+    TeamProblem::new(wall, model, req.uavs, req.budget_s, req.objective)
+        .map_err(|e| input_error(e.to_string()))
+}
+
+/// Plans and validates (an invalid schedule is a bug: reported, exit 2).
+pub fn solve(p: &TeamProblem<'_>, req: &ScheduleRequest) -> CliResult<CheckedSchedule> {
+    let budget = match req.time_limit {
+        Some(s) => Budget {
+            deadline: Budget::time(Duration::from_secs_f64(s)).deadline,
+            node_limit: Some(u64::MAX),
+        },
+        None => Budget::unlimited(),
+    };
+    let outcome = plan_schedule(p, &budget, req.seed);
+    let schedule = outcome.schedule.clone().unwrap_or_default();
+    let evaluation = validate_schedule_claim(
+        p.wall(),
+        p.model(),
+        p.uavs(),
+        p.budget_s(),
+        &schedule,
+        outcome.reward,
+        outcome.makespan_s,
+    )
+    .map_err(|e| {
+        input_error(format!(
+            "internal error: the planner produced an invalid schedule: {e}"
+        ))
+    })?;
+    Ok(CheckedSchedule {
+        outcome,
+        evaluation,
+    })
+}
+
+fn num(x: f64) -> Value {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        json!(x as i64)
+    } else {
+        json!(x)
+    }
+}
+
+/// The schedule as JSON (README: "Team schedule JSON").
+pub fn schedule_json(p: &TeamProblem<'_>, c: &CheckedSchedule, seed: u64) -> Value {
+    let wall = p.wall();
+    let o = &c.outcome;
+    let rows: Vec<Value> = o
+        .schedule
+        .iter()
+        .flat_map(|s| &s.placements)
+        .flat_map(|pl| {
+            pl.uavs.iter().map(move |&u| {
+                json!({
+                    "uav": u,
+                    "brick": wall.brick(pl.brick).label,
+                    "type": wall.brick(pl.brick).kind,
+                    "start_s": num(pl.start_s),
+                    "end_s": num(pl.start_s + p.place_s(pl.brick)),
+                })
+            })
+        })
+        .collect();
+    json!({
+        "objective": p.objective().name(),
+        "model": p.model().name,
+        "uavs": p.uavs(),
+        "budget_s": p.budget_s().map(num),
+        "uav_hazard_per_hour": match p.objective() { Objective::Expected { hazard_per_hour } => Some(hazard_per_hour), _ => None },
+        "seed": seed,
+        "reward": num(o.reward),
+        "expected_reward": o.expected_reward,
+        "bricks_placed": c.evaluation.bricks,
+        "bricks_total": wall.len(),
+        "makespan_s": num(o.makespan_s),
+        "bound": num(o.bound),
+        "gap": num(o.gap(p.objective())),
+        "status": o.status,
+        "schedule": rows,
+        "stats": {
+            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "decodes": o.stats.decodes,
+            "improvements": o.stats.improvements,
+        },
+        "team_model": p.model(),
+        "wall": crate::plan::wall_json(wall),
+    })
+}
+
+/// One line that states the result, its bound and the gap.
+pub fn summary_line(p: &TeamProblem<'_>, o: &TeamOutcome) -> String {
+    let gap = o.gap(p.objective());
+    match p.objective() {
+        Objective::Makespan => format!(
+            "makespan {:.1} s · lower bound {:.1} s · gap {:.1} s ({:.2} %) · {}",
+            o.makespan_s,
+            o.bound,
+            gap,
+            100.0 * gap / o.bound.max(1e-9),
+            o.status
+        ),
+        Objective::Reward => format!(
+            "reward {} by {} s · upper bound {} · gap {} · makespan {:.1} s · {}",
+            o.reward,
+            p.budget_s().unwrap_or(0.0),
+            o.bound,
+            gap,
+            o.makespan_s,
+            o.status
+        ),
+        Objective::Expected { hazard_per_hour } => format!(
+            "expected reward {:.2} by {} s at {} failures/h per UAV · upper bound {:.2} · gap {:.2} · fault-free reward {} · makespan {:.1} s · {}",
+            o.expected_reward.unwrap_or(0.0),
+            p.budget_s().unwrap_or(0.0),
+            hazard_per_hour,
+            o.bound,
+            gap,
+            o.reward,
+            o.makespan_s,
+            o.status
+        ),
+    }
+}
+
+/// The schedule as a table.
+pub fn schedule_table(p: &TeamProblem<'_>, c: &CheckedSchedule) -> String {
+    let wall = p.wall();
+    let o = &c.outcome;
+    let mut out = format!(
+        "wall {} ({} bricks) · objective {} · model {} · {} UAVs · {:.1} ms · {} schedules decoded\n",
+        wall.name(),
+        wall.len(),
+        p.objective(),
+        p.model().name,
+        p.uavs(),
+        o.stats.elapsed.as_secs_f64() * 1e3,
+        o.stats.decodes
+    );
+    out.push_str("  start (s)    end (s)   brick  type    level  UAVs\n");
+    for pl in o.schedule.iter().flat_map(|s| &s.placements) {
+        let b = wall.brick(pl.brick);
+        let uavs: Vec<String> = pl.uavs.iter().map(|u| u.to_string()).collect();
+        out.push_str(&format!(
+            "{:>11.1} {:>10.1}  {:>6}  {:<6}  {:>5}  {}\n",
+            pl.start_s,
+            pl.start_s + p.place_s(pl.brick),
+            b.label,
+            b.kind.name(),
+            b.level,
+            uavs.join("+")
+        ));
+    }
+    out.push_str(&format!(
+        "{} of {} bricks · {} (checked by order::validate_schedule)\n",
+        c.evaluation.bricks,
+        wall.len(),
+        summary_line(p, o)
+    ));
+    out
+}

@@ -1,0 +1,229 @@
+//! Proven bounds for team schedules.
+//!
+//! * Makespan (whole wall), a lower bound: the largest of
+//!   - the longest precedence chain of placing phases;
+//!   - the resource bound: with S UAV-cycles in all (a 2-UAV brick counts 2) and m UAVs,
+//!     some UAV starts ⌈S/m⌉ bricks, so with one cycle length c it ends no earlier than
+//!     (⌈S/m⌉ − 1)·c + the shortest placing phase; with mixed cycles, the total UAV time
+//!     spread over m UAVs, less the longest rest;
+//!   - under the zone rule, the sum of all placing phases (they never overlap).
+//! * Reward by a budget T, an upper bound: the Lagrangian (= LP) relaxation of the
+//!   precedence-constrained knapsack. A brick weighs its UAV time (`uavs · cycle`), the team
+//!   has `m · (T + longest rest)` of it (with one cycle length: `m` times the starts that fit
+//!   in T), and bricks whose precedence chain cannot end by T are out. For every λ ≥ 0,
+//!   `λ·C + max over closed sets of Σ (reward − λ·weight)` bounds every valid schedule; the
+//!   inner maximum is a maximum-weight closure ([`super::closure`]), and λ is found by
+//!   bisection on the subgradient. With integer rewards the bound is rounded down.
+//! * Expected reward with each UAV failing at rate λ_f: the same relaxation with the
+//!   expected working time `E[min(F, T)] = (1 − e^(−λ_f T))/λ_f` per UAV. The relaxation is
+//!   concave in the capacity, so by Jensen it bounds the expectation of every policy, even
+//!   one that knows the failure times.
+
+use super::closure::max_weight_closure;
+use super::problem::TeamProblem;
+use mason_wall::BrickId;
+
+/// The earliest each brick can be placed: its longest chain of placing phases.
+pub fn earliest_end(p: &TeamProblem<'_>) -> Vec<f64> {
+    let wall = p.wall();
+    let mut order: Vec<BrickId> = wall.ids().collect();
+    order.sort_by_key(|&b| wall.brick(b).level);
+    let mut head = vec![0.0; p.len()];
+    for b in order {
+        let ready = wall
+            .supports(b)
+            .iter()
+            .map(|s| head[s.index()])
+            .fold(0.0, f64::max);
+        head[b.index()] = ready + p.place_s(b);
+    }
+    head
+}
+
+/// One cycle length shared by every brick of the wall, if there is one.
+fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
+    let c = p.place_s(BrickId(0)) + p.rest_s(BrickId(0));
+    p.wall()
+        .ids()
+        .all(|b| (p.place_s(b) + p.rest_s(b) - c).abs() < 1e-9)
+        .then_some(c)
+}
+
+/// A lower bound on the makespan of any schedule that places every brick.
+pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
+    let ids = || p.wall().ids();
+    let chain = earliest_end(p).into_iter().fold(0.0, f64::max);
+    let m = p.uavs() as f64;
+    let resource = match uniform_cycle(p) {
+        Some(c) => {
+            let slots: u64 = ids().map(|b| u64::from(p.need(b))).sum();
+            let per_uav = slots.div_ceil(p.uavs() as u64);
+            let shortest = ids().map(|b| p.place_s(b)).fold(f64::INFINITY, f64::min);
+            (per_uav as f64 - 1.0) * c + shortest
+        }
+        None => {
+            let work: f64 = ids()
+                .map(|b| f64::from(p.need(b)) * (p.place_s(b) + p.rest_s(b)))
+                .sum();
+            let longest_rest = ids().map(|b| p.rest_s(b)).fold(0.0, f64::max);
+            work / m - longest_rest
+        }
+    };
+    let zone = if p.zone_rule() {
+        ids().map(|b| p.place_s(b)).sum()
+    } else {
+        0.0
+    };
+    chain.max(resource).max(zone)
+}
+
+/// The reward relaxation's data: per brick weight and eligibility, the team's capacity.
+struct Knapsack {
+    weight: Vec<f64>,
+    eligible: Vec<bool>,
+    capacity: f64,
+}
+
+fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
+    let head = earliest_end(p);
+    let eligible: Vec<bool> = head.iter().map(|&h| h <= budget + 1e-9).collect();
+    let ids = || p.wall().ids();
+    let m = p.uavs() as f64;
+    match uniform_cycle(p) {
+        // Weights in cycles: a UAV starts at most ⌊(T − shortest placing)/c⌋ + 1 bricks.
+        Some(c) if uav_time >= budget => {
+            let shortest = ids().map(|b| p.place_s(b)).fold(f64::INFINITY, f64::min);
+            let starts = if budget + 1e-9 >= shortest {
+                ((budget - shortest) / c + 1e-9).floor() + 1.0
+            } else {
+                0.0
+            };
+            Knapsack {
+                weight: ids().map(|b| f64::from(p.need(b))).collect(),
+                eligible,
+                capacity: m * starts,
+            }
+        }
+        _ => {
+            let longest_rest = ids().map(|b| p.rest_s(b)).fold(0.0, f64::max);
+            Knapsack {
+                weight: ids()
+                    .map(|b| f64::from(p.need(b)) * (p.place_s(b) + p.rest_s(b)))
+                    .collect(),
+                eligible,
+                capacity: m * (uav_time + longest_rest),
+            }
+        }
+    }
+}
+
+/// A heaviest closed set of eligible bricks under reward − λ·weight.
+fn closure_at(p: &TeamProblem<'_>, k: &Knapsack, lambda: f64) -> (Vec<bool>, f64, f64) {
+    let n = p.len();
+    let weight: Vec<f64> = (0..n)
+        .map(|i| {
+            if k.eligible[i] {
+                p.reward(BrickId(i as u32)) - lambda * k.weight[i]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let requires: Vec<Vec<usize>> = (0..n)
+        .map(|i| {
+            if k.eligible[i] {
+                p.wall()
+                    .supports(BrickId(i as u32))
+                    .iter()
+                    .map(|s| s.index())
+                    .collect()
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    let set = max_weight_closure(&weight, &requires);
+    let set: Vec<bool> = set.iter().zip(&k.eligible).map(|(&s, &e)| s && e).collect();
+    let (mut r, mut w) = (0.0, 0.0);
+    for i in (0..n).filter(|&i| set[i]) {
+        r += p.reward(BrickId(i as u32));
+        w += k.weight[i];
+    }
+    (set, r, w)
+}
+
+/// The reward relaxation's result.
+#[derive(Clone, Debug)]
+pub struct RewardBound {
+    /// The proven upper bound.
+    pub bound: f64,
+    /// The best closed set found that fits the capacity (a starting point for planners).
+    pub fitting: Vec<bool>,
+    /// Per brick: the relaxation's weight, and whether its chain can end by T.
+    pub weight: Vec<f64>,
+    /// The capacity in those weights.
+    pub capacity: f64,
+}
+
+fn lagrangian(p: &TeamProblem<'_>, k: Knapsack) -> RewardBound {
+    let n = p.len();
+    let ratio_max = (0..n)
+        .filter(|&i| k.eligible[i] && k.weight[i] > 0.0)
+        .map(|i| p.reward(BrickId(i as u32)) / k.weight[i])
+        .fold(0.0, f64::max);
+    let (mut lo, mut hi) = (0.0f64, ratio_max + 1.0);
+    let mut best = f64::INFINITY;
+    let mut fitting = vec![false; n];
+    let mut fitting_reward = -1.0;
+    for _ in 0..60 {
+        let lambda = (lo + hi) / 2.0;
+        let (set, r, w) = closure_at(p, &k, lambda);
+        best = best.min(lambda * k.capacity + r - lambda * w);
+        if w <= k.capacity + 1e-9 {
+            if r > fitting_reward {
+                fitting_reward = r;
+                fitting = set;
+            }
+            hi = lambda;
+        } else {
+            lo = lambda;
+        }
+        if hi - lo < 1e-12 {
+            break;
+        }
+    }
+    // λ = 0 also bounds: everything eligible.
+    let (_, all, w_all) = closure_at(p, &k, 0.0);
+    if w_all <= k.capacity + 1e-9 {
+        best = all;
+    }
+    RewardBound {
+        bound: best,
+        fitting,
+        weight: k.weight,
+        capacity: k.capacity,
+    }
+}
+
+/// An upper bound on the reward any valid schedule places by `budget`.
+/// Rounded down when every reward is a whole number.
+pub fn reward_upper_bound(p: &TeamProblem<'_>, budget: f64) -> RewardBound {
+    let mut b = lagrangian(p, knapsack(p, budget, budget));
+    if p.wall().ids().all(|id| p.reward(id).fract() == 0.0) {
+        b.bound = (b.bound + 1e-6).floor();
+    }
+    b
+}
+
+/// An upper bound on the expected reward by `budget` when each UAV fails at
+/// `hazard_per_hour` (exponential), for any policy.
+pub fn expected_reward_upper_bound(p: &TeamProblem<'_>, budget: f64, hazard_per_hour: f64) -> f64 {
+    let rate = hazard_per_hour / 3600.0;
+    let uav_time = if rate > 0.0 {
+        (1.0 - (-rate * budget).exp()) / rate
+    } else {
+        budget
+    };
+    // The expectation need not be a whole number: no rounding.
+    lagrangian(p, knapsack(p, budget, uav_time)).bound
+}

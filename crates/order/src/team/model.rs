@@ -1,0 +1,350 @@
+//! The team time model of DESIGN §4.1: per brick type the placing phase, the rest of the
+//! cycle, the UAVs it needs and its reward; the concurrency rule. Two built-ins (`thesis`,
+//! `cmcp`) and a TOML patch that starts from either and may set every parameter.
+
+use crate::model::CostModel;
+use mason_wall::BrickType;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Times, team size and reward of one brick type.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TypeSchedule {
+    /// The placing phase (s): the brick occupies the wall; it counts as placed at its end.
+    pub place_s: f64,
+    /// The rest of the UAV's cycle (s): back to the pile, grasp, fly to the wall.
+    pub cycle_rest_s: f64,
+    /// UAVs that carry one brick together (they start together).
+    pub uavs: u32,
+    /// Reward for placing one brick.
+    pub reward: f64,
+}
+
+impl TypeSchedule {
+    /// `place_s + cycle_rest_s`: the shortest gap between a UAV's starts.
+    pub fn cycle_s(&self) -> f64 {
+        self.place_s + self.cycle_rest_s
+    }
+}
+
+/// Which bricks may be in their placing phase at the same time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase", tag = "rule")]
+pub enum Concurrency {
+    /// At most one brick (one UAV, or an orange pair) places at any time: the thesis's zone.
+    Zone,
+    /// Two bricks whose centres are closer than `distance_m` never place at overlapping times
+    /// (CMCP). Centres are 3-D: the footprint's middle at the layer's mid-height.
+    Distance {
+        /// The distance (m).
+        distance_m: f64,
+    },
+}
+
+/// Every parameter of a team schedule problem apart from the wall, the team and the budget.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TeamModel {
+    /// `thesis`, `cmcp`, or the file it was read from.
+    pub name: String,
+    /// Per type, in the order red, green, blue, orange.
+    pub types: [TypeSchedule; 4],
+    /// The concurrency rule.
+    pub concurrency: Concurrency,
+}
+
+/// Flying into and out of the wall zone (s) in the simulator's UAV model, duplicated here because `order` sits
+/// below `mission`; a mission test checks the two agree.
+pub const THESIS_ZONE_TRANSIT_S: f64 = 2.0;
+/// Detection plus descent above the brick (s), as in the simulator's defaults.
+pub const THESIS_PICK_OVERHEAD_S: f64 = 3.0;
+
+impl TeamModel {
+    /// The thesis model: the simulator's default-arena timings, zone rule.
+    ///
+    /// Placing is the zone time `zone_transit + κ₁·t_d` (a brick usually finds one neighbour
+    /// placed); the rest of the cycle is the flight back to the pile, detection and descent,
+    /// one grasp, and the flight to the wall: `2·t_f + 3 + n_g·t_g`. Rewards are 1/2/4/6.
+    pub fn thesis() -> TeamModel {
+        Self::from_cost_model(&CostModel::default())
+    }
+
+    /// The thesis model for a given cost model's times.
+    pub fn from_cost_model(cost: &CostModel) -> TeamModel {
+        let types = BrickType::ALL.map(|k| {
+            let t = cost.times(k);
+            TypeSchedule {
+                place_s: THESIS_ZONE_TRANSIT_S + cost.kappa[1] * t.drop,
+                cycle_rest_s: 2.0 * t.fly + THESIS_PICK_OVERHEAD_S + cost.grasp_attempts * t.grasp,
+                uavs: k.uavs_needed(),
+                reward: k.default_reward(),
+            }
+        });
+        TeamModel {
+            name: "thesis".into(),
+            types,
+            concurrency: Concurrency::Zone,
+        }
+    }
+
+    /// CMCP's GRASP convention: 40 s placing, 10 s return trip, 0.80 m, rewards 1/2/4/6.
+    pub fn cmcp() -> TeamModel {
+        let types = BrickType::ALL.map(|k| TypeSchedule {
+            place_s: 40.0,
+            cycle_rest_s: 10.0,
+            uavs: k.uavs_needed(),
+            reward: k.default_reward(),
+        });
+        TeamModel {
+            name: "cmcp".into(),
+            types,
+            concurrency: Concurrency::Distance { distance_m: 0.80 },
+        }
+    }
+
+    /// A built-in model by name.
+    pub fn builtin(name: &str) -> Option<TeamModel> {
+        match name {
+            "thesis" => Some(Self::thesis()),
+            "cmcp" => Some(Self::cmcp()),
+            _ => None,
+        }
+    }
+
+    /// The parameters of one type.
+    pub fn of(&self, kind: BrickType) -> &TypeSchedule {
+        &self.types[kind.index()]
+    }
+
+    /// Checks every parameter: finite, times ≥ 0 with a positive cycle, 1–2 UAVs per brick,
+    /// rewards ≥ 0, a positive finite distance.
+    pub fn validate(&self) -> Result<(), TeamModelError> {
+        let err = |field: String, value: f64, reason| {
+            Err(TeamModelError {
+                field,
+                value,
+                reason,
+            })
+        };
+        for kind in BrickType::ALL {
+            let t = self.of(kind);
+            let n = kind.name();
+            if !(t.place_s.is_finite() && t.place_s > 0.0) {
+                return err(
+                    format!("{n}.place_s"),
+                    t.place_s,
+                    "must be a finite number of seconds > 0",
+                );
+            }
+            if !(t.cycle_rest_s.is_finite() && t.cycle_rest_s >= 0.0) {
+                return err(
+                    format!("{n}.cycle_rest_s"),
+                    t.cycle_rest_s,
+                    "must be a finite number of seconds ≥ 0",
+                );
+            }
+            if !(1..=2).contains(&t.uavs) {
+                return err(format!("{n}.uavs"), f64::from(t.uavs), "must be 1 or 2");
+            }
+            if !(t.reward.is_finite() && t.reward >= 0.0) {
+                return err(
+                    format!("{n}.reward"),
+                    t.reward,
+                    "must be a finite number ≥ 0",
+                );
+            }
+        }
+        if let Concurrency::Distance { distance_m } = self.concurrency {
+            if !(distance_m.is_finite() && distance_m >= 0.0) {
+                return err(
+                    "distance_m".into(),
+                    distance_m,
+                    "must be a finite number of metres ≥ 0",
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// The model a TOML patch describes: its `base` (default `thesis`) with every key the
+    /// patch sets replaced. `name` names the model in outputs.
+    pub fn from_patch(patch: &TeamModelPatch, name: &str) -> Result<TeamModel, TeamModelError> {
+        let base = patch.base.as_deref().unwrap_or("thesis");
+        let mut m = TeamModel::builtin(base).ok_or_else(|| TeamModelError {
+            field: format!("base = \"{base}\""),
+            value: f64::NAN,
+            reason: "unknown base model: expected \"thesis\" or \"cmcp\"",
+        })?;
+        m.name = name.to_string();
+        for (kind, p) in
+            BrickType::ALL
+                .into_iter()
+                .zip([&patch.red, &patch.green, &patch.blue, &patch.orange])
+        {
+            let Some(p) = p else { continue };
+            let t = &mut m.types[kind.index()];
+            t.place_s = p.place_s.unwrap_or(t.place_s);
+            t.cycle_rest_s = p.cycle_rest_s.unwrap_or(t.cycle_rest_s);
+            t.uavs = p.uavs.unwrap_or(t.uavs);
+            t.reward = p.reward.unwrap_or(t.reward);
+        }
+        let distance = match m.concurrency {
+            Concurrency::Distance { distance_m } => distance_m,
+            Concurrency::Zone => 0.80,
+        };
+        m.concurrency = match patch.concurrency.as_deref() {
+            None if patch.distance_m.is_some() => Concurrency::Distance {
+                distance_m: patch.distance_m.unwrap_or(distance),
+            },
+            None => m.concurrency,
+            Some("zone") => Concurrency::Zone,
+            Some("distance") => Concurrency::Distance {
+                distance_m: patch.distance_m.unwrap_or(distance),
+            },
+            Some(other) => {
+                return Err(TeamModelError {
+                    field: format!("concurrency = \"{other}\""),
+                    value: f64::NAN,
+                    reason: "expected \"zone\" or \"distance\"",
+                })
+            }
+        };
+        m.validate()?;
+        Ok(m)
+    }
+}
+
+/// A parameter out of range.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[error("team model: `{field}` = {value} is invalid: {reason}")]
+pub struct TeamModelError {
+    /// The parameter.
+    pub field: String,
+    /// Its value (NaN for a text value, which `field` shows).
+    pub value: f64,
+    /// The rule it breaks.
+    pub reason: &'static str,
+}
+
+/// A TOML team model: a base and the keys that differ from it.
+///
+/// ```toml
+/// base = "cmcp"            # or "thesis" (the default)
+/// concurrency = "distance" # or "zone"
+/// distance_m = 1.0
+/// [orange]
+/// place_s = 60
+/// reward = 8
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TeamModelPatch {
+    /// `thesis` or `cmcp`.
+    pub base: Option<String>,
+    /// `zone` or `distance`.
+    pub concurrency: Option<String>,
+    /// The distance of the `distance` rule (m).
+    pub distance_m: Option<f64>,
+    /// Red bricks.
+    pub red: Option<TypePatch>,
+    /// Green bricks.
+    pub green: Option<TypePatch>,
+    /// Blue bricks.
+    pub blue: Option<TypePatch>,
+    /// Orange bricks.
+    pub orange: Option<TypePatch>,
+}
+
+/// The keys of one brick type that a patch sets.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TypePatch {
+    /// Placing phase (s).
+    pub place_s: Option<f64>,
+    /// Rest of the cycle (s).
+    pub cycle_rest_s: Option<f64>,
+    /// UAVs per brick.
+    pub uavs: Option<u32>,
+    /// Reward.
+    pub reward: Option<f64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtins_validate_and_cmcp_cycles_are_50_s() {
+        TeamModel::thesis().validate().unwrap();
+        let c = TeamModel::cmcp();
+        c.validate().unwrap();
+        assert!(BrickType::ALL.iter().all(|&k| c.of(k).cycle_s() == 50.0));
+        assert_eq!(c.of(BrickType::Orange).uavs, 2);
+    }
+
+    #[test]
+    fn patch_overrides_only_what_it_sets() {
+        let patch = TeamModelPatch {
+            base: Some("cmcp".into()),
+            orange: Some(TypePatch {
+                reward: Some(8.0),
+                ..TypePatch::default()
+            }),
+            ..TeamModelPatch::default()
+        };
+        let m = TeamModel::from_patch(&patch, "mine").unwrap();
+        assert_eq!(m.of(BrickType::Orange).reward, 8.0);
+        assert_eq!(m.of(BrickType::Orange).place_s, 40.0);
+        assert_eq!(m.concurrency, Concurrency::Distance { distance_m: 0.8 });
+        let zone = TeamModelPatch {
+            concurrency: Some("zone".into()),
+            ..patch
+        };
+        assert_eq!(
+            TeamModel::from_patch(&zone, "z").unwrap().concurrency,
+            Concurrency::Zone
+        );
+    }
+
+    #[test]
+    fn bad_patches_are_typed_errors() {
+        let bad_base = TeamModelPatch {
+            base: Some("nope".into()),
+            ..Default::default()
+        };
+        assert!(TeamModel::from_patch(&bad_base, "x")
+            .unwrap_err()
+            .field
+            .contains("nope"));
+        let three = TeamModelPatch {
+            red: Some(TypePatch {
+                uavs: Some(3),
+                ..Default::default()
+            }),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&three, "x").unwrap_err().field,
+            "red.uavs"
+        );
+        let neg = TeamModelPatch {
+            distance_m: Some(-1.0),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&neg, "x").unwrap_err().field,
+            "distance_m"
+        );
+        let zero = TeamModelPatch {
+            blue: Some(TypePatch {
+                place_s: Some(0.0),
+                ..Default::default()
+            }),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&zero, "x").unwrap_err().field,
+            "blue.place_s"
+        );
+    }
+}

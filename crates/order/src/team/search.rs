@@ -1,0 +1,515 @@
+//! The anytime team schedule planner: list scheduling with a local search over priority lists.
+//!
+//! * Starting lists: level by level (left to right), longest remaining chain first, and, under a
+//!   budget, the bricks of the precedence-constrained knapsack's best fitting closure first
+//!   (from the reward bound), filled greedily by reward per UAV-cycle.
+//! * Moves: take a brick and move it, with the ancestors that come after the new place, to a
+//!   random earlier or later place; decode with [`super::sgs`]; keep the list if the score is
+//!   no worse (plateau moves let the search drift). After many moves without improvement it
+//!   restarts from the best list, perturbed.
+//! * Scores: `makespan` — (makespan, Σ ends); `reward` — (−reward, makespan, Σ ends);
+//!   `expected` — the reward averaged over sampled failure scenarios, in which at each failure
+//!   the survivors re-decode the rest of the same list from that moment (common random
+//!   numbers: every list is scored on the same scenarios).
+//! * Two threads search from different seeds; the better result wins, ties to the first, so
+//!   the result depends only on the seed unless the deadline stops the search.
+//! * Stops when the result meets its bound (status `Optimal`), at the budget's node cap
+//!   (decodes per thread) or at its deadline (`Timeout`, best so far).
+
+use super::bounds::{
+    earliest_end, expected_reward_upper_bound, makespan_lower_bound, reward_upper_bound,
+};
+use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
+use super::sgs::{Decoded, Decoder, Mode};
+use crate::outcome::{Budget, Status};
+use mason_wall::BrickId;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::time::Instant;
+
+/// Decodes per thread when the budget sets no node cap.
+pub const DEFAULT_DECODES: u64 = 4000;
+
+/// Failure scenarios sampled for the `expected` objective.
+pub const SCENARIOS: usize = 32;
+
+/// A score: smaller is better, compared lexicographically.
+type Score = [f64; 3];
+
+fn better(a: &Score, b: &Score) -> bool {
+    for k in 0..3 {
+        if a[k] < b[k] - 1e-9 {
+            return true;
+        }
+        if a[k] > b[k] + 1e-9 {
+            return false;
+        }
+    }
+    false
+}
+
+/// One failure scenario: each UAV's failure time (∞: it survives).
+type Scenario = Vec<f64>;
+
+fn scenarios(p: &TeamProblem<'_>, hazard_per_hour: f64, seed: u64) -> Vec<Scenario> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_fa11);
+    let rate = hazard_per_hour / 3600.0;
+    (0..SCENARIOS)
+        .map(|_| {
+            (0..p.uavs())
+                .map(|_| {
+                    if rate > 0.0 {
+                        let u: f64 = rng.gen::<f64>();
+                        -(1.0 - u).ln() / rate
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The reward `list` earns in one scenario: at each failure the failed UAV's placement in
+/// progress is lost and the survivors decode the rest of the list from that moment.
+pub fn reward_under_failures(
+    p: &TeamProblem<'_>,
+    decoder: &mut Decoder<'_, '_>,
+    list: &[BrickId],
+    failures: &[f64],
+) -> f64 {
+    let mut decoded = decoder.decode(list);
+    let mut events: Vec<(f64, usize)> = failures
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.is_finite())
+        .map(|(u, &t)| (t, u))
+        .collect();
+    events.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut alive = vec![true; failures.len()];
+    let mut schedule = decoder.schedule();
+    let mut done = vec![false; p.len()];
+    for (t, u) in events {
+        alive[u] = false;
+        let busy_after = |pl: &Placement| pl.start_s + p.place_s(pl.brick) > t;
+        let lost = |pl: &Placement| pl.uavs.contains(&u) && busy_after(pl);
+        if schedule
+            .placements
+            .iter()
+            .all(|pl| pl.start_s < t && !lost(pl))
+        {
+            // Everything had started by t and u had finished its part: nothing changes.
+            continue;
+        }
+        let kept: Vec<Placement> = schedule
+            .placements
+            .iter()
+            .filter(|pl| pl.start_s < t && !lost(pl))
+            .cloned()
+            .collect();
+        done.fill(false);
+        for pl in &kept {
+            done[pl.brick.index()] = true;
+        }
+        let rest: Vec<BrickId> = list.iter().copied().filter(|b| !done[b.index()]).collect();
+        decoded = decoder.resume(&kept, &alive, t, &rest);
+        schedule = decoder.schedule();
+    }
+    decoded.reward
+}
+
+struct Searcher<'a, 'w> {
+    p: &'a TeamProblem<'w>,
+    decoder: Decoder<'a, 'w>,
+    scenarios: Vec<Scenario>,
+    decodes: u64,
+    improvements: u64,
+}
+
+impl Searcher<'_, '_> {
+    fn score(&mut self, list: &[BrickId]) -> (Score, Decoded) {
+        self.decodes += 1;
+        let d = self.decoder.decode(list);
+        let s = match self.p.objective() {
+            Objective::Makespan => [d.makespan_s, d.sum_end_s, 0.0],
+            Objective::Reward => [-d.reward, d.makespan_s, d.sum_end_s],
+            Objective::Expected { .. } => {
+                let mut total = 0.0;
+                for f in &self.scenarios {
+                    total += reward_under_failures(self.p, &mut self.decoder, list, f);
+                }
+                // Restore the fault-free decode for the caller.
+                let d = self.decoder.decode(list);
+                return (
+                    [
+                        -total / self.scenarios.len() as f64,
+                        -d.reward,
+                        d.makespan_s,
+                    ],
+                    d,
+                );
+            }
+        };
+        (s, d)
+    }
+}
+
+/// Bricks sorted by (level, left edge): the layer-by-layer list.
+fn level_list(p: &TeamProblem<'_>) -> Vec<BrickId> {
+    let wall = p.wall();
+    let mut l: Vec<BrickId> = wall.ids().collect();
+    l.sort_by(|&a, &b| {
+        let (x, y) = (wall.brick(a), wall.brick(b));
+        x.level
+            .cmp(&y.level)
+            .then(x.footprint.x0.total_cmp(&y.footprint.x0))
+            .then(a.cmp(&b))
+    });
+    l
+}
+
+/// The longest chain of placing phases from each brick to the top.
+fn tails(p: &TeamProblem<'_>) -> Vec<f64> {
+    let wall = p.wall();
+    let mut order = level_list(p);
+    order.reverse();
+    let mut tail = vec![0.0; p.len()];
+    for b in order {
+        let above = wall
+            .carried(b)
+            .iter()
+            .map(|c| tail[c.index()])
+            .fold(0.0, f64::max);
+        tail[b.index()] = above + p.place_s(b);
+    }
+    tail
+}
+
+/// Longest remaining chain first, then level, then left edge.
+fn chain_list(p: &TeamProblem<'_>) -> Vec<BrickId> {
+    let tail = tails(p);
+    let mut l = level_list(p);
+    l.sort_by(|&a, &b| tail[b.index()].total_cmp(&tail[a.index()]));
+    l
+}
+
+/// Under a budget: the knapsack closure first (level order), then greedy additions by reward
+/// per weight of the brick and its missing supports, then everything else.
+fn knapsack_list(p: &TeamProblem<'_>, budget: f64) -> Vec<BrickId> {
+    let rb = reward_upper_bound(p, budget);
+    let wall = p.wall();
+    let head = earliest_end(p);
+    let mut chosen = rb.fitting.clone();
+    let mut used: f64 = (0..p.len())
+        .filter(|&i| chosen[i])
+        .map(|i| rb.weight[i])
+        .sum();
+    loop {
+        // Best addable group: a brick with its unchosen ancestors.
+        let mut best: Option<(f64, Vec<usize>)> = None;
+        for b in wall.ids() {
+            if chosen[b.index()] || head[b.index()] > budget + 1e-9 {
+                continue;
+            }
+            let mut group = vec![b.index()];
+            let mut k = 0;
+            while k < group.len() {
+                for s in wall.supports(BrickId(group[k] as u32)) {
+                    if !chosen[s.index()] && !group.contains(&s.index()) {
+                        group.push(s.index());
+                    }
+                }
+                k += 1;
+            }
+            let w: f64 = group.iter().map(|&i| rb.weight[i]).sum();
+            if used + w > rb.capacity + 1e-9 {
+                continue;
+            }
+            let r: f64 = group.iter().map(|&i| p.reward(BrickId(i as u32))).sum();
+            let ratio = r / w.max(1e-9);
+            if best.as_ref().is_none_or(|(q, _)| ratio > *q + 1e-12) {
+                best = Some((ratio, group));
+            }
+        }
+        let Some((_, group)) = best else { break };
+        for i in group {
+            used += rb.weight[i];
+            chosen[i] = true;
+        }
+    }
+    let levels = level_list(p);
+    let mut l: Vec<BrickId> = levels
+        .iter()
+        .copied()
+        .filter(|b| chosen[b.index()])
+        .collect();
+    let mut rest: Vec<BrickId> = levels.into_iter().filter(|b| !chosen[b.index()]).collect();
+    // The rest by reward per weight, best first (stable: level order within ties).
+    rest.sort_by(|&a, &b| {
+        let ra = p.reward(a) / rb.weight[a.index()].max(1e-9);
+        let rb_ = p.reward(b) / rb.weight[b.index()].max(1e-9);
+        rb_.total_cmp(&ra)
+    });
+    l.extend(rest);
+    l
+}
+
+/// Move `list[i]` to position `j`, taking along (before it) its ancestors that sit after `j`.
+fn pull(p: &TeamProblem<'_>, list: &mut Vec<BrickId>, pos: &mut [usize], i: usize, j: usize) {
+    let b = list[i];
+    let mut group = vec![b];
+    if j < i {
+        let mut k = 0;
+        while k < group.len() {
+            for &s in p.wall().supports(group[k]) {
+                if pos[s.index()] > j && !group.contains(&s) {
+                    group.push(s);
+                }
+            }
+            k += 1;
+            if group.len() > 64 {
+                break;
+            }
+        }
+    }
+    group.sort_by_key(|g| pos[g.index()]);
+    let mut in_group = vec![false; 0];
+    in_group.resize(p.len(), false);
+    for g in &group {
+        in_group[g.index()] = true;
+    }
+    let rest: Vec<BrickId> = list
+        .iter()
+        .copied()
+        .filter(|x| !in_group[x.index()])
+        .collect();
+    let at = rest.iter().take_while(|x| pos[x.index()] < j).count();
+    let mut out = Vec::with_capacity(list.len());
+    out.extend_from_slice(&rest[..at]);
+    out.extend_from_slice(&group);
+    out.extend_from_slice(&rest[at..]);
+    *list = out;
+    for (k, x) in list.iter().enumerate() {
+        pos[x.index()] = k;
+    }
+}
+
+fn positions(list: &[BrickId], n: usize) -> Vec<usize> {
+    let mut pos = vec![0; n];
+    for (k, b) in list.iter().enumerate() {
+        pos[b.index()] = k;
+    }
+    pos
+}
+
+struct ThreadResult {
+    mode: Mode,
+    score: Score,
+    list: Vec<BrickId>,
+    decodes: u64,
+    improvements: u64,
+    timed_out: bool,
+}
+
+fn search_thread(
+    p: &TeamProblem<'_>,
+    starts: &[Vec<BrickId>],
+    budget: &Budget,
+    seed: u64,
+    mode: Mode,
+    target: Option<Score>,
+    scen: Vec<Scenario>,
+) -> ThreadResult {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut s = Searcher {
+        p,
+        decoder: Decoder::new(p, mode),
+        scenarios: scen,
+        decodes: 0,
+        improvements: 0,
+    };
+    let cap = budget.node_limit.unwrap_or(DEFAULT_DECODES);
+    let reached = |sc: &Score| target.is_some_and(|t| !better(&t, sc));
+    let mut best_list = starts[0].clone();
+    let mut best = s.score(&best_list).0;
+    for l in &starts[1..] {
+        let sc = s.score(l).0;
+        if better(&sc, &best) {
+            best = sc;
+            best_list = l.clone();
+        }
+    }
+    let mut timed_out = false;
+    let n = p.len();
+    let mut cur = best_list.clone();
+    let mut cur_score = best;
+    let mut pos = positions(&cur, n);
+    let mut stale = 0u64;
+    let patience = (40 * n as u64).clamp(200, 4000);
+    while !reached(&best) && s.decodes < cap && n > 1 {
+        if budget.deadline.is_some_and(|d| Instant::now() >= d) {
+            timed_out = true;
+            break;
+        }
+        let mut cand = cur.clone();
+        let mut cpos = pos.clone();
+        let moves = if rng.gen_bool(0.8) {
+            1
+        } else {
+            rng.gen_range(2..4)
+        };
+        for _ in 0..moves {
+            let i = rng.gen_range(0..n);
+            let span = (n / 4).max(4);
+            let lo = i.saturating_sub(span);
+            let hi = (i + span).min(n - 1);
+            let j = rng.gen_range(lo..=hi);
+            pull(p, &mut cand, &mut cpos, i, j);
+        }
+        let sc = s.score(&cand).0;
+        if !better(&cur_score, &sc) {
+            if better(&sc, &cur_score) {
+                stale = 0;
+            } else {
+                stale += 1;
+            }
+            cur = cand;
+            pos = cpos;
+            cur_score = sc;
+            if better(&cur_score, &best) {
+                best = cur_score;
+                best_list = cur.clone();
+                s.improvements += 1;
+            }
+        } else {
+            stale += 1;
+        }
+        if stale > patience {
+            // Restart from the best list with a random kick.
+            cur = best_list.clone();
+            pos = positions(&cur, n);
+            for _ in 0..rng.gen_range(2..6) {
+                let i = rng.gen_range(0..n);
+                let j = rng.gen_range(0..n);
+                pull(p, &mut cur, &mut pos, i, j);
+            }
+            cur_score = s.score(&cur).0;
+            stale = 0;
+        }
+    }
+    ThreadResult {
+        mode,
+        score: best,
+        list: best_list,
+        decodes: s.decodes,
+        improvements: s.improvements,
+        timed_out,
+    }
+}
+
+/// Plans a team schedule for `p`'s objective within `budget`, deterministically for `seed`
+/// (unless the deadline stops it), on up to two threads.
+pub fn plan_schedule(p: &TeamProblem<'_>, budget: &Budget, seed: u64) -> TeamOutcome {
+    plan_schedule_with(p, budget, seed, &[])
+}
+
+/// [`plan_schedule`] with extra starting lists (e.g. the plan being repaired).
+pub fn plan_schedule_with(
+    p: &TeamProblem<'_>,
+    budget: &Budget,
+    seed: u64,
+    extra_starts: &[Vec<BrickId>],
+) -> TeamOutcome {
+    let t0 = Instant::now();
+    let mut starts: Vec<Vec<BrickId>> = extra_starts.to_vec();
+    if let Some(b) = p.budget_s() {
+        starts.push(knapsack_list(p, b));
+    }
+    starts.push(level_list(p));
+    starts.push(chain_list(p));
+    let (bound, target) = match p.objective() {
+        Objective::Makespan => {
+            let lb = makespan_lower_bound(p);
+            (lb, Some([lb, f64::NEG_INFINITY, f64::NEG_INFINITY]))
+        }
+        Objective::Reward => {
+            let ub = reward_upper_bound(p, p.budget_s().unwrap_or(f64::INFINITY)).bound;
+            (ub, None)
+        }
+        Objective::Expected { hazard_per_hour } => (
+            expected_reward_upper_bound(p, p.budget_s().unwrap_or(f64::INFINITY), hazard_per_hour),
+            None,
+        ),
+    };
+    let scen = match p.objective() {
+        Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
+        _ => Vec::new(),
+    };
+    let target = match p.objective() {
+        Objective::Reward => Some([-bound, f64::NEG_INFINITY, f64::NEG_INFINITY]),
+        _ => target,
+    };
+    let results: Vec<ThreadResult> = std::thread::scope(|sc| {
+        let handles: Vec<_> = (0..2u64)
+            .map(|k| {
+                let starts = &starts;
+                let scen = scen.clone();
+                let mode = if k == 0 { Mode::Parallel } else { Mode::Serial };
+                sc.spawn(move || {
+                    search_thread(
+                        p,
+                        starts,
+                        budget,
+                        seed.wrapping_mul(2).wrapping_add(k),
+                        mode,
+                        target,
+                        scen,
+                    )
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("search thread"))
+            .collect()
+    });
+    let mut win = 0;
+    for k in 1..results.len() {
+        if better(&results[k].score, &results[win].score) {
+            win = k;
+        }
+    }
+    let r = &results[win];
+    let mut decoder = Decoder::new(p, r.mode);
+    let d = decoder.decode(&r.list);
+    let schedule: Schedule = decoder.schedule();
+    let expected_reward = match p.objective() {
+        Objective::Expected { .. } => Some(-r.score[0]),
+        _ => None,
+    };
+    let value_meets_bound = match p.objective() {
+        Objective::Makespan => d.makespan_s <= bound + 1e-9,
+        Objective::Reward => d.reward >= bound - 1e-9,
+        Objective::Expected { .. } => false,
+    };
+    let status = if value_meets_bound {
+        Status::Optimal
+    } else if results.iter().any(|r| r.timed_out) {
+        Status::Timeout
+    } else {
+        Status::Feasible
+    };
+    TeamOutcome {
+        status,
+        schedule: Some(schedule),
+        reward: d.reward,
+        makespan_s: d.makespan_s,
+        expected_reward,
+        bound,
+        stats: TeamStats {
+            elapsed: t0.elapsed(),
+            decodes: results.iter().map(|r| r.decodes).sum(),
+            improvements: results.iter().map(|r| r.improvements).sum(),
+        },
+    }
+}

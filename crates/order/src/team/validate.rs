@@ -1,0 +1,300 @@
+//! `validate_schedule`: checks a team schedule against DESIGN §4.1 with no knowledge of any
+//! planner. It recomputes what it needs from the wall and the model: supports from the wall's
+//! canonical precedence, centres from the footprints, every time from the placements.
+
+use super::model::{Concurrency, TeamModel};
+use super::problem::Schedule;
+use mason_wall::{BrickId, Wall, BRICK_HEIGHT};
+use thiserror::Error;
+
+/// Times are compared with this slack (s), so that sums of decimal durations pass.
+pub const TIME_EPS: f64 = 1e-6;
+
+/// A rule a schedule breaks. Bricks are named by their labels.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum ScheduleError {
+    /// A brick index outside the wall.
+    #[error("placement {index}: brick index {brick} is not in the wall")]
+    UnknownBrick {
+        /// Position in the schedule.
+        index: usize,
+        /// The index.
+        brick: u32,
+    },
+    /// A brick placed twice.
+    #[error("brick {0} is placed twice")]
+    Twice(u32),
+    /// Wrong number of UAVs, a UAV out of range, or the same UAV twice.
+    #[error("brick {brick}: UAVs {uavs:?}, but it needs {needed} distinct UAVs of 0..{team}")]
+    Crew {
+        /// The brick.
+        brick: u32,
+        /// The UAVs given.
+        uavs: Vec<usize>,
+        /// UAVs it needs.
+        needed: u32,
+        /// Team size.
+        team: usize,
+    },
+    /// A start before 0 or not finite.
+    #[error("brick {brick}: start {start_s} s is not a finite time ≥ 0")]
+    Start {
+        /// The brick.
+        brick: u32,
+        /// Its start.
+        start_s: f64,
+    },
+    /// A UAV starts again before its cycle ends.
+    #[error("UAV {uav}: brick {next} starts at {next_start} s, before the cycle of brick {prev} ends at {ready} s")]
+    Cycle {
+        /// The UAV.
+        uav: usize,
+        /// The earlier brick.
+        prev: u32,
+        /// When the UAV is free again.
+        ready: f64,
+        /// The later brick.
+        next: u32,
+        /// Its start.
+        next_start: f64,
+    },
+    /// A brick starts before a support is placed (or the support is never placed).
+    #[error("brick {brick} starts at {start} s but its support {support} is {}", match .support_end { Some(e) => format!("placed only at {e} s"), None => "never placed".into() })]
+    Precedence {
+        /// The brick.
+        brick: u32,
+        /// Its start.
+        start: f64,
+        /// The support.
+        support: u32,
+        /// When the support is placed, if ever.
+        support_end: Option<f64>,
+    },
+    /// Two bricks place at overlapping times against the concurrency rule.
+    #[error("bricks {a} and {b} place at overlapping times ({a_start}–{a_end} s and {b_start}–{b_end} s) but {why}")]
+    Concurrent {
+        /// One brick.
+        a: u32,
+        /// Its placing phase.
+        a_start: f64,
+        /// Its end.
+        a_end: f64,
+        /// The other.
+        b: u32,
+        /// Its placing phase.
+        b_start: f64,
+        /// Its end.
+        b_end: f64,
+        /// The rule.
+        why: String,
+    },
+    /// A brick placed after the budget.
+    #[error("brick {brick} is placed at {end} s, after the budget of {budget} s")]
+    Budget {
+        /// The brick.
+        brick: u32,
+        /// When it is placed.
+        end: f64,
+        /// The budget.
+        budget: f64,
+    },
+    /// The reported reward or makespan is not what the schedule gives.
+    #[error("reported {what} {claimed} but the schedule gives {actual}")]
+    Claim {
+        /// `reward` or `makespan`.
+        what: &'static str,
+        /// Reported.
+        claimed: f64,
+        /// Recomputed.
+        actual: f64,
+    },
+}
+
+/// What the validator recomputed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScheduleEvaluation {
+    /// Bricks placed.
+    pub bricks: usize,
+    /// Their total reward.
+    pub reward: f64,
+    /// The last placement's end (0 when empty).
+    pub makespan_s: f64,
+}
+
+/// Checks every rule of DESIGN §4.1 and recomputes reward and makespan.
+pub fn validate_schedule(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    schedule: &Schedule,
+) -> Result<ScheduleEvaluation, ScheduleError> {
+    let n = wall.len();
+    let label = |i: usize| wall.bricks()[i].label;
+    let mut start: Vec<Option<f64>> = vec![None; n];
+    let mut per_uav: Vec<Vec<(f64, usize)>> = vec![Vec::new(); uavs];
+    for (index, p) in schedule.placements.iter().enumerate() {
+        let i = p.brick.index();
+        if i >= n {
+            return Err(ScheduleError::UnknownBrick {
+                index,
+                brick: p.brick.0,
+            });
+        }
+        if start[i].is_some() {
+            return Err(ScheduleError::Twice(label(i)));
+        }
+        let needed = model.of(wall.bricks()[i].kind).uavs;
+        let mut crew = p.uavs.clone();
+        crew.sort_unstable();
+        crew.dedup();
+        if crew.len() != p.uavs.len()
+            || crew.len() != needed as usize
+            || crew.iter().any(|&u| u >= uavs)
+        {
+            return Err(ScheduleError::Crew {
+                brick: label(i),
+                uavs: p.uavs.clone(),
+                needed,
+                team: uavs,
+            });
+        }
+        if !(p.start_s.is_finite() && p.start_s >= 0.0) {
+            return Err(ScheduleError::Start {
+                brick: label(i),
+                start_s: p.start_s,
+            });
+        }
+        start[i] = Some(p.start_s);
+        for &u in &crew {
+            per_uav[u].push((p.start_s, i));
+        }
+    }
+    let times = |i: usize| model.of(wall.bricks()[i].kind);
+    let end = |i: usize| start[i].map(|s| s + times(i).place_s);
+
+    for (u, list) in per_uav.iter_mut().enumerate() {
+        list.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for w in list.windows(2) {
+            let (s0, i0) = w[0];
+            let (s1, i1) = w[1];
+            let ready = s0 + times(i0).cycle_s();
+            if s1 < ready - TIME_EPS {
+                return Err(ScheduleError::Cycle {
+                    uav: u,
+                    prev: label(i0),
+                    ready,
+                    next: label(i1),
+                    next_start: s1,
+                });
+            }
+        }
+    }
+
+    for (i, s) in start.iter().enumerate() {
+        let Some(s) = *s else { continue };
+        for sup in wall.supports(BrickId(i as u32)) {
+            let e = end(sup.index());
+            if e.is_none_or(|e| e > s + TIME_EPS) {
+                return Err(ScheduleError::Precedence {
+                    brick: label(i),
+                    start: s,
+                    support: label(sup.index()),
+                    support_end: e,
+                });
+            }
+        }
+    }
+
+    // Concurrency: sweep the placing phases in start order against those still running.
+    let mut phases: Vec<(f64, f64, usize)> = (0..n)
+        .filter_map(|i| Some((start[i]?, end(i)?, i)))
+        .collect();
+    phases.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.2.cmp(&b.2)));
+    let centre = |i: usize| {
+        let b = &wall.bricks()[i];
+        let f = &b.footprint;
+        [
+            (f.x0 + f.x1) / 2.0,
+            (f.y0 + f.y1) / 2.0,
+            (f64::from(b.level) - 0.5) * BRICK_HEIGHT,
+        ]
+    };
+    let mut running: Vec<(f64, f64, usize)> = Vec::new();
+    for &(s, e, i) in &phases {
+        running.retain(|&(_, re, _)| re > s + TIME_EPS);
+        for &(rs, re, j) in &running {
+            let why = match model.concurrency {
+                Concurrency::Zone => Some("the zone holds one brick at a time".to_string()),
+                Concurrency::Distance { distance_m } => {
+                    let (a, b) = (centre(i), centre(j));
+                    let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2))
+                        .sqrt();
+                    (d < distance_m).then(|| {
+                        format!("their centres are {d:.3} m apart, closer than {distance_m} m")
+                    })
+                }
+            };
+            if let Some(why) = why {
+                return Err(ScheduleError::Concurrent {
+                    a: label(j),
+                    a_start: rs,
+                    a_end: re,
+                    b: label(i),
+                    b_start: s,
+                    b_end: e,
+                    why,
+                });
+            }
+        }
+        running.push((s, e, i));
+    }
+
+    let mut eval = ScheduleEvaluation {
+        bricks: phases.len(),
+        reward: 0.0,
+        makespan_s: 0.0,
+    };
+    for &(_, e, i) in &phases {
+        if let Some(t) = budget_s {
+            if e > t + TIME_EPS {
+                return Err(ScheduleError::Budget {
+                    brick: label(i),
+                    end: e,
+                    budget: t,
+                });
+            }
+        }
+        eval.reward += times(i).reward;
+        eval.makespan_s = eval.makespan_s.max(e);
+    }
+    Ok(eval)
+}
+
+/// [`validate_schedule`], then checks the reported reward and makespan.
+pub fn validate_schedule_claim(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    schedule: &Schedule,
+    reward: f64,
+    makespan_s: f64,
+) -> Result<ScheduleEvaluation, ScheduleError> {
+    let eval = validate_schedule(wall, model, uavs, budget_s, schedule)?;
+    if (eval.reward - reward).abs() > 1e-6 {
+        return Err(ScheduleError::Claim {
+            what: "reward",
+            claimed: reward,
+            actual: eval.reward,
+        });
+    }
+    if (eval.makespan_s - makespan_s).abs() > TIME_EPS {
+        return Err(ScheduleError::Claim {
+            what: "makespan",
+            claimed: makespan_s,
+            actual: eval.makespan_s,
+        });
+    }
+    Ok(eval)
+}
