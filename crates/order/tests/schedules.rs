@@ -1,0 +1,357 @@
+//! Team schedules: every planner's schedule through the independent validator, the planner
+//! against the exhaustive oracle on tiny walls, the bounds against the optimum, and one
+//! hand-made broken schedule per rule of `validate_schedule`.
+
+use mason_order::team::{
+    bounds, exhaustive_schedule, plan_schedule, validate_schedule, validate_schedule_claim,
+    Objective, Placement, Schedule, ScheduleError, TeamModel, TeamProblem,
+};
+use mason_order::{Budget, Status};
+use mason_wall::generate::{random_layer_text, WallShape};
+use mason_wall::{parse_cmcp, parse_layer_text, BrickId, CmcpSizes, Wall};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn random_wall(rng: &mut ChaCha8Rng, max: usize, levels: usize) -> Wall {
+    let shape = WallShape {
+        max_segments: 2,
+        max_levels: levels,
+        max_units: 8,
+        orange: true,
+    };
+    loop {
+        let text = random_layer_text(rng, &shape);
+        let wall = parse_layer_text(&text, "generated").expect("valid by construction");
+        if wall.len() <= max {
+            return wall;
+        }
+    }
+}
+
+fn random_model(rng: &mut ChaCha8Rng) -> TeamModel {
+    let mut m = if rng.gen_bool(0.5) {
+        TeamModel::cmcp()
+    } else {
+        TeamModel::thesis()
+    };
+    if rng.gen_bool(0.3) {
+        m.concurrency = mason_order::team::Concurrency::Distance {
+            distance_m: rng.gen_range(0.0..2.0),
+        };
+    }
+    if rng.gen_bool(0.3) {
+        for t in &mut m.types {
+            t.place_s = f64::from(rng.gen_range(1..6)) * 10.0;
+            t.cycle_rest_s = f64::from(rng.gen_range(0..6)) * 10.0;
+        }
+    }
+    m
+}
+
+fn random_objective(rng: &mut ChaCha8Rng, wall: &Wall) -> (Objective, Option<f64>) {
+    match rng.gen_range(0..3) {
+        0 => (Objective::Makespan, None),
+        1 => (
+            Objective::Reward,
+            Some(f64::from(rng.gen_range(1..(8 * wall.len() as u32 + 2))) * 20.0),
+        ),
+        _ => (
+            Objective::Expected {
+                hazard_per_hour: rng.gen_range(0.0..4.0),
+            },
+            Some(f64::from(rng.gen_range(1..(8 * wall.len() as u32 + 2))) * 20.0),
+        ),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 120, ..ProptestConfig::default() })]
+
+    /// Every planned schedule passes the validator, with the reported reward and makespan, and
+    /// sits on the right side of its bound.
+    #[test]
+    fn planned_schedules_are_valid_and_respect_their_bounds(seed in any::<u64>()) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let wall = random_wall(&mut rng, 30, 4);
+        let model = random_model(&mut rng);
+        let uavs = rng.gen_range(2..5);
+        let (objective, budget) = random_objective(&mut rng, &wall);
+        let p = TeamProblem::new(&wall, model, uavs, budget, objective).unwrap();
+        let out = plan_schedule(&p, &Budget::nodes(60), seed);
+        let s = out.schedule.clone().unwrap();
+        let eval = validate_schedule_claim(&wall, p.model(), uavs, budget, &s, out.reward, out.makespan_s)
+            .unwrap_or_else(|e| panic!("{e}"));
+        match objective {
+            Objective::Makespan => {
+                prop_assert_eq!(eval.bricks, wall.len());
+                prop_assert!(out.makespan_s >= out.bound - 1e-6);
+            }
+            Objective::Reward => prop_assert!(out.reward <= out.bound + 1e-6),
+            Objective::Expected { .. } => {
+                prop_assert!(out.expected_reward.unwrap() <= out.bound + 1e-6);
+                prop_assert!(out.expected_reward.unwrap() <= out.reward + 1e-6);
+            }
+        }
+    }
+
+    /// On tiny walls the exhaustive optimum lies within the bounds, and the planner never beats
+    /// it; when the planner says `Optimal`, it equals it.
+    #[test]
+    fn planner_and_bounds_agree_with_exhaustive_search(seed in any::<u64>()) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let wall = random_wall(&mut rng, 5, 3);
+        let model = random_model(&mut rng);
+        let uavs = rng.gen_range(2..4);
+        let reward = rng.gen_bool(0.5);
+        let (objective, budget) = if reward {
+            (Objective::Reward, Some(f64::from(rng.gen_range(1..(6 * wall.len() as u32 + 2))) * 20.0))
+        } else {
+            (Objective::Makespan, None)
+        };
+        let p = TeamProblem::new(&wall, model, uavs, budget, objective).unwrap();
+        let exact = exhaustive_schedule(&p, &Budget::nodes(3_000_000));
+        prop_assume!(exact.status == Status::Optimal);
+        let s = exact.schedule.clone().unwrap();
+        validate_schedule_claim(&wall, p.model(), uavs, budget, &s, exact.reward, exact.makespan_s)
+            .unwrap_or_else(|e| panic!("exhaustive: {e}"));
+        let out = plan_schedule(&p, &Budget::nodes(400), seed);
+        if reward {
+            let ub = bounds::reward_upper_bound(&p, budget.unwrap()).bound;
+            prop_assert!(exact.reward <= ub + 1e-6, "optimum {} above bound {}", exact.reward, ub);
+            prop_assert!(out.reward <= exact.reward + 1e-6);
+            if out.status == Status::Optimal {
+                prop_assert!((out.reward - exact.reward).abs() < 1e-6);
+            }
+        } else {
+            let lb = bounds::makespan_lower_bound(&p);
+            prop_assert!(exact.makespan_s >= lb - 1e-6, "optimum {} below bound {}", exact.makespan_s, lb);
+            prop_assert!(out.makespan_s >= exact.makespan_s - 1e-6);
+            if out.status == Status::Optimal {
+                prop_assert!((out.makespan_s - exact.makespan_s).abs() < 1e-6);
+            }
+        }
+    }
+}
+
+#[test]
+fn same_seed_same_schedule() {
+    let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+    let p = TeamProblem::new(
+        &wall,
+        TeamModel::thesis(),
+        3,
+        Some(900.0),
+        Objective::Reward,
+    )
+    .unwrap();
+    let a = plan_schedule(&p, &Budget::nodes(300), 9);
+    let b = plan_schedule(&p, &Budget::nodes(300), 9);
+    assert_eq!(a.schedule, b.schedule);
+    assert_eq!(a.reward.to_bits(), b.reward.to_bits());
+}
+
+#[test]
+fn expected_bound_shrinks_as_failures_grow() {
+    let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+    let p = TeamProblem::new(
+        &wall,
+        TeamModel::thesis(),
+        3,
+        Some(1500.0),
+        Objective::Reward,
+    )
+    .unwrap();
+    let none = bounds::expected_reward_upper_bound(&p, 1500.0, 0.0);
+    let two = bounds::expected_reward_upper_bound(&p, 1500.0, 2.0);
+    let ten = bounds::expected_reward_upper_bound(&p, 1500.0, 10.0);
+    assert!(none > two && two > ten, "{none} {two} {ten}");
+}
+
+// ---- validate_schedule: one broken schedule per rule ----
+
+/// Two layers under the cmcp model: 101 (red) and 102 (red) below, 201 (green) on both.
+fn two_layer() -> (Wall, TeamModel) {
+    let wall = parse_layer_text("G\nR R", "t").unwrap();
+    (wall, TeamModel::cmcp())
+}
+
+fn pl(brick: u32, uavs: &[usize], start_s: f64) -> Placement {
+    Placement {
+        brick: BrickId(brick),
+        uavs: uavs.to_vec(),
+        start_s,
+    }
+}
+
+fn check(
+    wall: &Wall,
+    model: &TeamModel,
+    budget: Option<f64>,
+    ps: Vec<Placement>,
+) -> Result<(), ScheduleError> {
+    validate_schedule(wall, model, 3, budget, &Schedule { placements: ps }).map(|_| ())
+}
+
+/// A distance-rule wall: two reds far apart on one level.
+fn far_apart() -> Wall {
+    parse_cmcp(
+        "1 1 0 0 0.1 0\n2 1 3.0 0 0.1 0\n3 1 0.5 0 0.1 0\n",
+        "t",
+        CmcpSizes::Yaml,
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_valid_schedule_passes_and_is_recomputed() {
+    let (wall, m) = two_layer();
+    let s = Schedule {
+        placements: vec![pl(0, &[0], 0.0), pl(1, &[1], 40.0), pl(2, &[0], 80.0)],
+    };
+    let e = validate_schedule(&wall, &m, 3, Some(120.0), &s).unwrap();
+    assert_eq!((e.bricks, e.reward, e.makespan_s), (3, 4.0, 120.0));
+}
+
+#[test]
+fn rejects_unknown_bricks() {
+    let (wall, m) = two_layer();
+    assert!(matches!(
+        check(&wall, &m, None, vec![pl(9, &[0], 0.0)]),
+        Err(ScheduleError::UnknownBrick { .. })
+    ));
+}
+
+#[test]
+fn rejects_a_brick_placed_twice() {
+    let (wall, m) = two_layer();
+    let r = check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(0, &[1], 100.0)]);
+    assert!(matches!(r, Err(ScheduleError::Twice(101))));
+}
+
+#[test]
+fn rejects_wrong_crews() {
+    let (wall, m) = two_layer();
+    for uavs in [&[][..], &[0, 1], &[3], &[0, 0]] {
+        let r = check(&wall, &m, None, vec![pl(0, uavs, 0.0)]);
+        assert!(
+            matches!(r, Err(ScheduleError::Crew { .. })),
+            "{uavs:?}: {r:?}"
+        );
+    }
+    let orange = parse_layer_text("O", "o").unwrap();
+    let r = check(&orange, &m, None, vec![pl(0, &[1], 0.0)]);
+    assert!(matches!(r, Err(ScheduleError::Crew { needed: 2, .. })));
+    check(&orange, &m, None, vec![pl(0, &[1, 2], 0.0)]).unwrap();
+}
+
+#[test]
+fn rejects_negative_or_infinite_starts() {
+    let (wall, m) = two_layer();
+    for t in [-1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            check(&wall, &m, None, vec![pl(0, &[0], t)]),
+            Err(ScheduleError::Start { .. })
+        ));
+    }
+}
+
+#[test]
+fn rejects_a_uav_starting_before_its_cycle_ends() {
+    let (wall, m) = two_layer();
+    // 101 by UAV 0 at 0 s: free again at 50 s; 102 by UAV 0 at 45 s (no zone clash: 101 ends at 40).
+    let r = check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(1, &[0], 45.0)]);
+    assert!(
+        matches!(r, Err(ScheduleError::Cycle { uav: 0, .. })),
+        "{r:?}"
+    );
+}
+
+#[test]
+fn rejects_a_brick_before_its_supports() {
+    let (wall, m) = two_layer();
+    let early = check(
+        &wall,
+        &m,
+        None,
+        vec![pl(0, &[0], 0.0), pl(1, &[1], 40.0), pl(2, &[2], 70.0)],
+    );
+    assert!(
+        matches!(
+            early,
+            Err(ScheduleError::Precedence {
+                brick: 201,
+                support: 102,
+                ..
+            })
+        ),
+        "{early:?}"
+    );
+    let missing = check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(2, &[2], 70.0)]);
+    assert!(matches!(
+        missing,
+        Err(ScheduleError::Precedence {
+            support_end: None,
+            ..
+        })
+    ));
+}
+
+#[test]
+fn rejects_overlapping_placements_under_the_zone_rule() {
+    let (wall, _) = two_layer();
+    let m = TeamModel::thesis();
+    let r = check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(1, &[1], 5.0)]);
+    assert!(matches!(r, Err(ScheduleError::Concurrent { .. })), "{r:?}");
+}
+
+#[test]
+fn rejects_close_bricks_placing_together_under_the_distance_rule() {
+    let wall = far_apart();
+    let m = TeamModel::cmcp();
+    // 1 and 2 are 3 m apart: together is fine. 1 and 3 are 0.5 m apart: not.
+    check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(1, &[1], 0.0)]).unwrap();
+    let r = check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(2, &[1], 39.0)]);
+    assert!(
+        matches!(r, Err(ScheduleError::Concurrent { a: 1, b: 3, .. })),
+        "{r:?}"
+    );
+    check(&wall, &m, None, vec![pl(0, &[0], 0.0), pl(2, &[1], 40.0)]).unwrap();
+}
+
+#[test]
+fn rejects_placements_after_the_budget() {
+    let (wall, m) = two_layer();
+    let r = check(
+        &wall,
+        &m,
+        Some(60.0),
+        vec![pl(0, &[0], 0.0), pl(1, &[1], 40.0)],
+    );
+    assert!(
+        matches!(r, Err(ScheduleError::Budget { brick: 102, .. })),
+        "{r:?}"
+    );
+}
+
+#[test]
+fn rejects_wrong_claims() {
+    let (wall, m) = two_layer();
+    let s = Schedule {
+        placements: vec![pl(0, &[0], 0.0)],
+    };
+    let r = validate_schedule_claim(&wall, &m, 3, None, &s, 2.0, 40.0);
+    assert!(matches!(
+        r,
+        Err(ScheduleError::Claim { what: "reward", .. })
+    ));
+    let r = validate_schedule_claim(&wall, &m, 3, None, &s, 1.0, 50.0);
+    assert!(matches!(
+        r,
+        Err(ScheduleError::Claim {
+            what: "makespan",
+            ..
+        })
+    ));
+    validate_schedule_claim(&wall, &m, 3, None, &s, 1.0, 40.0).unwrap();
+}
