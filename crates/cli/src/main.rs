@@ -5,6 +5,7 @@
 //! 2 bad input or usage.
 
 mod bench;
+mod cmcp_bench;
 mod crew_bench;
 mod crew_cmd;
 mod demo;
@@ -122,7 +123,8 @@ enum Command {
     Bench {
         /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time), paper (the
         /// crew paper's Table 2 setting and the MovingAI warehouse), thesis-mission (Table 5.1
-        /// setting) or missions (simulator throughput)
+        /// setting), missions (simulator throughput) or cmcp (team schedules on the CMCP walls
+        /// beside GRASP)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -131,6 +133,10 @@ enum Command {
         /// (thesis-mission, at least 100), thousands of missions per row (missions)
         #[arg(long, default_value_t = 20)]
         runs: usize,
+        /// cmcp: the benchmark directory holding config/ and GRASP-RESULTS.md (default
+        /// ../shared/benchmarks/walls-cmcp)
+        #[arg(long)]
+        data: Option<PathBuf>,
     },
 }
 
@@ -361,6 +367,7 @@ fn run(cli: Cli) -> CliResult<()> {
             suite,
             time_limit,
             runs,
+            data,
         } => {
             let limit = plan::time_limit(Some(time_limit))?.unwrap_or(60.0);
             let text = match suite.as_str() {
@@ -369,9 +376,10 @@ fn run(cli: Cli) -> CliResult<()> {
                 "paper" => crew_bench::paper(runs, !cli.quiet)?,
                 "thesis-mission" => mission_bench::thesis_mission(runs.max(100))?,
                 "missions" => mission_bench::throughput(runs)?,
+                "cmcp" => cmcp_bench::cmcp(data.as_deref(), None)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission or missions"
+                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions or cmcp"
                     )))
                 }
             };

@@ -6,7 +6,9 @@
 //!     some UAV starts ⌈S/m⌉ bricks, so with one cycle length c it ends no earlier than
 //!     (⌈S/m⌉ − 1)·c + the shortest placing phase; with mixed cycles, the total UAV time
 //!     spread over m UAVs, less the longest rest;
-//!   - under the zone rule, the sum of all placing phases (they never overlap).
+//!   - under the zone rule, the sum of all placing phases (they never overlap); under the
+//!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
+//!     from every brick), which never overlap either.
 //! * Reward by a budget T, an upper bound: the Lagrangian (= LP) relaxation of the
 //!   precedence-constrained knapsack. A brick weighs its UAV time (`uavs · cycle`), the team
 //!   has `m · (T + longest rest)` of it (with one cycle length: `m` times the starts that fit
@@ -72,9 +74,33 @@ pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
     let zone = if p.zone_rule() {
         ids().map(|b| p.place_s(b)).sum()
     } else {
-        0.0
+        conflict_clique(p)
     };
     chain.max(resource).max(zone)
+}
+
+/// The heaviest clique of mutually conflicting bricks found by growing one greedily from each
+/// brick (longest placing phase first): its placing phases never overlap, so their sum bounds
+/// the makespan. O(n·d²) for d conflicts per brick.
+fn conflict_clique(p: &TeamProblem<'_>) -> f64 {
+    let mut best = 0.0f64;
+    let mut clique: Vec<BrickId> = Vec::new();
+    for b in p.wall().ids() {
+        let mut cands: Vec<BrickId> = p.conflicts(b).to_vec();
+        cands.sort_by(|x, y| p.place_s(*y).total_cmp(&p.place_s(*x)).then(x.cmp(y)));
+        clique.clear();
+        clique.push(b);
+        for c in cands {
+            if clique
+                .iter()
+                .all(|k| p.conflicts(c).binary_search(k).is_ok())
+            {
+                clique.push(c);
+            }
+        }
+        best = best.max(clique.iter().map(|&k| p.place_s(k)).sum());
+    }
+    best
 }
 
 /// The reward relaxation's data: per brick weight and eligibility, the team's capacity.
