@@ -5,7 +5,8 @@
 //!   - the resource bound: with S UAV-cycles in all (a 2-UAV brick counts 2) and m UAVs,
 //!     some UAV starts ⌈S/m⌉ bricks, so with one cycle length c it ends no earlier than
 //!     (⌈S/m⌉ − 1)·c + the shortest placing phase; with mixed cycles, the total UAV time
-//!     spread over m UAVs, less the longest rest;
+//!     less the most rest the m last bricks can leave out, plus (zone rule) the stagger of
+//!     the UAVs' first starts and last ends, spread over m UAVs;
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
 //!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
 //!     from every brick), which never overlap either.
@@ -55,7 +56,6 @@ fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
 pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
     let ids = || p.wall().ids();
     let chain = earliest_end(p).into_iter().fold(0.0, f64::max);
-    let m = p.uavs() as f64;
     let resource = match uniform_cycle(p) {
         Some(c) => {
             let slots: u64 = ids().map(|b| u64::from(p.need(b))).sum();
@@ -64,11 +64,26 @@ pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
             (per_uav as f64 - 1.0) * c + shortest
         }
         None => {
+            // Σ_u (end_u − start_u) ≥ W − R, with R the most rest the UAVs' last bricks can
+            // leave out; under the zone rule the UAVs' first starts and last ends are also
+            // staggered by at least the shortest placing phase (orange pairs share one).
             let work: f64 = ids()
                 .map(|b| f64::from(p.need(b)) * (p.place_s(b) + p.rest_s(b)))
                 .sum();
-            let longest_rest = ids().map(|b| p.rest_s(b)).fold(0.0, f64::max);
-            work / m - longest_rest
+            // A schedule may leave UAVs unused: take the weakest case over k used UAVs.
+            let shortest = ids().map(|b| p.place_s(b)).fold(f64::INFINITY, f64::min);
+            let pairs = ids().any(|b| p.need(b) == 2);
+            let mut bound = f64::INFINITY;
+            for k in 1..=p.uavs() {
+                let stagger = if p.zone_rule() {
+                    let steps: usize = (0..k).map(|i| if pairs { i / 2 } else { i }).sum();
+                    2.0 * steps as f64 * shortest
+                } else {
+                    0.0
+                };
+                bound = bound.min((work - last_rests(p, k) + stagger) / k as f64);
+            }
+            bound
         }
     };
     let zone = if p.zone_rule() {
@@ -77,6 +92,28 @@ pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
         conflict_clique(p)
     };
     chain.max(resource).max(zone)
+}
+
+/// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
+/// each) and single bricks for the rest, the longest rests first.
+fn last_rests(p: &TeamProblem<'_>, m: usize) -> f64 {
+    let mut pairs: Vec<f64> = p
+        .wall()
+        .ids()
+        .filter(|&b| p.need(b) == 2)
+        .map(|b| p.rest_s(b))
+        .collect();
+    let mut singles: Vec<f64> = p
+        .wall()
+        .ids()
+        .filter(|&b| p.need(b) == 1)
+        .map(|b| p.rest_s(b))
+        .collect();
+    pairs.sort_by(|a, b| b.total_cmp(a));
+    singles.sort_by(|a, b| b.total_cmp(a));
+    (0..=pairs.len().min(m / 2))
+        .map(|k| 2.0 * pairs[..k].iter().sum::<f64>() + singles.iter().take(m - 2 * k).sum::<f64>())
+        .fold(0.0, f64::max)
 }
 
 /// The heaviest clique of mutually conflicting bricks found by growing one greedily from each
