@@ -331,7 +331,7 @@ fn search_thread(
     // Small walls decode fast: give them more decodes (the same for every seed).
     let cap = budget
         .node_limit
-        .unwrap_or(DEFAULT_DECODES.max(400_000 / p.len().max(1) as u64));
+        .unwrap_or(DEFAULT_DECODES.max(2_000_000 / p.len().max(1) as u64));
     let reached = |sc: &Score| target.is_some_and(|t| !better(&t, sc));
     let mut best_list = starts[0].clone();
     let mut best = s.score(&best_list).0;
