@@ -171,6 +171,7 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
             wall: &wall,
             order: &order,
             model,
+            assignment: None,
             config,
         };
         let mut rewards = Vec::new();

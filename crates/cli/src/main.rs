@@ -154,6 +154,14 @@ struct SimArgs {
     /// Planner for the shared build order (see `mason plan`)
     #[arg(long, default_value = "exact")]
     planner: String,
+    /// Fly a team schedule instead of a shared order: makespan, reward or expected (see
+    /// `mason plan --objective`; the team model is the thesis model of --model's times; expected
+    /// takes its failure rate from --uav-hazard). Each UAV takes its own bricks in its own order
+    #[arg(long)]
+    objective: Option<String>,
+    /// Budget T in seconds for --objective reward|expected
+    #[arg(long, allow_negative_numbers = true)]
+    budget: Option<f64>,
     /// Cost model (grasp and placement times, κ)
     #[arg(long)]
     model: Option<PathBuf>,
@@ -516,7 +524,42 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         BuildProblem::new(&wall, model.clone()).map_err(|e| input_error(e.to_string()))?;
     let checked = plan::solve(&problem, spec, Some(60.0))?;
     plan::exit_for(&checked)?;
-    let order = checked.outcome.order.clone().expect("checked order");
+    let mut order = checked.outcome.order.clone().expect("checked order");
+    let mut assignment: Option<Vec<Vec<mason_wall::BrickId>>> = None;
+    if let Some(objective) = &a.objective {
+        let args = ScheduleArgs {
+            objective: objective.clone(),
+            uavs: a.uavs,
+            budget: a.budget,
+            uav_hazard: if objective == "expected" {
+                a.uav_hazard
+            } else {
+                None
+            },
+            seed: a.seed,
+            time_limit: None,
+        };
+        let req = args.resolve()?;
+        let team = mason_order::team::TeamModel::from_cost_model(&model);
+        let tp = schedule_cmd::problem(&wall, team, &req)?;
+        let scheduled = schedule_cmd::solve(&tp, &req)?;
+        let s = scheduled.outcome.schedule.clone().unwrap_or_default();
+        // The shared order: scheduled bricks by start, then the rest (after the budget) as the
+        // build order has them, so that the mission still finishes the wall.
+        let mut listed = vec![false; wall.len()];
+        let mut by_start: Vec<mason_wall::BrickId> = Vec::new();
+        for pl in &s.placements {
+            listed[pl.brick.index()] = true;
+            by_start.push(pl.brick);
+        }
+        by_start.extend(order.iter().copied().filter(|b| !listed[b.index()]));
+        order = by_start;
+        assignment = Some(s.by_uav(a.uavs));
+    } else if a.budget.is_some() {
+        return Err(input_error(
+            "--budget belongs to --objective reward|expected",
+        ));
+    }
     let mut config: mason_mission::MissionConfig = match &a.mission {
         Some(p) => input::read_toml(p)?,
         None => mason_mission::MissionConfig::default(),
@@ -538,6 +581,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         wall: &wall,
         order: &order,
         model: &model,
+        assignment: assignment.as_deref(),
         config: &config,
     };
     if a.runs == 1 {

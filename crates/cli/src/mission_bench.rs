@@ -44,6 +44,7 @@ pub fn thesis_mission(runs: usize) -> CliResult<String> {
                 wall: &wall,
                 order: &order,
                 model: &model,
+                assignment: None,
                 config,
             };
             let (r, _) = fly_once(flight(&base), coord, slot, 0)?;
@@ -97,6 +98,7 @@ pub fn throughput(runs: usize) -> CliResult<String> {
                 wall: &wall,
                 order: &order,
                 model: &model,
+                assignment: None,
                 config: &config,
             };
             let results = fly_many(input, coord, slot, 0, missions, &|| {})?;

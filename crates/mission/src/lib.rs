@@ -14,7 +14,7 @@
 //! let model = mason_order::CostModel::default();
 //! let order: Vec<_> = wall.ids().collect(); // level by level: a valid order
 //! let config = MissionConfig::with_uavs(3);
-//! let input = MissionInput { wall: &wall, order: &order, model: &model, config: &config };
+//! let input = MissionInput { wall: &wall, order: &order, model: &model, assignment: None, config: &config };
 //! let mut trace = Vec::new();
 //! let result = simulate(input, make_policy(Coord::Comm, 20.0).as_mut(), 7, &mut trace);
 //! assert_eq!(result.status, MissionStatus::Complete);

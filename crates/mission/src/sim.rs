@@ -30,6 +30,10 @@ pub struct MissionInput<'a> {
     pub order: &'a [BrickId],
     /// Grasp and placement times (t_g, t_d, κ) come from the cost model.
     pub model: &'a CostModel,
+    /// A team schedule's bricks per UAV, in the order each UAV places them (`None`: every
+    /// UAV takes the next untaken brick of `order`). A UAV takes its own next brick first and
+    /// helps with the rest of `order` when its list is done (a failed teammate's bricks).
+    pub assignment: Option<&'a [Vec<BrickId>]>,
     /// Team, arena, UAV model, coordination parameters, faults.
     pub config: &'a MissionConfig,
 }
@@ -408,13 +412,54 @@ impl Sim<'_, '_> {
         if self.placed == self.bricks.len() {
             return self.go_land(u, outcome);
         }
+        // A scheduled UAV takes its own next brick (joining its pair for an orange).
+        let own = self
+            .input
+            .assignment
+            .and_then(|a| a.get(u))
+            .and_then(|list| {
+                list.iter()
+                    .copied()
+                    .find(|&b| match self.bricks[b.index()] {
+                        Brick::Untaken => true,
+                        Brick::Taken => {
+                            self.kind_of(b).uavs_needed() == 2
+                                && self.carriers[b.index()].len() == 1
+                                && self.carriers[b.index()][0] != u
+                        }
+                        Brick::Placed => false,
+                    })
+            });
+        // Not a brick whose support nobody has taken (a failed teammate's): the shared order
+        // comes first then.
+        let own = own.filter(|&b| {
+            (self.kind_of(b).uavs_needed() == 1 || self.live() >= 2)
+                && self
+                    .input
+                    .wall
+                    .supports(b)
+                    .iter()
+                    .all(|s| self.bricks[s.index()] != Brick::Untaken)
+        });
         // Join an open orange pair first: it was taken earlier in the order.
         let open = self.input.order.iter().copied().find(|&b| {
             self.bricks[b.index()] == Brick::Taken
                 && self.kind_of(b).uavs_needed() == 2
                 && self.carriers[b.index()].len() == 1
         });
-        let pick = if let Some(b) = open {
+        // Under a schedule, an open pair whose scheduled partner is gone goes before one's own.
+        let orphan = open.filter(|&b| {
+            self.input.assignment.is_some_and(|a| {
+                !a.iter().enumerate().any(|(w, list)| {
+                    w != self.carriers[b.index()][0] && self.uavs[w].alive && list.contains(&b)
+                })
+            })
+        });
+        let pick = if let Some(b) = orphan {
+            Some(b)
+        } else if let Some(b) = own {
+            Some(b)
+        } else if let Some(b) = open {
             Some(b)
         } else {
             let alone = self.live() < 2;

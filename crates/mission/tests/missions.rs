@@ -32,6 +32,7 @@ fn fly(
         wall,
         order: &order,
         model: &model,
+        assignment: None,
         config,
     };
     let slot = slot_length(wall, &model, config).unwrap();

@@ -238,6 +238,7 @@ mod tests {
             wall: &wall,
             order: &order,
             model: &model,
+            assignment: None,
             config: &config,
         };
         let mut trace = Vec::new();
