@@ -645,3 +645,273 @@ fn simulate_reads_a_mission_file() {
         &["arena", "outside"],
     );
 }
+
+#[test]
+fn schedule_json_has_the_documented_fields_and_checks_out() {
+    let o = mason(&[
+        "plan",
+        "builtin:mbzirc",
+        "--objective",
+        "reward",
+        "--model",
+        "cmcp",
+        "--budget",
+        "600",
+        "--json",
+        "--seed",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    for k in [
+        "objective",
+        "model",
+        "uavs",
+        "budget_s",
+        "reward",
+        "makespan_s",
+        "bound",
+        "status",
+        "schedule",
+        "gap",
+    ] {
+        assert!(v.get(k).is_some(), "missing {k}");
+    }
+    assert_eq!(v["objective"], "reward");
+    assert_eq!(v["model"], "cmcp");
+    assert_eq!(v["uavs"], 3);
+    let rows = v["schedule"].as_array().unwrap();
+    assert!(!rows.is_empty());
+    // Rewards add up, every row ends by the budget, oranges appear once per UAV with one start.
+    let mut reward = 0.0;
+    let mut seen = std::collections::BTreeMap::new();
+    for r in rows {
+        assert!(r["end_s"].as_f64().unwrap() <= 600.0);
+        assert_eq!(
+            r["end_s"].as_f64().unwrap() - r["start_s"].as_f64().unwrap(),
+            40.0
+        );
+        let e = seen.entry(r["brick"].as_u64().unwrap()).or_insert((
+            0,
+            r["start_s"].as_f64().unwrap(),
+            r["type"].clone(),
+        ));
+        e.0 += 1;
+        assert_eq!(e.1, r["start_s"].as_f64().unwrap());
+    }
+    for (count, _, kind) in seen.values() {
+        assert_eq!(*count, if kind == "orange" { 2 } else { 1 });
+        reward += match kind.as_str().unwrap() {
+            "red" => 1.0,
+            "green" => 2.0,
+            "blue" => 4.0,
+            _ => 6.0,
+        };
+    }
+    assert_eq!(reward, v["reward"].as_f64().unwrap());
+    assert!(v["reward"].as_f64().unwrap() <= v["bound"].as_f64().unwrap());
+    // Same seed, same schedule.
+    let again = mason(&[
+        "plan",
+        "builtin:mbzirc",
+        "--objective",
+        "reward",
+        "--model",
+        "cmcp",
+        "--budget",
+        "600",
+        "--json",
+        "--seed",
+        "3",
+    ]);
+    let w: Value = serde_json::from_str(&stdout(&again)).unwrap();
+    assert_eq!(v["schedule"], w["schedule"]);
+}
+
+#[test]
+fn schedule_table_svg_and_team_model_file() {
+    let dir = std::env::temp_dir().join(format!("mason-sched-{}", std::process::id()));
+    let svg = dir.join("s.svg");
+    let o = mason(&[
+        "plan",
+        "builtin:thesis-2x5",
+        "--objective",
+        "makespan",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("10 of 10 bricks") && out.contains("lower bound"),
+        "{out}"
+    );
+    let figure = std::fs::read_to_string(&svg).unwrap();
+    assert!(figure.starts_with("<svg") && figure.contains(">UAV 2<"));
+    // A TOML model: red rewards 3, zone rule.
+    let o = mason(&[
+        "plan",
+        "builtin:thesis-2x5",
+        "--objective",
+        "reward",
+        "--budget",
+        "100000",
+        "--model",
+        &data("team-zone.toml"),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["team_model"]["concurrency"]["rule"], "zone");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn expected_objective_states_its_estimate_and_bound() {
+    let o = mason(&[
+        "plan",
+        "builtin:thesis-2x5",
+        "--objective",
+        "expected",
+        "--budget",
+        "400",
+        "--uav-hazard",
+        "4",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let e = v["expected_reward"].as_f64().unwrap();
+    assert!(e > 0.0 && e <= v["reward"].as_f64().unwrap() && e <= v["bound"].as_f64().unwrap());
+}
+
+#[test]
+fn schedule_bad_inputs_exit_2() {
+    let cases: &[(&[&str], &[&str])] = &[
+        (
+            &["plan", "builtin:mbzirc", "--objective", "fastest"],
+            &["--objective", "fastest"],
+        ),
+        (
+            &["plan", "builtin:mbzirc", "--objective", "reward"],
+            &["needs a budget"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "reward",
+                "--budget",
+                "-5",
+            ],
+            &["budget", "-5"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "expected",
+                "--budget",
+                "100",
+            ],
+            &["--uav-hazard"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "makespan",
+                "--uav-hazard",
+                "1",
+            ],
+            &["--uav-hazard"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "makespan",
+                "--uavs",
+                "1",
+            ],
+            &["orange", "needs 2"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "makespan",
+                "--model",
+                "nope",
+            ],
+            &["--model nope"],
+        ),
+        (
+            &["plan", "builtin:mbzirc", "--budget", "100"],
+            &["--objective"],
+        ),
+        (
+            &[
+                "plan",
+                "builtin:mbzirc",
+                "--objective",
+                "makespan",
+                "--time-limit",
+                "0",
+            ],
+            &["--time-limit"],
+        ),
+    ];
+    for (args, needles) in cases {
+        assert_input_error(&mason(args), needles);
+    }
+    let bad = data("team-bad.toml");
+    let o = mason(&[
+        "plan",
+        "builtin:mbzirc",
+        "--objective",
+        "makespan",
+        "--model",
+        &bad,
+    ]);
+    assert_input_error(&o, &["team-bad.toml:4"]);
+}
+
+#[test]
+fn cmcp_floating_bricks_warn_and_strict_refuses_them() {
+    let f = data("cmcp-floating.txt");
+    let o = mason(&["wall", "show", &f]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("1 brick(s) above level 1 rest on nothing"),
+        "{}",
+        stderr(&o)
+    );
+    assert_input_error(
+        &mason(&["wall", "show", &f, "--strict"]),
+        &["cmcp-floating.txt:3", "floating"],
+    );
+}
+
+#[test]
+fn simulate_flies_a_schedule() {
+    let o = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--objective",
+        "makespan",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["metrics"]["bricks_placed"], 10);
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--budget", "10"]),
+        &["--objective"],
+    );
+}
