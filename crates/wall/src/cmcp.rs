@@ -261,7 +261,13 @@ mod tests {
                 first_line: 1
             }
         );
-        let e = parse_cmcp("1 1 0 0 0.1 0\n2 1 5 0 0.3 0\n", "t", CmcpSizes::Yaml).unwrap_err();
+        // A floating brick: planned with no predecessor and one warning; `strict` refuses it.
+        let floating = "1 1 0 0 0.1 0\n2 1 5 0 0.3 0\n";
+        let w = parse_cmcp(floating, "t", CmcpSizes::Yaml).unwrap();
+        assert!(w.supports(BrickId(1)).is_empty());
+        assert_eq!(w.warnings().len(), 1);
+        assert!(w.warnings()[0].starts_with("1 brick(s)"));
+        let e = parse_cmcp_strict(floating, "t", CmcpSizes::Yaml).unwrap_err();
         assert!(matches!(
             e.kind,
             WallErrorKind::FloatingBrick { label: 2, .. }
