@@ -838,7 +838,7 @@ fn schedule_bad_inputs_exit_2() {
                 "--uavs",
                 "1",
             ],
-            &["orange", "needs 2"],
+            &["orange", "need 2"],
         ),
         (
             &[

@@ -1,7 +1,7 @@
 //! The mission Gantt chart: one lane per UAV coloured by state, a lane for the wall zone with
 //! placement marks, and the UAVs' communication-mode changes.
 
-use crate::svg::escape;
+use crate::svg::{open_figure, time_axis};
 use mason_mission::{CommMode, Event, EventKind, UavState};
 use mason_wall::Wall;
 use std::fmt::Write;
@@ -47,17 +47,7 @@ pub fn gantt_svg(title: &str, wall: &Wall, uavs: usize, events: &[Event], end: f
     let height = axis_y + 70.0;
     let width = left + plot_w + right;
     let x = |t: f64| left + t / end * plot_w;
-    let mut svg = String::new();
-    let _ = write!(
-        svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="11">"#
-    );
-    let _ = write!(svg, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
-    let _ = write!(
-        svg,
-        r##"<text x="{left}" y="18" font-size="13" fill="#222">{}</text>"##,
-        escape(title)
-    );
+    let mut svg = open_figure(width, height, left, 11, title);
     let lane_y = |i: usize| top + i as f64 * (lane + gap);
     // UAV lanes.
     for u in 0..uavs {
@@ -162,25 +152,7 @@ pub fn gantt_svg(title: &str, wall: &Wall, uavs: usize, events: &[Event], end: f
         svg,
         r##"<rect x="{left}" y="{y:.1}" width="{plot_w}" height="{lane}" fill="none" stroke="#999"/>"##
     );
-    // Time axis, a tick per minute (or per 5 or 10 for long missions).
-    let step = [60.0, 120.0, 300.0, 600.0, 1200.0]
-        .into_iter()
-        .find(|s| end / s <= 16.0)
-        .unwrap_or(1800.0);
-    let mut t = 0.0;
-    while t <= end + 1e-9 {
-        let _ = write!(
-            svg,
-            r##"<line x1="{0:.2}" x2="{0:.2}" y1="{1:.1}" y2="{2:.1}" stroke="#bbb"/><text x="{0:.2}" y="{3:.1}" text-anchor="middle" fill="#444">{4}:{5:02}</text>"##,
-            x(t),
-            top - 4.0,
-            axis_y + 4.0,
-            axis_y + 16.0,
-            (t / 60.0).floor() as u64,
-            (t % 60.0) as u64
-        );
-        t += step;
-    }
+    time_axis(&mut svg, x, end, top - 4.0, axis_y + 4.0);
     // Legend.
     let mut lx = left;
     for (name, s) in LEGEND {

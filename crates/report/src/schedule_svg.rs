@@ -2,7 +2,7 @@
 //! colour, labelled) and the rest of each cycle, a lane for the wall showing how many bricks
 //! are placing at once, and the budget line.
 
-use crate::svg::escape;
+use crate::svg::{open_figure, time_axis};
 use mason_order::team::{Schedule, TeamProblem};
 use std::fmt::Write;
 
@@ -25,17 +25,7 @@ pub fn schedule_svg(title: &str, p: &TeamProblem<'_>, schedule: &Schedule) -> St
     let height = axis_y + 40.0;
     let width = left + plot_w + right;
     let x = |t: f64| left + t / end * plot_w;
-    let mut svg = String::new();
-    let _ = write!(
-        svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="10">"#
-    );
-    let _ = write!(svg, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
-    let _ = write!(
-        svg,
-        r##"<text x="{left}" y="18" font-size="13" fill="#222">{}</text>"##,
-        escape(title)
-    );
+    let mut svg = open_figure(width, height, left, 10, title);
     for u in 0..uavs {
         let _ = write!(
             svg,
@@ -122,24 +112,7 @@ pub fn schedule_svg(title: &str, p: &TeamProblem<'_>, schedule: &Schedule) -> St
             top - 8.0
         );
     }
-    let step = [60.0, 120.0, 300.0, 600.0, 1200.0, 1800.0, 3600.0]
-        .into_iter()
-        .find(|s| end / s <= 16.0)
-        .unwrap_or(7200.0);
-    let mut t = 0.0;
-    while t <= end + 1e-9 {
-        let _ = write!(
-            svg,
-            r##"<line x1="{0:.2}" x2="{0:.2}" y1="{1:.1}" y2="{2:.1}" stroke="#bbb"/><text x="{0:.2}" y="{3:.1}" text-anchor="middle" fill="#444">{4}:{5:02}</text>"##,
-            x(t),
-            top - 4.0,
-            axis_y,
-            axis_y + 14.0,
-            (t / 60.0).floor() as u64,
-            (t % 60.0) as u64
-        );
-        t += step;
-    }
+    time_axis(&mut svg, x, end, top - 4.0, axis_y);
     let _ = write!(svg, "</svg>");
     svg
 }

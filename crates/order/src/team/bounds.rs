@@ -144,12 +144,22 @@ fn conflict_clique(p: &TeamProblem<'_>) -> f64 {
 struct Knapsack {
     weight: Vec<f64>,
     eligible: Vec<bool>,
+    /// The supports of each eligible brick (the closure's requirements).
+    requires: Vec<Vec<usize>>,
     capacity: f64,
 }
 
 fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
     let head = earliest_end(p);
     let eligible: Vec<bool> = head.iter().map(|&h| h <= budget + 1e-9).collect();
+    let requires: Vec<Vec<usize>> = p
+        .wall()
+        .ids()
+        .map(|b| match eligible[b.index()] {
+            true => p.wall().supports(b).iter().map(|s| s.index()).collect(),
+            false => Vec::new(),
+        })
+        .collect();
     let ids = || p.wall().ids();
     let m = p.uavs() as f64;
     match uniform_cycle(p) {
@@ -164,6 +174,7 @@ fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
             Knapsack {
                 weight: ids().map(|b| f64::from(p.need(b))).collect(),
                 eligible,
+                requires,
                 capacity: m * starts,
             }
         }
@@ -174,6 +185,7 @@ fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
                     .map(|b| f64::from(p.need(b)) * (p.place_s(b) + p.rest_s(b)))
                     .collect(),
                 eligible,
+                requires,
                 capacity: m * (uav_time + longest_rest),
             }
         }
@@ -192,20 +204,7 @@ fn closure_at(p: &TeamProblem<'_>, k: &Knapsack, lambda: f64) -> (Vec<bool>, f64
             }
         })
         .collect();
-    let requires: Vec<Vec<usize>> = (0..n)
-        .map(|i| {
-            if k.eligible[i] {
-                p.wall()
-                    .supports(BrickId(i as u32))
-                    .iter()
-                    .map(|s| s.index())
-                    .collect()
-            } else {
-                Vec::new()
-            }
-        })
-        .collect();
-    let set = max_weight_closure(&weight, &requires);
+    let set = max_weight_closure(&weight, &k.requires);
     let set: Vec<bool> = set.iter().zip(&k.eligible).map(|(&s, &e)| s && e).collect();
     let (mut r, mut w) = (0.0, 0.0);
     for i in (0..n).filter(|&i| set[i]) {

@@ -95,18 +95,11 @@ impl State<'_, '_> {
     }
 
     fn crews(&self, need: usize) -> Vec<Vec<usize>> {
-        // Used UAVs, plus the first unused one (all unused UAVs are alike).
+        // Used UAVs, plus as many unused ones as the brick needs (unused UAVs are alike).
         let m = self.p.uavs();
-        let first_unused = (0..m).find(|&u| !self.used[u]);
-        let pool: Vec<usize> = (0..m)
-            .filter(|&u| {
-                self.used[u]
-                    || Some(u) == first_unused
-                    || (need == 2
-                        && Some(u)
-                            == (first_unused.and_then(|f| (f + 1..m).find(|&v| !self.used[v]))))
-            })
-            .collect();
+        let unused = (0..m).filter(|&u| !self.used[u]).take(need);
+        let mut pool: Vec<usize> = (0..m).filter(|&u| self.used[u]).chain(unused).collect();
+        pool.sort_unstable();
         match need {
             1 => pool.iter().map(|&u| vec![u]).collect(),
             _ => {

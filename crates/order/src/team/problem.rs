@@ -68,7 +68,7 @@ pub enum TeamProblemError {
     #[error(transparent)]
     Model(#[from] TeamModelError),
     /// No UAV, or fewer than a brick needs.
-    #[error("a team of {uavs} UAV(s) cannot place a {kind} brick, which needs {needed}")]
+    #[error("a team of {uavs} UAV(s) cannot place {kind} bricks, which need {needed} each")]
     TeamTooSmall {
         /// The team.
         uavs: usize,
@@ -77,9 +77,17 @@ pub enum TeamProblemError {
         /// UAVs it needs.
         needed: u32,
     },
+    /// More UAVs than the planners take.
+    #[error("a team of {0} UAVs is more than the {max} the planners take", max = MAX_UAVS)]
+    TeamTooLarge(usize),
     /// The budget is not a positive number.
     #[error("budget {0} s: expected a positive number of seconds")]
     Budget(f64),
+    /// `makespan` plans the whole wall: a budget would leave bricks out.
+    #[error(
+        "objective `makespan` plans the whole wall; a budget belongs to `reward` or `expected`"
+    )]
+    BudgetWithMakespan,
     /// `reward` and `expected` need a budget.
     #[error("objective `{0}` needs a budget (--budget T)")]
     NeedsBudget(&'static str),
@@ -162,7 +170,9 @@ impl<'w> TeamProblem<'w> {
             }
         }
         match objective {
-            Objective::Makespan => {}
+            Objective::Makespan if budget_s.is_some() => {
+                return Err(TeamProblemError::BudgetWithMakespan)
+            }
             Objective::Reward if budget_s.is_none() => {
                 return Err(TeamProblemError::NeedsBudget("reward"))
             }
@@ -174,9 +184,12 @@ impl<'w> TeamProblem<'w> {
             }
             _ => {}
         }
+        if uavs > MAX_UAVS {
+            return Err(TeamProblemError::TeamTooLarge(uavs));
+        }
         for b in wall.bricks() {
             let needed = model.of(b.kind).uavs;
-            if uavs < needed as usize || uavs > MAX_UAVS {
+            if uavs < needed as usize {
                 return Err(TeamProblemError::TeamTooSmall {
                     uavs,
                     kind: b.kind,
@@ -264,13 +277,6 @@ impl<'w> TeamProblem<'w> {
     /// Under the distance rule, the bricks closer to `b` than D.
     pub fn conflicts(&self, b: BrickId) -> &[BrickId] {
         self.conflicts.get(b.index()).map_or(&[], Vec::as_slice)
-    }
-    /// The same problem with another objective (bounds and planners read it).
-    pub fn with_objective(&self, objective: Objective) -> TeamProblem<'w> {
-        TeamProblem {
-            objective,
-            ..self.clone()
-        }
     }
 }
 

@@ -18,9 +18,10 @@
 
 use super::bounds::{
     earliest_end, expected_reward_upper_bound, makespan_lower_bound, reward_upper_bound,
+    RewardBound,
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
-use super::sgs::{Decoded, Decoder, Mode};
+use super::sgs::{Decoder, Mode};
 use crate::outcome::{Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -70,15 +71,18 @@ fn scenarios(p: &TeamProblem<'_>, hazard_per_hour: f64, seed: u64) -> Vec<Scenar
         .collect()
 }
 
-/// The reward `list` earns in one scenario: at each failure the failed UAV's placement in
-/// progress is lost and the survivors decode the rest of the list from that moment.
+/// The reward `list` earns in one scenario, given its fault-free decode (`fault_free`, with
+/// reward `fault_free_reward`): at each failure the failed UAV's placement in progress is lost
+/// and the survivors decode the rest of the list from that moment.
 pub fn reward_under_failures(
     p: &TeamProblem<'_>,
     decoder: &mut Decoder<'_, '_>,
     list: &[BrickId],
+    fault_free: &Schedule,
+    fault_free_reward: f64,
     failures: &[f64],
 ) -> f64 {
-    let mut decoded = decoder.decode(list);
+    let mut reward = fault_free_reward;
     let mut events: Vec<(f64, usize)> = failures
         .iter()
         .enumerate()
@@ -87,7 +91,7 @@ pub fn reward_under_failures(
         .collect();
     events.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut alive = vec![true; failures.len()];
-    let mut schedule = decoder.schedule();
+    let mut schedule = fault_free.clone();
     let mut done = vec![false; p.len()];
     for (t, u) in events {
         alive[u] = false;
@@ -112,10 +116,10 @@ pub fn reward_under_failures(
             done[pl.brick.index()] = true;
         }
         let rest: Vec<BrickId> = list.iter().copied().filter(|b| !done[b.index()]).collect();
-        decoded = decoder.resume(&kept, &alive, t, &rest);
+        reward = decoder.resume(&kept, &alive, t, &rest).reward;
         schedule = decoder.schedule();
     }
-    decoded.reward
+    reward
 }
 
 struct Searcher<'a, 'w> {
@@ -127,30 +131,35 @@ struct Searcher<'a, 'w> {
 }
 
 impl Searcher<'_, '_> {
-    fn score(&mut self, list: &[BrickId]) -> (Score, Decoded) {
+    fn score(&mut self, list: &[BrickId]) -> Score {
         self.decodes += 1;
         let d = self.decoder.decode(list);
-        let s = match self.p.objective() {
+        match self.p.objective() {
             Objective::Makespan => [d.makespan_s, d.sum_end_s, 0.0],
             Objective::Reward => [-d.reward, d.makespan_s, d.sum_end_s],
             Objective::Expected { .. } => {
-                let mut total = 0.0;
-                for f in &self.scenarios {
-                    total += reward_under_failures(self.p, &mut self.decoder, list, f);
-                }
-                // Restore the fault-free decode for the caller.
-                let d = self.decoder.decode(list);
-                return (
-                    [
-                        -total / self.scenarios.len() as f64,
-                        -d.reward,
-                        d.makespan_s,
-                    ],
-                    d,
-                );
+                let fault_free = self.decoder.schedule();
+                let total: f64 = self
+                    .scenarios
+                    .iter()
+                    .map(|f| {
+                        reward_under_failures(
+                            self.p,
+                            &mut self.decoder,
+                            list,
+                            &fault_free,
+                            d.reward,
+                            f,
+                        )
+                    })
+                    .sum();
+                [
+                    -total / self.scenarios.len() as f64,
+                    -d.reward,
+                    d.makespan_s,
+                ]
             }
-        };
-        (s, d)
+        }
     }
 }
 
@@ -195,8 +204,7 @@ fn chain_list(p: &TeamProblem<'_>) -> Vec<BrickId> {
 
 /// Under a budget: the knapsack closure first (level order), then greedy additions by reward
 /// per weight of the brick and its missing supports, then everything else.
-fn knapsack_list(p: &TeamProblem<'_>, budget: f64) -> Vec<BrickId> {
-    let rb = reward_upper_bound(p, budget);
+fn knapsack_list(p: &TeamProblem<'_>, budget: f64, rb: &RewardBound) -> Vec<BrickId> {
     let wall = p.wall();
     let head = earliest_end(p);
     let mut chosen = rb.fitting.clone();
@@ -273,8 +281,7 @@ fn pull(p: &TeamProblem<'_>, list: &mut Vec<BrickId>, pos: &mut [usize], i: usiz
         }
     }
     group.sort_by_key(|g| pos[g.index()]);
-    let mut in_group = vec![false; 0];
-    in_group.resize(p.len(), false);
+    let mut in_group = vec![false; p.len()];
     for g in &group {
         in_group[g.index()] = true;
     }
@@ -317,7 +324,7 @@ fn search_thread(
     budget: &Budget,
     seed: u64,
     mode: Mode,
-    target: Option<Score>,
+    target: Option<f64>,
     scen: Vec<Scenario>,
 ) -> ThreadResult {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -328,15 +335,18 @@ fn search_thread(
         decodes: 0,
         improvements: 0,
     };
-    // Small walls decode fast: give them more decodes (the same for every seed).
+    // Small walls decode fast: give them more decodes (the same for every seed); an
+    // `expected` score costs a decode per failure scenario, so it gets fewer.
+    let per_score = 1 + s.scenarios.len() as u64;
     let cap = budget
         .node_limit
-        .unwrap_or(DEFAULT_DECODES.max(2_000_000 / p.len().max(1) as u64));
-    let reached = |sc: &Score| target.is_some_and(|t| !better(&t, sc));
+        .unwrap_or(DEFAULT_DECODES.max(2_000_000 / p.len().max(1) as u64) / per_score);
+    // The primary objective at its bound: nothing can beat it.
+    let reached = |sc: &Score| target.is_some_and(|t| sc[0] <= t + 1e-9);
     let mut best_list = starts[0].clone();
-    let mut best = s.score(&best_list).0;
+    let mut best = s.score(&best_list);
     for l in &starts[1..] {
-        let sc = s.score(l).0;
+        let sc = s.score(l);
         if better(&sc, &best) {
             best = sc;
             best_list = l.clone();
@@ -369,7 +379,7 @@ fn search_thread(
             let j = rng.gen_range(lo..=hi);
             pull(p, &mut cand, &mut cpos, i, j);
         }
-        let sc = s.score(&cand).0;
+        let sc = s.score(&cand);
         if !better(&cur_score, &sc) {
             if better(&sc, &cur_score) {
                 stale = 0;
@@ -396,7 +406,7 @@ fn search_thread(
                 let j = rng.gen_range(0..n);
                 pull(p, &mut cur, &mut pos, i, j);
             }
-            cur_score = s.score(&cur).0;
+            cur_score = s.score(&cur);
             stale = 0;
         }
     }
@@ -424,33 +434,29 @@ pub fn plan_schedule_with(
     extra_starts: &[Vec<BrickId>],
 ) -> TeamOutcome {
     let t0 = Instant::now();
+    let reward_bound = p.budget_s().map(|b| (b, reward_upper_bound(p, b)));
     let mut starts: Vec<Vec<BrickId>> = extra_starts.to_vec();
-    if let Some(b) = p.budget_s() {
-        starts.push(knapsack_list(p, b));
+    if let Some((b, rb)) = &reward_bound {
+        starts.push(knapsack_list(p, *b, rb));
     }
     starts.push(level_list(p));
     starts.push(chain_list(p));
-    let (bound, target) = match p.objective() {
-        Objective::Makespan => {
+    // Only the makespan objective stops at its bound: under a budget, reaching the reward
+    // bound still leaves the makespan to shorten.
+    let (bound, target) = match (p.objective(), &reward_bound) {
+        (Objective::Makespan, _) => {
             let lb = makespan_lower_bound(p);
-            (lb, Some([lb, f64::NEG_INFINITY, f64::NEG_INFINITY]))
+            (lb, Some(lb))
         }
-        Objective::Reward => {
-            let ub = reward_upper_bound(p, p.budget_s().unwrap_or(f64::INFINITY)).bound;
-            (ub, None)
+        (Objective::Reward, Some((_, rb))) => (rb.bound, None),
+        (Objective::Expected { hazard_per_hour }, Some((b, _))) => {
+            (expected_reward_upper_bound(p, *b, hazard_per_hour), None)
         }
-        Objective::Expected { hazard_per_hour } => (
-            expected_reward_upper_bound(p, p.budget_s().unwrap_or(f64::INFINITY), hazard_per_hour),
-            None,
-        ),
+        (_, None) => unreachable!("TeamProblem::new requires a budget for reward and expected"),
     };
     let scen = match p.objective() {
         Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
         _ => Vec::new(),
-    };
-    let target = match p.objective() {
-        Objective::Reward => Some([-bound, f64::NEG_INFINITY, f64::NEG_INFINITY]),
-        _ => target,
     };
     let results: Vec<ThreadResult> = std::thread::scope(|sc| {
         let handles: Vec<_> = (0..2u64)

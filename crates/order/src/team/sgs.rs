@@ -244,27 +244,10 @@ impl<'a, 'w> Decoder<'a, 'w> {
             if let Some((k, raw)) = chosen {
                 let b = BrickId(raw);
                 self.eligible.remove(&(k, raw));
-                let need = self.p.need(b) as usize;
-                let mut crew = [u32::MAX; 2];
-                for k in 0..need {
-                    let mut best: Option<usize> = None;
-                    for u in 0..self.free.len() {
-                        if !self.alive[u]
-                            || self.free[u] > t + EPS
-                            || crew[..k].contains(&(u as u32))
-                        {
-                            continue;
-                        }
-                        if best.is_none_or(|v| self.free[u] > self.free[v]) {
-                            best = Some(u);
-                        }
-                    }
-                    crew[k] = best.expect("enough UAVs free") as u32;
-                }
-                for &u in crew.iter().take(need) {
-                    self.free[u as usize] = t + self.p.place_s(b) + self.p.rest_s(b);
-                }
-                self.commit(b, t, crew);
+                let crew = self
+                    .crew_free_by(t, self.p.need(b) as usize)
+                    .expect("enough UAVs free: checked above");
+                self.assign(b, t, crew);
                 self.active.push(t + self.p.place_s(b));
                 for &c in self.p.wall().carried(b) {
                     self.enlist(c);
@@ -337,8 +320,53 @@ impl<'a, 'w> Decoder<'a, 'w> {
     }
 
     /// Schedules `b` (its supports are all taken) or leaves it out.
+    /// The `need`-th earliest time a live UAV is free (`need` is 1 or 2), if enough live.
+    fn nth_free(&self, need: usize) -> Option<f64> {
+        let (mut first, mut second) = (f64::INFINITY, f64::INFINITY);
+        let mut live = 0;
+        for u in (0..self.free.len()).filter(|&u| self.alive[u]) {
+            live += 1;
+            let f = self.free[u];
+            if f < first {
+                second = first;
+                first = f;
+            } else if f < second {
+                second = f;
+            }
+        }
+        (live >= need).then_some(if need == 1 { first } else { second })
+    }
+
+    /// Best fit: the `need` live UAVs free by `t` whose free times are latest, so that those
+    /// idle longest stay for bricks that can start earlier.
+    fn crew_free_by(&self, t: f64, need: usize) -> Option<[u32; 2]> {
+        let mut crew = [u32::MAX; 2];
+        for k in 0..need {
+            let mut best: Option<usize> = None;
+            for u in 0..self.free.len() {
+                if !self.alive[u] || self.free[u] > t + EPS || crew[..k].contains(&(u as u32)) {
+                    continue;
+                }
+                if best.is_none_or(|v| self.free[u] > self.free[v]) {
+                    best = Some(u);
+                }
+            }
+            crew[k] = best? as u32;
+        }
+        Some(crew)
+    }
+
+    /// Places `b` at `t` with `crew`, which is busy until the end of its cycle.
+    fn assign(&mut self, b: BrickId, t: f64, crew: [u32; 2]) {
+        let busy_until = t + self.p.place_s(b) + self.p.rest_s(b);
+        for &u in crew.iter().filter(|&&u| u != u32::MAX) {
+            self.free[u as usize] = busy_until;
+        }
+        self.commit(b, t, crew);
+    }
+
+    /// Schedules `b` (its supports are all taken) or leaves it out.
     fn take(&mut self, b: BrickId) {
-        let i = b.index();
         let wall = self.p.wall();
         let mut lb = self.floor;
         let mut possible = true;
@@ -350,53 +378,25 @@ impl<'a, 'w> Decoder<'a, 'w> {
             lb = lb.max(self.start[s.index()] + self.p.place_s(*s));
         }
         let need = self.p.need(b) as usize;
-        let mut crew = [u32::MAX; 2];
-        let mut t = f64::INFINITY;
-        if possible {
-            // The need-th smallest free time among live UAVs bounds the start from below.
-            let mut frees: Vec<f64> = (0..self.free.len())
-                .filter(|&u| self.alive[u])
-                .map(|u| self.free[u])
-                .collect();
-            if frees.len() < need {
-                possible = false;
-            } else {
-                frees.sort_by(f64::total_cmp);
-                t = self.conflict_free(b, lb.max(frees[need - 1]));
-                // Best fit: the latest-free UAVs among those free by t.
-                let mut chosen = 0;
-                let mut taken = [usize::MAX; 2];
-                for k in 0..need {
-                    let mut best: Option<usize> = None;
-                    for u in 0..self.free.len() {
-                        if !self.alive[u] || self.free[u] > t + EPS || taken[..k].contains(&u) {
-                            continue;
-                        }
-                        if best.is_none_or(|v| self.free[u] > self.free[v]) {
-                            best = Some(u);
-                        }
-                    }
-                    if let Some(u) = best {
-                        taken[k] = u;
-                        crew[k] = u as u32;
-                        chosen += 1;
-                    }
-                }
-                possible = chosen == need;
+        let placed = possible
+            .then(|| self.nth_free(need))
+            .flatten()
+            .and_then(|free| {
+                let t = self.conflict_free(b, lb.max(free));
+                let in_budget = self
+                    .p
+                    .budget_s()
+                    .is_none_or(|budget| t + self.p.place_s(b) <= budget + EPS);
+                in_budget
+                    .then(|| self.crew_free_by(t, need).map(|c| (t, c)))
+                    .flatten()
+            });
+        match placed {
+            Some((t, crew)) => self.assign(b, t, crew),
+            None => {
+                self.state[b.index()] = 2;
+                self.release(b);
             }
-        }
-        let end = t + self.p.place_s(b);
-        if possible && self.p.budget_s().is_some_and(|budget| end > budget + EPS) {
-            possible = false;
-        }
-        if possible {
-            for &u in crew.iter().take(need) {
-                self.free[u as usize] = t + self.p.place_s(b) + self.p.rest_s(b);
-            }
-            self.commit(b, t, crew);
-        } else {
-            self.state[i] = 2;
-            self.release(b);
         }
     }
 
@@ -447,10 +447,5 @@ impl<'a, 'w> Decoder<'a, 'w> {
         };
         s.sort();
         s
-    }
-
-    /// Start of `b` in the last decode (`None` if left out).
-    pub fn start_of(&self, b: BrickId) -> Option<f64> {
-        (self.state[b.index()] == 1).then(|| self.start[b.index()])
     }
 }
