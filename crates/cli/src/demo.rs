@@ -172,6 +172,7 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
             order: &order,
             model,
             assignment: None,
+            replanner: None,
             config,
         };
         let mut rewards = Vec::new();

@@ -162,6 +162,11 @@ struct SimArgs {
     /// Budget T in seconds for --objective reward|expected
     #[arg(long, allow_negative_numbers = true)]
     budget: Option<f64>,
+    /// With --objective: when a UAV fails, the survivors re-plan the rest of the wall (within
+    /// 100 ms). With --runs N, flies the static and the re-planned schedule on the same seeds
+    /// and compares them
+    #[arg(long)]
+    replan: bool,
     /// Cost model (grasp and placement times, κ)
     #[arg(long)]
     model: Option<PathBuf>,
@@ -526,6 +531,12 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     plan::exit_for(&checked)?;
     let mut order = checked.outcome.order.clone().expect("checked order");
     let mut assignment: Option<Vec<Vec<mason_wall::BrickId>>> = None;
+    let mut replanner: Option<mason_mission::ScheduleReplanner> = None;
+    if a.replan && a.objective.is_none() {
+        return Err(input_error(
+            "--replan re-plans a team schedule: add --objective",
+        ));
+    }
     if let Some(objective) = &a.objective {
         let args = ScheduleArgs {
             objective: objective.clone(),
@@ -541,6 +552,14 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         };
         let req = args.resolve()?;
         let team = mason_order::team::TeamModel::from_cost_model(&model);
+        if a.replan {
+            replanner = Some(mason_mission::ScheduleReplanner::new(
+                team.clone(),
+                req.objective,
+                req.budget_s,
+                a.seed,
+            ));
+        }
         let tp = schedule_cmd::problem(&wall, team, &req)?;
         let scheduled = schedule_cmd::solve(&tp, &req)?;
         let s = scheduled.outcome.schedule.clone().unwrap_or_default();
@@ -582,6 +601,9 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         order: &order,
         model: &model,
         assignment: assignment.as_deref(),
+        replanner: replanner
+            .as_ref()
+            .map(|r| r as &dyn mason_mission::Replanner),
         config: &config,
     };
     if a.runs == 1 {
@@ -633,6 +655,9 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         }
         return sim_cmd::exit_for(&r);
     }
+    if input.replanner.is_some() {
+        return compare_replanning(&a, input, coord, slot, quiet);
+    }
     let pb = progress::bar(a.runs as u64, "simulating", !quiet && !a.json);
     let results = sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?;
     pb.finish_and_clear();
@@ -654,6 +679,57 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
             a.seed + a.runs as u64 - 1
         );
         print!("{}", sim_cmd::summary_table(&summary));
+    }
+    Ok(())
+}
+
+/// `simulate --objective … --replan --runs N`: the static and the re-planned schedule on the
+/// same seeds.
+fn compare_replanning(
+    a: &SimArgs,
+    input: mason_mission::MissionInput<'_>,
+    coord: mason_mission::Coord,
+    slot: f64,
+    quiet: bool,
+) -> CliResult<()> {
+    let pb = progress::bar(2 * a.runs as u64, "simulating", !quiet && !a.json);
+    let fixed = mason_mission::MissionInput {
+        replanner: None,
+        ..input
+    };
+    let runs = [
+        (
+            "static",
+            sim_cmd::fly_many(fixed, coord, slot, a.seed, a.runs, &|| pb.inc(1))?,
+        ),
+        (
+            "replanned",
+            sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?,
+        ),
+    ];
+    pb.finish_and_clear();
+    let rows: Vec<sim_cmd::PolicyRow> = runs
+        .iter()
+        .map(|(name, results)| sim_cmd::PolicyRow::of(name, results, a.budget))
+        .collect();
+    if a.json {
+        let v = serde_json::json!({
+            "wall": input.wall.name(), "uavs": a.uavs, "coord": coord,
+            "objective": a.objective, "budget_s": a.budget, "first_seed": a.seed,
+            "faults": input.config.faults, "compare": rows,
+        });
+        println!("{}", serde_json::to_string_pretty(&v).expect("json"));
+    } else {
+        println!(
+            "{}: {} UAVs, coord {}, {} schedule, static vs re-planned on seeds {}..{}",
+            input.wall.name(),
+            a.uavs,
+            a.coord,
+            a.objective.as_deref().unwrap_or("-"),
+            a.seed,
+            a.seed + a.runs as u64 - 1
+        );
+        print!("{}", sim_cmd::policy_table(&rows, a.budget));
     }
     Ok(())
 }

@@ -45,6 +45,7 @@ pub fn thesis_mission(runs: usize) -> CliResult<String> {
                 order: &order,
                 model: &model,
                 assignment: None,
+                replanner: None,
                 config,
             };
             let (r, _) = fly_once(flight(&base), coord, slot, 0)?;
@@ -99,6 +100,7 @@ pub fn throughput(runs: usize) -> CliResult<String> {
                 order: &order,
                 model: &model,
                 assignment: None,
+                replanner: None,
                 config: &config,
             };
             let results = fly_many(input, coord, slot, 0, missions, &|| {})?;

@@ -169,6 +169,7 @@ pub fn event_json(wall: &Wall, e: &Event) -> Value {
         EventKind::ZoneEnter => json!({"kind": "zone_enter"}),
         EventKind::ZoneLeave => json!({"kind": "zone_leave"}),
         EventKind::Fail => json!({"kind": "fail"}),
+        EventKind::Replan { bricks } => json!({"kind": "replan", "bricks": bricks}),
         EventKind::Comm { mode } => json!({"kind": "comm", "mode": mode}),
     };
     for (k, x) in extra.as_object().expect("object") {
@@ -288,6 +289,72 @@ pub fn summary_table(s: &Summary) -> String {
         s.zone_utilisation.p5 * 100.0,
         s.zone_utilisation.p95 * 100.0,
     )
+}
+
+/// One policy's Monte Carlo figures in a static-vs-replanned comparison.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PolicyRow {
+    /// `static` or `replanned`.
+    pub policy: String,
+    /// The usual summary.
+    pub summary: Summary,
+    /// Reward placed by the budget, when there is one.
+    pub reward_by_budget: Option<Spread>,
+    /// Mean re-plans per mission.
+    pub replans_mean: f64,
+}
+
+impl PolicyRow {
+    /// The figures of `results`.
+    pub fn of(policy: &str, results: &[MissionResult], budget: Option<f64>) -> Self {
+        PolicyRow {
+            policy: policy.to_string(),
+            summary: mason_mission::summarise(results),
+            reward_by_budget: budget.map(|t| mason_mission::reward_by(results, t)),
+            replans_mean: results
+                .iter()
+                .map(|r| r.metrics.replans as f64)
+                .sum::<f64>()
+                / results.len().max(1) as f64,
+        }
+    }
+}
+
+/// The comparison as a table: one column per policy.
+pub fn policy_table(rows: &[PolicyRow], budget: Option<f64>) -> String {
+    let mut out = format!("{:<26}", "");
+    for r in rows {
+        out.push_str(&format!(" {:>22}", r.policy));
+    }
+    out.push('\n');
+    let mut line = |name: &str, cell: &dyn Fn(&PolicyRow) -> String| {
+        out.push_str(&format!("{name:<26}"));
+        for r in rows {
+            out.push_str(&format!(" {:>22}", cell(r)));
+        }
+        out.push('\n');
+    };
+    line("walls completed", &|r| {
+        format!("{} of {}", r.summary.completed, r.summary.runs)
+    });
+    line("makespan (completed)", &|r| {
+        spread_clock(&r.summary.makespan_s)
+    });
+    line("bricks placed, mean", &|r| {
+        format!("{:.2}", r.summary.bricks_placed.mean)
+    });
+    line("reward, mean", &|r| format!("{:.2}", r.summary.reward.mean));
+    if let Some(t) = budget {
+        line(&format!("reward by {t} s, mean"), &|r| {
+            r.reward_by_budget
+                .map_or("-".into(), |s| format!("{:.2}", s.mean))
+        });
+    }
+    line("re-plans per mission", &|r| {
+        format!("{:.2}", r.replans_mean)
+    });
+    out.push_str("every trace checked by mission::check_trace\n");
+    out
 }
 
 /// Exit 1 when the wall was not completed (single run).

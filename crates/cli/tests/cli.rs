@@ -915,3 +915,50 @@ fn simulate_flies_a_schedule() {
         &["--objective"],
     );
 }
+
+#[test]
+fn simulate_compares_static_and_replanned_schedules() {
+    let o = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--objective",
+        "reward",
+        "--budget",
+        "600",
+        "--replan",
+        "--runs",
+        "12",
+        "--uav-hazard",
+        "6",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let rows = v["compare"].as_array().unwrap();
+    assert_eq!(rows[0]["policy"], "static");
+    assert_eq!(rows[1]["policy"], "replanned");
+    assert_eq!(rows[0]["replans_mean"], 0.0);
+    assert!(rows[1]["reward_by_budget"]["mean"].as_f64().is_some());
+    let one = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--objective",
+        "makespan",
+        "--replan",
+        "--uav-fail",
+        "1@100",
+        "--json",
+    ]);
+    let v: Value = serde_json::from_str(&stdout(&one)).unwrap();
+    let kinds: Vec<&str> = v["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["kind"].as_str().unwrap())
+        .collect();
+    assert!(kinds.contains(&"replan"), "{kinds:?}");
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--replan"]),
+        &["--objective"],
+    );
+}

@@ -221,7 +221,7 @@ impl<'w> TraceChecker<'w> {
                     }
                 }
             }
-            EventKind::Fail | EventKind::Comm { .. } => {}
+            EventKind::Fail | EventKind::Comm { .. } | EventKind::Replan { .. } => {}
         }
         Ok(())
     }

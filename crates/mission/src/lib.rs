@@ -14,7 +14,9 @@
 //! let model = mason_order::CostModel::default();
 //! let order: Vec<_> = wall.ids().collect(); // level by level: a valid order
 //! let config = MissionConfig::with_uavs(3);
-//! let input = MissionInput { wall: &wall, order: &order, model: &model, assignment: None, config: &config };
+//! let input = MissionInput {
+//!     wall: &wall, order: &order, model: &model, assignment: None, replanner: None, config: &config,
+//! };
 //! let mut trace = Vec::new();
 //! let result = simulate(input, make_policy(Coord::Comm, 20.0).as_mut(), 7, &mut trace);
 //! assert_eq!(result.status, MissionStatus::Complete);
@@ -33,6 +35,7 @@ pub mod coord;
 pub mod metrics;
 pub mod montecarlo;
 pub mod policy;
+pub mod replan;
 pub mod sim;
 pub mod state;
 pub mod windows;
@@ -42,7 +45,8 @@ pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use config::{ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window};
 pub use coord::{make_policy, slot_length, Coord};
 pub use metrics::Metrics;
-pub use montecarlo::{run_many, summarise, Spread, Summary};
+pub use montecarlo::{reward_by, run_many, summarise, Spread, Summary};
 pub use policy::{Coordination, EntryQuery};
+pub use replan::{Replan, Replanner, ScheduleReplanner};
 pub use sim::{simulate, MissionInput, MissionResult, MissionStatus};
 pub use state::{CommMode, Event, EventKind, Observer, UavState};

@@ -28,6 +28,8 @@ pub struct Metrics {
     pub bricks_lost: usize,
     /// UAVs that failed.
     pub uavs_failed: usize,
+    /// Times the survivors re-planned.
+    pub replans: usize,
 }
 
 /// Builds [`Metrics`] from events.
@@ -56,6 +58,7 @@ impl MetricsObserver {
                 zone_utilisation: 0.0,
                 bricks_lost: 0,
                 uavs_failed: 0,
+                replans: 0,
             },
             rewards,
             state: vec![(UavState::Check, 0.0); uavs],
@@ -119,6 +122,7 @@ impl Observer for MetricsObserver {
                     self.m.zone_busy_s += e.t - self.zone_since;
                 }
             }
+            EventKind::Replan { .. } => self.m.replans += 1,
             EventKind::Grasp { .. } | EventKind::Comm { .. } => {}
         }
     }

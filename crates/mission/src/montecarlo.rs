@@ -73,6 +73,19 @@ pub fn summarise(results: &[MissionResult]) -> Summary {
     }
 }
 
+/// The reward each run had placed by `t` seconds.
+pub fn reward_by(results: &[MissionResult], t: f64) -> Spread {
+    let by = |r: &MissionResult| {
+        r.metrics
+            .reward_over_time
+            .iter()
+            .take_while(|(at, _)| *at <= t)
+            .last()
+            .map_or(0.0, |&(_, reward)| reward)
+    };
+    Spread::of(&results.iter().map(by).collect::<Vec<_>>())
+}
+
 /// Runs seeds `first_seed .. first_seed + runs` in parallel, checking every trace. `progress`
 /// is called once per finished run (from any thread).
 pub fn run_many(

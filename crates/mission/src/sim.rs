@@ -34,6 +34,9 @@ pub struct MissionInput<'a> {
     /// UAV takes the next untaken brick of `order`). A UAV takes its own next brick first and
     /// helps with the rest of `order` when its list is done (a failed teammate's bricks).
     pub assignment: Option<&'a [Vec<BrickId>]>,
+    /// With a schedule: who re-plans the rest when a UAV fails (`None`: the survivors keep
+    /// their lists and help with the orphaned bricks).
+    pub replanner: Option<&'a dyn crate::replan::Replanner>,
     /// Team, arena, UAV model, coordination parameters, faults.
     pub config: &'a MissionConfig,
 }
@@ -77,6 +80,8 @@ struct Uav {
     joined: bool,
     failures: u32,
     alive: bool,
+    /// When the current timed state ends.
+    until: f64,
     token: u64,
 }
 
@@ -129,6 +134,10 @@ struct Sim<'a, 'o> {
     channel: Channel,
     rng: ChaCha8Rng,
     rank: Vec<usize>,
+    /// The shared order (replaced by a replan).
+    order: Vec<BrickId>,
+    /// Each UAV's own bricks under a schedule (replaced by a replan).
+    lists: Option<Vec<Vec<BrickId>>>,
     bricks: Vec<Brick>,
     carriers: Vec<Vec<usize>>,
     placed: usize,
@@ -170,6 +179,8 @@ pub fn simulate(
         channel: Channel::new(&cfg.faults, &cfg.coord),
         rng: ChaCha8Rng::seed_from_u64(seed),
         rank,
+        order: input.order.to_vec(),
+        lists: input.assignment.map(<[Vec<BrickId>]>::to_vec),
         bricks: vec![Brick::Untaken; input.wall.len()],
         carriers: vec![Vec::new(); input.wall.len()],
         placed: 0,
@@ -184,6 +195,7 @@ pub fn simulate(
                 joined: false,
                 failures: 0,
                 alive: true,
+                until: 0.0,
                 token: 0,
             })
             .collect(),
@@ -264,6 +276,9 @@ impl Sim<'_, '_> {
             );
         }
         if let Some(d) = duration {
+            for w in self.team(u) {
+                self.uavs[w].until = self.now + d;
+            }
             let token = self.uavs[u].token;
             self.push(self.now + d, u, token, What::Timer);
         }
@@ -413,23 +428,19 @@ impl Sim<'_, '_> {
             return self.go_land(u, outcome);
         }
         // A scheduled UAV takes its own next brick (joining its pair for an orange).
-        let own = self
-            .input
-            .assignment
-            .and_then(|a| a.get(u))
-            .and_then(|list| {
-                list.iter()
-                    .copied()
-                    .find(|&b| match self.bricks[b.index()] {
-                        Brick::Untaken => true,
-                        Brick::Taken => {
-                            self.kind_of(b).uavs_needed() == 2
-                                && self.carriers[b.index()].len() == 1
-                                && self.carriers[b.index()][0] != u
-                        }
-                        Brick::Placed => false,
-                    })
-            });
+        let own = self.lists.as_ref().and_then(|a| a.get(u)).and_then(|list| {
+            list.iter()
+                .copied()
+                .find(|&b| match self.bricks[b.index()] {
+                    Brick::Untaken => true,
+                    Brick::Taken => {
+                        self.kind_of(b).uavs_needed() == 2
+                            && self.carriers[b.index()].len() == 1
+                            && self.carriers[b.index()][0] != u
+                    }
+                    Brick::Placed => false,
+                })
+        });
         // Not a brick whose support nobody has taken (a failed teammate's): the shared order
         // comes first then.
         let own = own.filter(|&b| {
@@ -442,14 +453,14 @@ impl Sim<'_, '_> {
                     .all(|s| self.bricks[s.index()] != Brick::Untaken)
         });
         // Join an open orange pair first: it was taken earlier in the order.
-        let open = self.input.order.iter().copied().find(|&b| {
+        let open = self.order.iter().copied().find(|&b| {
             self.bricks[b.index()] == Brick::Taken
                 && self.kind_of(b).uavs_needed() == 2
                 && self.carriers[b.index()].len() == 1
         });
         // Under a schedule, an open pair whose scheduled partner is gone goes before one's own.
         let orphan = open.filter(|&b| {
-            self.input.assignment.is_some_and(|a| {
+            self.lists.as_ref().is_some_and(|a| {
                 !a.iter().enumerate().any(|(w, list)| {
                     w != self.carriers[b.index()][0] && self.uavs[w].alive && list.contains(&b)
                 })
@@ -463,7 +474,7 @@ impl Sim<'_, '_> {
             Some(b)
         } else {
             let alone = self.live() < 2;
-            self.input.order.iter().copied().find(|&b| {
+            self.order.iter().copied().find(|&b| {
                 self.bricks[b.index()] == Brick::Untaken
                     && (!alone
                         || (self.kind_of(b).uavs_needed() == 1
@@ -780,8 +791,115 @@ impl Sim<'_, '_> {
         );
         let token = self.uavs[u].token;
         self.push(self.now + cfg.uav.land_s, u, token, What::Timer);
+        if let Some(r) = self.input.replanner {
+            self.replan(r);
+        }
         self.wake_idle();
         self.review();
+    }
+
+    /// Seconds until `b`'s carrier `c` could start placing it, from `c`'s state.
+    fn eta(&self, c: usize, b: BrickId) -> f64 {
+        let cfg = self.input.config;
+        let kind = self.kind_of(b);
+        let left = (self.uavs[c].until - self.now).max(0.0);
+        let grasp = self.input.model.times(kind).grasp;
+        let to_wall = cfg.arena.pile(kind).distance(cfg.arena.wall_wait(c)) / self.speed();
+        let (detect, above) = (cfg.uav.detect_s, cfg.uav.above_s);
+        match self.uavs[c].state {
+            UavState::FlyToPile => left + detect + above + grasp + to_wall,
+            UavState::Detect => left + above + grasp + to_wall,
+            UavState::FlyAbove => left + grasp + to_wall,
+            UavState::Grasp => left + to_wall,
+            UavState::FlyToWallWait => left,
+            _ => 0.0,
+        }
+    }
+
+    /// The survivors plan the rest of the wall from here; their new lists replace the old.
+    fn replan(&mut self, replanner: &dyn crate::replan::Replanner) {
+        use mason_order::team::{Placement, TeamStart};
+        let wall = self.input.wall;
+        let placed: Vec<BrickId> = wall
+            .ids()
+            .filter(|b| self.bricks[b.index()] == Brick::Placed)
+            .collect();
+        let mut committed = Vec::new();
+        for b in wall
+            .ids()
+            .filter(|b| self.bricks[b.index()] == Brick::Taken)
+        {
+            let crew: Vec<usize> = self.carriers[b.index()]
+                .iter()
+                .copied()
+                .filter(|&c| self.uavs[c].alive)
+                .collect();
+            let Some(&first) = crew.first() else { continue };
+            let start_s = if self.uavs[first].state == UavState::EnterAndPlace {
+                // Placing now: it started when the zone time began.
+                self.uavs[first].until - self.now - self.zone_time(b)
+            } else {
+                self.eta(first, b)
+            };
+            committed.push(Placement {
+                brick: b,
+                uavs: crew,
+                start_s,
+            });
+        }
+        let carrying: Vec<bool> = (0..self.uavs.len())
+            .map(|u| committed.iter().any(|c| c.uavs.contains(&u)))
+            .collect();
+        let uav_ready_s = self
+            .uavs
+            .iter()
+            .enumerate()
+            .map(|(u, v)| {
+                let gone = !v.alive || matches!(v.state, UavState::Land | UavState::Landed);
+                match (gone, carrying[u]) {
+                    (true, _) => f64::INFINITY,
+                    (false, true) => 0.0,
+                    (false, false) => (v.until - self.now).max(0.0),
+                }
+            })
+            .collect();
+        let start = TeamStart {
+            placed,
+            committed,
+            uav_ready_s,
+        };
+        let Some(plan) = replanner.replan(wall, start, self.now) else {
+            return;
+        };
+        // The new order of need: bricks on their way first (as they were), then the plan.
+        let mut order: Vec<BrickId> = wall
+            .ids()
+            .filter(|b| self.bricks[b.index()] == Brick::Taken)
+            .collect();
+        order.sort_by_key(|b| self.rank[b.index()]);
+        let mut listed = vec![false; wall.len()];
+        for &b in &order {
+            listed[b.index()] = true;
+        }
+        for &b in plan.order.iter().chain(&self.order) {
+            if !std::mem::replace(&mut listed[b.index()], true) {
+                order.push(b);
+            }
+        }
+        for (i, b) in order.iter().enumerate() {
+            self.rank[b.index()] = i;
+        }
+        self.order = order;
+        let reporter = (0..self.uavs.len())
+            .find(|&u| self.uavs[u].alive)
+            .unwrap_or(0);
+        self.emit(
+            reporter,
+            EventKind::Replan {
+                bricks: plan.order.len() as u32,
+            },
+        );
+        self.lists = Some(plan.lists);
     }
 
     fn safe_landed(&mut self, u: usize) {

@@ -127,6 +127,11 @@ pub enum EventKind {
     ZoneLeave,
     /// The UAV failed and is out.
     Fail,
+    /// The survivors re-planned the rest of the wall (reported by the lowest live UAV).
+    Replan {
+        /// Bricks in the new plan.
+        bricks: u32,
+    },
     /// The UAV switched coordination mode.
     Comm {
         /// The new mode.

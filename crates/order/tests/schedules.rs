@@ -355,3 +355,91 @@ fn rejects_wrong_claims() {
     ));
     validate_schedule_claim(&wall, &m, 3, None, &s, 1.0, 40.0).unwrap();
 }
+
+#[test]
+fn a_plan_from_a_start_state_continues_a_valid_schedule() {
+    use mason_order::team::TeamStart;
+    // MBZIRC wall, cmcp model: the bottom layer's first 10 bricks are on the wall, brick 11 is on
+    // its way with UAV 0 (starting in 20 s), UAV 2 is gone, UAV 1 is free in 30 s.
+    let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+    let m = TeamModel::cmcp();
+    let placed: Vec<BrickId> = (0..10).map(BrickId).collect();
+    let committed = vec![pl(10, &[0], 20.0)];
+    let start = TeamStart {
+        placed: placed.clone(),
+        committed: committed.clone(),
+        uav_ready_s: vec![0.0, 30.0, f64::INFINITY],
+    };
+    let p = TeamProblem::new(&wall, m.clone(), 3, None, Objective::Makespan)
+        .unwrap()
+        .with_start(start)
+        .unwrap();
+    let out = plan_schedule(&p, &Budget::nodes(200), 1);
+    assert!(out.bound.is_nan(), "no bound from a start state");
+    let s = out.schedule.unwrap();
+    assert_eq!(s.placements.len(), wall.len() - placed.len());
+    assert!(s.placements.contains(&committed[0]));
+    for q in &s.placements {
+        assert!(!q.uavs.contains(&2), "the gone UAV is used");
+        if q.uavs.contains(&1) {
+            assert!(q.start_s >= 30.0);
+        }
+    }
+    // Check it with the validator: the placed bricks go first, each by UAVs of its own (two for
+    // an orange), and the plan is shifted to start after them.
+    let shift = 10.0 * 100.0 + 100.0;
+    let mut all: Vec<Placement> = placed
+        .iter()
+        .enumerate()
+        .map(|(i, &b)| {
+            let crew = [3 + 2 * i, 4 + 2 * i];
+            let need = m.of(wall.brick(b).kind).uavs as usize;
+            pl(b.0, &crew[..need], 100.0 * i as f64)
+        })
+        .collect();
+    all.extend(s.placements.iter().map(|q| Placement {
+        start_s: q.start_s + shift,
+        ..q.clone()
+    }));
+    validate_schedule(
+        &wall,
+        &m,
+        3 + 2 * placed.len(),
+        None,
+        &Schedule { placements: all },
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn start_states_that_do_not_fit_are_typed_errors() {
+    use mason_order::team::{TeamProblemError, TeamStart};
+    let (wall, m) = two_layer();
+    let p = || TeamProblem::new(&wall, m.clone(), 3, None, Objective::Makespan).unwrap();
+    let short = TeamStart {
+        uav_ready_s: vec![0.0],
+        ..TeamStart::default()
+    };
+    assert!(matches!(
+        p().with_start(short),
+        Err(TeamProblemError::Start(_))
+    ));
+    let twice = TeamStart {
+        placed: vec![BrickId(0)],
+        committed: vec![pl(0, &[0], 0.0)],
+        uav_ready_s: vec![0.0; 3],
+    };
+    assert!(matches!(
+        p().with_start(twice),
+        Err(TeamProblemError::Start(_))
+    ));
+    let crew = TeamStart {
+        committed: vec![pl(1, &[7], 0.0)],
+        uav_ready_s: vec![0.0; 3],
+        ..TeamStart::default()
+    };
+    assert!(matches!(
+        p().with_start(crew),
+        Err(TeamProblemError::Start(_))
+    ));
+}

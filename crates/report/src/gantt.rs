@@ -211,6 +211,7 @@ mod tests {
             order: &order,
             model: &model,
             assignment: None,
+            replanner: None,
             config: &config,
         };
         let mut trace = Vec::new();

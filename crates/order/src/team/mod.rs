@@ -31,7 +31,7 @@ pub use exhaustive::exhaustive_schedule;
 pub use model::{Concurrency, TeamModel, TeamModelError, TeamModelPatch, TypePatch, TypeSchedule};
 pub use problem::{
     brick_centre, Objective, ObjectiveParseError, Placement, Schedule, TeamOutcome, TeamProblem,
-    TeamProblemError, TeamStats, MAX_UAVS,
+    TeamProblemError, TeamStart, TeamStats, MAX_UAVS,
 };
 pub use search::{plan_schedule, plan_schedule_with};
 pub use validate::{

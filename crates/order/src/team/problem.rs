@@ -91,6 +91,9 @@ pub enum TeamProblemError {
     /// `reward` and `expected` need a budget.
     #[error("objective `{0}` needs a budget (--budget T)")]
     NeedsBudget(&'static str),
+    /// A start state that does not fit the problem.
+    #[error("start state: {0}")]
+    Start(String),
     /// The hazard rate is not a finite number ≥ 0.
     #[error("UAV hazard {0} per hour: expected a finite number ≥ 0")]
     Hazard(f64),
@@ -115,6 +118,21 @@ pub struct TeamProblem<'w> {
     reward: Vec<f64>,
     /// Distance rule: for every brick, the bricks closer than D (sorted).
     conflicts: Vec<Vec<BrickId>>,
+    start: Option<TeamStart>,
+}
+
+/// Where a team stands when it plans again (times relative to now): the bricks already on
+/// the wall, the bricks on their way with their crews and expected starts (they stay as they
+/// are), and when each UAV could start a new brick (∞: the UAV is gone).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TeamStart {
+    /// Bricks on the wall.
+    pub placed: Vec<BrickId>,
+    /// Bricks on their way: crew and expected start of the placing phase (may be < 0 for a
+    /// brick placing now).
+    pub committed: Vec<Placement>,
+    /// Per UAV: the earliest start of a new brick, if it carries none (s from now; ∞: gone).
+    pub uav_ready_s: Vec<f64>,
 }
 
 /// The 3-D centre of a brick (m): footprint middle, layer mid-height.
@@ -223,7 +241,51 @@ impl<'w> TeamProblem<'w> {
             need,
             reward,
             conflicts,
+            start: None,
         })
+    }
+
+    /// The same problem planned from a [`TeamStart`] instead of an empty wall and idle UAVs.
+    /// Its planners report no bound (NaN): the bounds are for whole problems.
+    pub fn with_start(mut self, start: TeamStart) -> Result<Self, TeamProblemError> {
+        let n = self.len();
+        let bad = |m: String| Err(TeamProblemError::Start(m));
+        if start.uav_ready_s.len() != self.uavs {
+            return bad(format!(
+                "{} UAV ready times for {} UAVs",
+                start.uav_ready_s.len(),
+                self.uavs
+            ));
+        }
+        if start.uav_ready_s.iter().any(|t| t.is_nan()) {
+            return bad("a UAV ready time is not a number".into());
+        }
+        let mut seen = vec![false; n];
+        let bricks = start
+            .placed
+            .iter()
+            .chain(start.committed.iter().map(|c| &c.brick));
+        for b in bricks {
+            if b.index() >= n || std::mem::replace(&mut seen[b.index()], true) {
+                return bad(format!(
+                    "brick index {} is out of range or listed twice",
+                    b.0
+                ));
+            }
+        }
+        for c in &start.committed {
+            if !c.start_s.is_finite() || c.uavs.is_empty() || c.uavs.iter().any(|&u| u >= self.uavs)
+            {
+                return bad(format!("brick index {}: bad crew or start", c.brick.0));
+            }
+        }
+        self.start = Some(start);
+        Ok(self)
+    }
+
+    /// The start state, if the problem is planned from one.
+    pub fn start(&self) -> Option<&TeamStart> {
+        self.start.as_ref()
     }
 
     /// The wall.

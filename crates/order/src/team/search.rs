@@ -434,7 +434,12 @@ pub fn plan_schedule_with(
     extra_starts: &[Vec<BrickId>],
 ) -> TeamOutcome {
     let t0 = Instant::now();
-    let reward_bound = p.budget_s().map(|b| (b, reward_upper_bound(p, b)));
+    // Bounds are for whole problems; a replan from a start state reports none.
+    let whole = p.start().is_none();
+    let reward_bound = p
+        .budget_s()
+        .filter(|_| whole)
+        .map(|b| (b, reward_upper_bound(p, b)));
     let mut starts: Vec<Vec<BrickId>> = extra_starts.to_vec();
     if let Some((b, rb)) = &reward_bound {
         starts.push(knapsack_list(p, *b, rb));
@@ -444,6 +449,7 @@ pub fn plan_schedule_with(
     // Only the makespan objective stops at its bound: under a budget, reaching the reward
     // bound still leaves the makespan to shorten.
     let (bound, target) = match (p.objective(), &reward_bound) {
+        _ if !whole => (f64::NAN, None),
         (Objective::Makespan, _) => {
             let lb = makespan_lower_bound(p);
             (lb, Some(lb))

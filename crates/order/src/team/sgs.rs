@@ -56,7 +56,7 @@ pub struct Decoder<'a, 'w> {
     active: Vec<f64>,
     start: Vec<f64>,
     crew: Vec<[u32; 2]>,
-    /// 0: not yet taken; 1: placed; 2: left out.
+    /// 0: not yet taken; 1: placed; 2: left out; 3: on the wall before planning began.
     state: Vec<u8>,
     /// Supports not yet taken, per brick.
     waiting_on: Vec<u32>,
@@ -118,6 +118,36 @@ impl<'a, 'w> Decoder<'a, 'w> {
             sum_end_s: 0.0,
             placed: 0,
         };
+        if let Some(st) = self.p.start() {
+            for &b in &st.placed {
+                self.state[b.index()] = 3;
+                self.start[b.index()] = f64::NEG_INFINITY;
+                self.release(b);
+            }
+            for (u, &t) in st.uav_ready_s.iter().enumerate() {
+                self.alive[u] = t.is_finite();
+                self.free[u] = t.max(0.0);
+            }
+            for pl in &st.committed {
+                self.keep(pl);
+            }
+        }
+    }
+
+    /// Placed in this decode, or before planning began.
+    fn on_wall(&self, b: BrickId) -> bool {
+        matches!(self.state[b.index()], 1 | 3)
+    }
+
+    /// Fixes one placement: its crew is busy until the end of its cycle.
+    fn keep(&mut self, pl: &Placement) {
+        let mut crew = [u32::MAX; 2];
+        for (k, &u) in pl.uavs.iter().take(2).enumerate() {
+            crew[k] = u as u32;
+            let ready = pl.start_s + self.p.place_s(pl.brick) + self.p.rest_s(pl.brick);
+            self.free[u] = self.free[u].max(ready);
+        }
+        self.commit(pl.brick, pl.start_s, crew);
     }
 
     /// Decodes a whole priority list (a permutation of the bricks, or a part of it; bricks not
@@ -137,16 +167,14 @@ impl<'a, 'w> Decoder<'a, 'w> {
         list: &[BrickId],
     ) -> Decoded {
         self.reset();
-        self.alive.copy_from_slice(alive);
+        for (a, &b) in self.alive.iter_mut().zip(alive) {
+            *a &= b;
+        }
         self.floor = floor;
         for pl in kept {
-            let mut crew = [u32::MAX; 2];
-            for (k, &u) in pl.uavs.iter().take(2).enumerate() {
-                crew[k] = u as u32;
-                let ready = pl.start_s + self.p.place_s(pl.brick) + self.p.rest_s(pl.brick);
-                self.free[u] = self.free[u].max(ready);
+            if self.state[pl.brick.index()] == 0 {
+                self.keep(pl);
             }
-            self.commit(pl.brick, pl.start_s, crew);
         }
         self.run(list)
     }
@@ -178,7 +206,7 @@ impl<'a, 'w> Decoder<'a, 'w> {
         }
         let mut ready: f64 = 0.0;
         for s in self.p.wall().supports(c) {
-            if self.state[s.index()] == 1 {
+            if self.on_wall(*s) {
                 ready = ready.max(self.start[s.index()] + self.p.place_s(*s));
             } else {
                 ready = f64::INFINITY;
@@ -371,7 +399,7 @@ impl<'a, 'w> Decoder<'a, 'w> {
         let mut lb = self.floor;
         let mut possible = true;
         for s in wall.supports(b) {
-            if self.state[s.index()] != 1 {
+            if !self.on_wall(*s) {
                 possible = false;
                 break;
             }
