@@ -123,14 +123,15 @@ enum Command {
     Bench {
         /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time), paper (the
         /// crew paper's Table 2 setting and the MovingAI warehouse), thesis-mission (Table 5.1
-        /// setting), missions (simulator throughput) or cmcp (team schedules on the CMCP walls
-        /// beside GRASP)
+        /// setting), missions (simulator throughput), cmcp (team schedules on the CMCP walls
+        /// beside GRASP) or replan (static against re-planned schedules under UAV failures)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
         time_limit: f64,
         /// Repetitions: per wall (planning), instances per row (paper), Monte Carlo runs
-        /// (thesis-mission, at least 100), thousands of missions per row (missions)
+        /// (thesis-mission, at least 100), thousands of missions per row (missions), fifties of
+        /// missions per policy (replan: 20 → 1000)
         #[arg(long, default_value_t = 20)]
         runs: usize,
         /// cmcp: the benchmark directory holding config/ and GRASP-RESULTS.md (default
@@ -390,9 +391,10 @@ fn run(cli: Cli) -> CliResult<()> {
                 "thesis-mission" => mission_bench::thesis_mission(runs.max(100))?,
                 "missions" => mission_bench::throughput(runs)?,
                 "cmcp" => cmcp_bench::cmcp(data.as_deref(), None)?,
+                "replan" => mission_bench::replan(runs.max(1) * 50)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions or cmcp"
+                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions, cmcp or replan"
                     )))
                 }
             };
@@ -551,29 +553,17 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
             time_limit: None,
         };
         let req = args.resolve()?;
-        let team = mason_order::team::TeamModel::from_cost_model(&model);
+        let flight = schedule_cmd::flight_plan(&wall, &model, &req, &order)?;
         if a.replan {
             replanner = Some(mason_mission::ScheduleReplanner::new(
-                team.clone(),
+                flight.team,
                 req.objective,
                 req.budget_s,
                 a.seed,
             ));
         }
-        let tp = schedule_cmd::problem(&wall, team, &req)?;
-        let scheduled = schedule_cmd::solve(&tp, &req)?;
-        let s = scheduled.outcome.schedule.clone().unwrap_or_default();
-        // The shared order: scheduled bricks by start, then the rest (after the budget) as the
-        // build order has them, so that the mission still finishes the wall.
-        let mut listed = vec![false; wall.len()];
-        let mut by_start: Vec<mason_wall::BrickId> = Vec::new();
-        for pl in &s.placements {
-            listed[pl.brick.index()] = true;
-            by_start.push(pl.brick);
-        }
-        by_start.extend(order.iter().copied().filter(|b| !listed[b.index()]));
-        order = by_start;
-        assignment = Some(s.by_uav(a.uavs));
+        order = flight.order;
+        assignment = Some(flight.lists);
     } else if a.budget.is_some() {
         return Err(input_error(
             "--budget belongs to --objective reward|expected",

@@ -117,3 +117,99 @@ pub fn throughput(runs: usize) -> CliResult<String> {
     }
     Ok(text)
 }
+
+/// A replanner that records how long each replan took.
+struct Timed<'a> {
+    inner: &'a mason_mission::ScheduleReplanner,
+    ms: std::sync::Mutex<Vec<f64>>,
+}
+
+impl mason_mission::Replanner for Timed<'_> {
+    fn replan(
+        &self,
+        wall: &mason_wall::Wall,
+        start: mason_order::team::TeamStart,
+        now: f64,
+    ) -> Option<mason_mission::Replan> {
+        let t0 = Instant::now();
+        let r = self.inner.replan(wall, start, now);
+        let ms = t0.elapsed().as_secs_f64() * 1e3;
+        self.ms.lock().expect("not poisoned").push(ms);
+        r
+    }
+}
+
+/// `bench replan`: static against re-planned team schedules on the MBZIRC wall, 3 UAVs, each
+/// failing at 2 per hour, `runs` missions per row on seeds 0.., and how long the replans took.
+pub fn replan(runs: usize) -> CliResult<String> {
+    use crate::schedule_cmd::{flight_plan, ScheduleRequest};
+    use crate::sim_cmd::{policy_table, PolicyRow};
+    use mason_order::team::Objective;
+    if runs == 0 {
+        return Err(input_error("--runs must be at least 1"));
+    }
+    let wall = mason_wall::builtin("mbzirc").expect("built-in").wall();
+    let model = CostModel::default();
+    let mut config = MissionConfig::with_uavs(3);
+    config.faults.uav_hazard = 2.0;
+    let slot = prepare(&wall, &model, &config)?;
+    let base: Vec<_> = wall.ids().collect();
+    let mut text = format!(
+        "Re-planning: the MBZIRC wall ({} bricks), 3 UAVs failing at 2 per hour each, comm, {runs}\n\
+         missions per policy on seeds 0..{}. Static: each UAV flies its list and helps with the\n\
+         orphaned bricks; re-planned: the survivors re-plan at every failure.\n",
+        wall.len(),
+        runs - 1
+    );
+    for (objective, budget) in [
+        (Objective::Makespan, None),
+        (Objective::Reward, Some(1500.0)),
+    ] {
+        let req = ScheduleRequest {
+            objective,
+            uavs: 3,
+            budget_s: budget,
+            time_limit: None,
+            seed: 0,
+        };
+        let flight = flight_plan(&wall, &model, &req, &base)?;
+        let planner =
+            mason_mission::ScheduleReplanner::new(flight.team.clone(), objective, budget, 0);
+        let timed = Timed {
+            inner: &planner,
+            ms: std::sync::Mutex::new(Vec::new()),
+        };
+        let input = MissionInput {
+            wall: &wall,
+            order: &flight.order,
+            model: &model,
+            assignment: Some(&flight.lists),
+            replanner: None,
+            config: &config,
+        };
+        let fixed = fly_many(input, Coord::Comm, slot, 0, runs, &|| {})?;
+        let with = MissionInput {
+            replanner: Some(&timed),
+            ..input
+        };
+        let replanned = fly_many(with, Coord::Comm, slot, 0, runs, &|| {})?;
+        let rows = [
+            PolicyRow::of("static", &fixed, budget),
+            PolicyRow::of("replanned", &replanned, budget),
+        ];
+        let ms = timed.ms.into_inner().expect("not poisoned");
+        let spread = mason_mission::Spread::of(&ms);
+        let max = ms.iter().copied().fold(0.0, f64::max);
+        text.push_str(&format!(
+            "\n{} schedule{}\n{}replan time over {} replans: mean {:.2} ms, p95 {:.2} ms, max {:.2} ms (deadline 100 ms)\n",
+            objective,
+            budget.map_or(String::new(), |t| format!(", budget {t} s")),
+            policy_table(&rows, budget),
+            ms.len(),
+            spread.mean,
+            spread.p95,
+            max
+        ));
+    }
+    Ok(text)
+}

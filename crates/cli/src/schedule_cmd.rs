@@ -7,7 +7,8 @@ use mason_order::team::{
     TeamModelPatch, TeamOutcome, TeamProblem,
 };
 use mason_order::Budget;
-use mason_wall::Wall;
+use mason_order::CostModel;
+use mason_wall::{BrickId, Wall};
 use serde_json::{json, Value};
 use std::path::Path;
 use std::time::Duration;
@@ -215,4 +216,39 @@ pub fn schedule_table(p: &TeamProblem<'_>, c: &CheckedSchedule) -> String {
         summary_line(p, o)
     ));
     out
+}
+
+/// What a mission flies from a team schedule.
+pub struct FlightPlan {
+    /// The thesis team model of the cost model's times (the simulator's timings).
+    pub team: TeamModel,
+    /// The shared order: scheduled bricks by start, then the rest as `base` has them.
+    pub order: Vec<BrickId>,
+    /// Each UAV's bricks in the order it places them.
+    pub lists: Vec<Vec<BrickId>>,
+}
+
+/// Plans (and validates) the schedule a mission flies. Bricks the schedule leaves out (after
+/// the budget) follow in `base`'s order, so that the mission can still finish the wall.
+pub fn flight_plan(
+    wall: &Wall,
+    cost: &CostModel,
+    req: &ScheduleRequest,
+    base: &[BrickId],
+) -> CliResult<FlightPlan> {
+    let team = TeamModel::from_cost_model(cost);
+    let p = problem(wall, team.clone(), req)?;
+    let s = solve(&p, req)?.outcome.schedule.unwrap_or_default();
+    let mut listed = vec![false; wall.len()];
+    let mut order: Vec<BrickId> = Vec::with_capacity(wall.len());
+    for pl in &s.placements {
+        listed[pl.brick.index()] = true;
+        order.push(pl.brick);
+    }
+    order.extend(base.iter().copied().filter(|b| !listed[b.index()]));
+    Ok(FlightPlan {
+        team,
+        order,
+        lists: s.by_uav(req.uavs),
+    })
 }
