@@ -598,6 +598,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     };
     if a.runs == 1 {
         let (r, trace) = sim_cmd::fly_once(input, coord, slot, a.seed)?;
+        sim_cmd::check_replans(replanner.as_ref())?;
         let title = format!(
             "{} — {} UAVs, {}, seed {}",
             wall.name(),
@@ -646,7 +647,8 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         return sim_cmd::exit_for(&r);
     }
     if input.replanner.is_some() {
-        return compare_replanning(&a, input, coord, slot, quiet);
+        compare_replanning(&a, input, coord, slot, quiet)?;
+        return sim_cmd::check_replans(replanner.as_ref());
     }
     let pb = progress::bar(a.runs as u64, "simulating", !quiet && !a.json);
     let results = sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?;

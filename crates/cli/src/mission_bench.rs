@@ -198,10 +198,16 @@ pub fn replan(runs: usize) -> CliResult<String> {
             PolicyRow::of("replanned", &replanned, budget),
         ];
         let ms = timed.ms.into_inner().expect("not poisoned");
+        let rejected = planner.rejected.load(std::sync::atomic::Ordering::Relaxed);
+        if rejected > 0 {
+            return Err(input_error(format!(
+                "internal error: {rejected} replans failed order::team::validate_continuation"
+            )));
+        }
         let spread = mason_mission::Spread::of(&ms);
         let max = ms.iter().copied().fold(0.0, f64::max);
         text.push_str(&format!(
-            "\n{} schedule{}\n{}replan time over {} replans: mean {:.2} ms, p95 {:.2} ms, max {:.2} ms (deadline 100 ms)\n",
+            "\n{} schedule{}\n{}replan time over {} replans (each checked by order::team::validate_continuation): mean {:.2} ms, p95 {:.2} ms, max {:.2} ms (deadline 100 ms)\n",
             objective,
             budget.map_or(String::new(), |t| format!(", budget {t} s")),
             policy_table(&rows, budget),

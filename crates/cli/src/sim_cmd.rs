@@ -291,6 +291,16 @@ pub fn summary_table(s: &Summary) -> String {
     )
 }
 
+/// A replan that failed `order::team::validate_continuation` is a bug: reported, exit 2.
+pub fn check_replans(r: Option<&mason_mission::ScheduleReplanner>) -> CliResult<()> {
+    match r.map(|r| r.rejected.load(std::sync::atomic::Ordering::Relaxed)) {
+        Some(n) if n > 0 => Err(input_error(format!(
+            "internal error: {n} replans failed order::team::validate_continuation"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// One policy's Monte Carlo figures in a static-vs-replanned comparison.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct PolicyRow {

@@ -7,11 +7,16 @@
 //! idle UAV could start fetching (∞ for a UAV that is down or landing). A [`Replanner`] turns
 //! it into new per-UAV brick lists and a new shared order. [`ScheduleReplanner`] uses the team
 //! schedule planner with a small decode cap and a 100 ms deadline, so a replan is
-//! deterministic for a seed unless the deadline stops it.
+//! deterministic for a seed unless the deadline stops it; every replan is checked by
+//! `order::team::validate_continuation` before it is flown (a rejected one is counted and the
+//! UAVs keep their lists).
 
-use mason_order::team::{plan_schedule, Objective, TeamModel, TeamProblem, TeamStart};
+use mason_order::team::{
+    plan_schedule, validate_continuation, Objective, TeamModel, TeamProblem, TeamStart,
+};
 use mason_order::Budget;
 use mason_wall::{BrickId, Wall};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 /// New lists after a replan.
@@ -30,7 +35,7 @@ pub trait Replanner: Sync {
 }
 
 /// The team schedule planner as a [`Replanner`].
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct ScheduleReplanner {
     /// The team model the schedule was planned with.
     pub model: TeamModel,
@@ -44,6 +49,8 @@ pub struct ScheduleReplanner {
     pub time_limit: Duration,
     /// Seed of the planner.
     pub seed: u64,
+    /// Replans the validator refused (a planner bug if ever above 0).
+    pub rejected: AtomicU64,
 }
 
 impl ScheduleReplanner {
@@ -56,6 +63,7 @@ impl ScheduleReplanner {
             decodes: 300,
             time_limit: Duration::from_millis(100),
             seed,
+            rejected: AtomicU64::new(0),
         }
     }
 }
@@ -88,6 +96,11 @@ impl Replanner for ScheduleReplanner {
         };
         let out = plan_schedule(&p, &limit, self.seed);
         let s = out.schedule?;
+        let start = p.start().expect("set above");
+        if validate_continuation(wall, p.model(), uavs, budget, start, &s).is_err() {
+            self.rejected.fetch_add(1, Ordering::Relaxed);
+            return None;
+        }
         Some(Replan {
             lists: s.by_uav(uavs),
             order: s.placements.iter().map(|pl| pl.brick).collect(),

@@ -824,17 +824,29 @@ impl Sim<'_, '_> {
             .ids()
             .filter(|b| self.bricks[b.index()] == Brick::Placed)
             .collect();
-        let mut committed = Vec::new();
-        for b in wall
+        // Bricks on their way, supports first; one whose support is neither placed nor on
+        // its way is left to its carrier and out of the plan.
+        let mut on_way = vec![false; wall.len()];
+        let mut taken: Vec<BrickId> = wall
             .ids()
             .filter(|b| self.bricks[b.index()] == Brick::Taken)
-        {
+            .collect();
+        taken.sort_by_key(|b| (wall.brick(*b).level, b.index()));
+        let mut committed = Vec::new();
+        for b in taken {
             let crew: Vec<usize> = self.carriers[b.index()]
                 .iter()
                 .copied()
                 .filter(|&c| self.uavs[c].alive)
                 .collect();
-            let Some(&first) = crew.first() else { continue };
+            let supported = wall
+                .supports(b)
+                .iter()
+                .all(|s| self.bricks[s.index()] == Brick::Placed || on_way[s.index()]);
+            let Some(&first) = crew.first().filter(|_| supported) else {
+                continue;
+            };
+            on_way[b.index()] = true;
             let start_s = if self.uavs[first].state == UavState::EnterAndPlace {
                 // Placing now: it started when the zone time began.
                 self.uavs[first].until - self.now - self.zone_time(b)

@@ -292,6 +292,7 @@ fn schedule_lists(
     (team, order, s.by_uav(3))
 }
 
+/// Flies the MBZIRC makespan schedule; every replan must pass `validate_continuation`.
 fn fly_schedule(
     w: &Wall,
     config: &MissionConfig,
@@ -327,6 +328,11 @@ fn fly_schedule(
     );
     let summary = check_trace(w, config.uavs, &trace);
     assert!(summary.is_ok(), "seed {seed}: {summary:?}");
+    assert_eq!(
+        replanner.rejected.into_inner(),
+        0,
+        "seed {seed}: a replan failed validation"
+    );
     (r, trace)
 }
 

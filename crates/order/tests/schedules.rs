@@ -134,6 +134,54 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 80, ..ProptestConfig::default() })]
+
+    /// Plans from random start states (a prefix of the wall placed, the next bricks on their
+    /// way with random crews and starts, random UAV ready times, maybe a UAV gone) pass
+    /// `validate_continuation`.
+    #[test]
+    fn plans_from_start_states_pass_validate_continuation(seed in any::<u64>()) {
+        use mason_order::team::{validate_continuation, TeamStart};
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let wall = random_wall(&mut rng, 30, 4);
+        let model = random_model(&mut rng);
+        let uavs = rng.gen_range(2..5);
+        let mut by_level: Vec<BrickId> = wall.ids().collect();
+        by_level.sort_by_key(|b| (wall.brick(*b).level, b.0));
+        let k = rng.gen_range(0..wall.len());
+        let placed = by_level[..k].to_vec();
+        let mut ready: Vec<f64> = (0..uavs).map(|_| f64::from(rng.gen_range(0..100))).collect();
+        let gone = rng.gen_bool(0.3).then(|| rng.gen_range(0..uavs));
+        let mut committed = Vec::new();
+        let mut busy = vec![false; uavs];
+        for &b in &by_level[k..(k + rng.gen_range(0..3)).min(wall.len())] {
+            let need = model.of(wall.brick(b).kind).uavs as usize;
+            let crew: Vec<usize> = (0..uavs).filter(|&u| !busy[u] && Some(u) != gone).take(need).collect();
+            if crew.len() < need {
+                break;
+            }
+            for &u in &crew {
+                busy[u] = true;
+                ready[u] = 0.0;
+            }
+            committed.push(Placement { brick: b, uavs: crew, start_s: f64::from(rng.gen_range(-20..60)) });
+        }
+        if let Some(g) = gone {
+            ready[g] = f64::INFINITY;
+        }
+        let (objective, budget) = random_objective(&mut rng, &wall);
+        let p = TeamProblem::new(&wall, model, uavs, budget, objective).unwrap();
+        let start = TeamStart { placed, committed, uav_ready_s: ready };
+        let p = p.with_start(start).unwrap();
+        let out = plan_schedule(&p, &Budget::nodes(40), seed);
+        let s = out.schedule.unwrap();
+        let eval = validate_continuation(&wall, p.model(), uavs, budget, p.start().unwrap(), &s)
+            .unwrap_or_else(|e| panic!("{e}"));
+        prop_assert!((eval.reward - out.reward).abs() < 1e-6, "{} vs {}", eval.reward, out.reward);
+    }
+}
+
 #[test]
 fn same_seed_same_schedule() {
     let wall = mason_wall::builtin("mbzirc").unwrap().wall();
@@ -377,6 +425,8 @@ fn a_plan_from_a_start_state_continues_a_valid_schedule() {
     let out = plan_schedule(&p, &Budget::nodes(200), 1);
     assert!(out.bound.is_nan(), "no bound from a start state");
     let s = out.schedule.unwrap();
+    mason_order::team::validate_continuation(&wall, &m, 3, None, p.start().unwrap(), &s)
+        .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.placements.len(), wall.len() - placed.len());
     assert!(s.placements.contains(&committed[0]));
     for q in &s.placements {
@@ -442,4 +492,47 @@ fn start_states_that_do_not_fit_are_typed_errors() {
         p().with_start(crew),
         Err(TeamProblemError::Start(_))
     ));
+}
+
+#[test]
+fn validate_continuation_checks_the_start_state() {
+    use mason_order::team::{validate_continuation, TeamStart};
+    // 101 is on the wall, 102 on its way with UAV 0 from 10 s; UAV 1 ready at 30 s; UAV 2 gone.
+    let (wall, m) = two_layer();
+    let start = TeamStart {
+        placed: vec![BrickId(0)],
+        committed: vec![pl(1, &[0], 10.0)],
+        uav_ready_s: vec![0.0, 30.0, f64::INFINITY],
+    };
+    let check = |ps: Vec<Placement>| {
+        validate_continuation(&wall, &m, 3, None, &start, &Schedule { placements: ps })
+    };
+    let e = check(vec![pl(1, &[0], 10.0), pl(2, &[1], 50.0)]).unwrap();
+    assert_eq!((e.bricks, e.reward), (2, 3.0));
+    // Later than its earliest start is fine; earlier, dropped or with another crew is not.
+    check(vec![pl(1, &[0], 12.0), pl(2, &[1], 52.0)]).unwrap();
+    for bad in [
+        vec![pl(1, &[0], 5.0), pl(2, &[1], 50.0)],
+        vec![pl(2, &[1], 50.0)],
+        vec![pl(1, &[1], 10.0), pl(2, &[0], 50.0)],
+    ] {
+        assert!(matches!(check(bad), Err(ScheduleError::Committed(102))));
+    }
+    // A UAV before it is ready, or a gone UAV.
+    let r = check(vec![pl(1, &[0], 10.0), pl(2, &[1], 25.0)]);
+    assert!(
+        matches!(r, Err(ScheduleError::NotReady { uav: 1, .. })),
+        "{r:?}"
+    );
+    let r = check(vec![pl(1, &[0], 10.0), pl(2, &[2], 50.0)]);
+    assert!(
+        matches!(r, Err(ScheduleError::NotReady { uav: 2, .. })),
+        "{r:?}"
+    );
+    // The brick on the wall placed again.
+    let r = check(vec![pl(0, &[1], 40.0), pl(1, &[0], 10.0)]);
+    assert!(matches!(r, Err(ScheduleError::Twice(101))), "{r:?}");
+    // Precedence still holds against the brick on its way: 201 needs 102 placed (10 + 40 s).
+    let r = check(vec![pl(1, &[0], 10.0), pl(2, &[1], 40.0)]);
+    assert!(matches!(r, Err(ScheduleError::Precedence { .. })), "{r:?}");
 }

@@ -35,5 +35,6 @@ pub use problem::{
 };
 pub use search::{plan_schedule, plan_schedule_with};
 pub use validate::{
-    validate_schedule, validate_schedule_claim, ScheduleError, ScheduleEvaluation, TIME_EPS,
+    validate_continuation, validate_schedule, validate_schedule_claim, ScheduleError,
+    ScheduleEvaluation, TIME_EPS,
 };

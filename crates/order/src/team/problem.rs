@@ -122,14 +122,15 @@ pub struct TeamProblem<'w> {
 }
 
 /// Where a team stands when it plans again (times relative to now): the bricks already on
-/// the wall, the bricks on their way with their crews and expected starts (they stay as they
-/// are), and when each UAV could start a new brick (∞: the UAV is gone).
+/// the wall, the bricks on their way with their crews and earliest starts (they keep their
+/// crews and start as early as the rules allow from then on), and when each UAV could start
+/// a new brick (∞: the UAV is gone).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TeamStart {
     /// Bricks on the wall.
     pub placed: Vec<BrickId>,
-    /// Bricks on their way: crew and expected start of the placing phase (may be < 0 for a
-    /// brick placing now).
+    /// Bricks on their way: crew and the earliest start of the placing phase (< 0 for a brick
+    /// placing now). Every support of each must be placed or on its way.
     pub committed: Vec<Placement>,
     /// Per UAV: the earliest start of a new brick, if it carries none (s from now; ∞: gone).
     pub uav_ready_s: Vec<f64>,

@@ -128,9 +128,37 @@ impl<'a, 'w> Decoder<'a, 'w> {
                 self.alive[u] = t.is_finite();
                 self.free[u] = t.max(0.0);
             }
-            for pl in &st.committed {
-                self.keep(pl);
+            self.place_committed(&st.committed);
+        }
+    }
+
+    /// Bricks on their way keep their crews; each starts at the earliest time from its given
+    /// start on at which its supports are placed, its crew is free and nothing conflicts, taken
+    /// in order of those starts (a brick waits for a support that comes later).
+    fn place_committed(&mut self, committed: &[Placement]) {
+        let mut pending: Vec<&Placement> = committed.iter().collect();
+        pending.sort_by(|a, b| a.start_s.total_cmp(&b.start_s).then(a.brick.cmp(&b.brick)));
+        while !pending.is_empty() {
+            let ready = |d: &Self, pl: &Placement| {
+                d.p.wall().supports(pl.brick).iter().all(|s| d.on_wall(*s))
+            };
+            // A support neither placed nor on its way is the caller's error: place anyway.
+            let k = pending.iter().position(|pl| ready(self, pl)).unwrap_or(0);
+            let pl = pending.remove(k);
+            let mut t = pl.start_s;
+            for s in self.p.wall().supports(pl.brick) {
+                if self.on_wall(*s) {
+                    t = t.max(self.start[s.index()] + self.p.place_s(*s));
+                }
             }
+            for &u in &pl.uavs {
+                t = t.max(self.free[u]);
+            }
+            let t = self.conflict_free(pl.brick, t);
+            self.keep(&Placement {
+                start_s: t,
+                ..pl.clone()
+            });
         }
     }
 
@@ -438,7 +466,10 @@ impl<'a, 'w> Decoder<'a, 'w> {
             let k = self.zone.partition_point(|&(s, _)| s < t);
             self.zone.insert(k, (t, end));
         }
-        self.result.reward += self.p.reward(b);
+        // A brick on its way may end after the budget: flown, but it earns nothing.
+        if self.p.budget_s().is_none_or(|t| end <= t + EPS) {
+            self.result.reward += self.p.reward(b);
+        }
         self.result.makespan_s = self.result.makespan_s.max(end);
         self.result.sum_end_s += end;
         self.result.placed += 1;

@@ -3,7 +3,7 @@
 //! canonical precedence, centres from the footprints, every time from the placements.
 
 use super::model::{Concurrency, TeamModel};
-use super::problem::Schedule;
+use super::problem::{Schedule, TeamStart};
 use mason_wall::{BrickId, Wall, BRICK_HEIGHT};
 use thiserror::Error;
 
@@ -98,6 +98,25 @@ pub enum ScheduleError {
         /// The budget.
         budget: f64,
     },
+    /// A replan moves a UAV before it is ready, or uses one that is gone (ready at ∞).
+    #[error(
+        "UAV {uav}: brick {brick} starts at {start_s} s, but the UAV is ready only at {ready_s} s"
+    )]
+    NotReady {
+        /// The UAV.
+        uav: usize,
+        /// The brick.
+        brick: u32,
+        /// Its start.
+        start_s: f64,
+        /// When the UAV is ready.
+        ready_s: f64,
+    },
+    /// A replan drops a brick that was on its way, changes its crew, or starts it too early.
+    #[error(
+        "brick {0} was on its way but the replan drops it, changes its crew or starts it too early"
+    )]
+    Committed(u32),
     /// The reported reward or makespan is not what the schedule gives.
     #[error("reported {what} {claimed} but the schedule gives {actual}")]
     Claim {
@@ -129,9 +148,52 @@ pub fn validate_schedule(
     budget_s: Option<f64>,
     schedule: &Schedule,
 ) -> Result<ScheduleEvaluation, ScheduleError> {
+    check(wall, model, uavs, budget_s, schedule, None)
+}
+
+/// Checks a schedule planned from a [`TeamStart`] (a replan; times from then): the same rules,
+/// with the bricks already on the wall counting as placed long before, the bricks on their way
+/// kept with their crews and no earlier than given (they may start before 0, and a half-carried
+/// orange may have one UAV),
+/// no new brick for a UAV before it is ready, and none for a UAV that is gone; a brick on its
+/// way may end after the budget (it earns nothing). The reward and makespan are those of the
+/// new part.
+pub fn validate_continuation(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    start: &TeamStart,
+    schedule: &Schedule,
+) -> Result<ScheduleEvaluation, ScheduleError> {
+    for c in &start.committed {
+        let kept = schedule
+            .placements
+            .iter()
+            .any(|p| p.brick == c.brick && p.uavs == c.uavs && p.start_s >= c.start_s - TIME_EPS);
+        if !kept {
+            return Err(ScheduleError::Committed(wall.brick(c.brick).label));
+        }
+    }
+    check(wall, model, uavs, budget_s, schedule, Some(start))
+}
+
+fn check(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    schedule: &Schedule,
+    before: Option<&TeamStart>,
+) -> Result<ScheduleEvaluation, ScheduleError> {
     let n = wall.len();
     let label = |i: usize| wall.bricks()[i].label;
     let mut start: Vec<Option<f64>> = vec![None; n];
+    for b in before.iter().flat_map(|st| &st.placed) {
+        if let Some(s) = start.get_mut(b.index()) {
+            *s = Some(f64::NEG_INFINITY);
+        }
+    }
     let mut per_uav: Vec<Vec<(f64, usize)>> = vec![Vec::new(); uavs];
     for (index, p) in schedule.placements.iter().enumerate() {
         let i = p.brick.index();
@@ -144,12 +206,18 @@ pub fn validate_schedule(
         if start[i].is_some() {
             return Err(ScheduleError::Twice(label(i)));
         }
+        let committed = before.is_some_and(|st| {
+            st.committed
+                .iter()
+                .any(|c| c.brick == p.brick && c.uavs == p.uavs)
+        });
         let needed = model.of(wall.bricks()[i].kind).uavs;
         let mut crew = p.uavs.clone();
         crew.sort_unstable();
         crew.dedup();
         if crew.len() != p.uavs.len()
-            || crew.len() != needed as usize
+            || (crew.len() != needed as usize && !committed)
+            || crew.is_empty()
             || crew.iter().any(|&u| u >= uavs)
         {
             return Err(ScheduleError::Crew {
@@ -159,11 +227,24 @@ pub fn validate_schedule(
                 team: uavs,
             });
         }
-        if !(p.start_s.is_finite() && p.start_s >= 0.0) {
+        if !(p.start_s.is_finite() && (p.start_s >= 0.0 || committed)) {
             return Err(ScheduleError::Start {
                 brick: label(i),
                 start_s: p.start_s,
             });
+        }
+        if let (Some(st), false) = (before, committed) {
+            for &u in &crew {
+                let ready = st.uav_ready_s.get(u).copied().unwrap_or(f64::INFINITY);
+                if p.start_s < ready - TIME_EPS {
+                    return Err(ScheduleError::NotReady {
+                        uav: u,
+                        brick: label(i),
+                        start_s: p.start_s,
+                        ready_s: ready,
+                    });
+                }
+            }
         }
         start[i] = Some(p.start_s);
         for &u in &crew {
@@ -209,6 +290,7 @@ pub fn validate_schedule(
     // Concurrency: sweep the placing phases in start order against those still running.
     let mut phases: Vec<(f64, f64, usize)> = (0..n)
         .filter_map(|i| Some((start[i]?, end(i)?, i)))
+        .filter(|&(s, _, _)| s.is_finite())
         .collect();
     phases.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.2.cmp(&b.2)));
     let centre = |i: usize| {
@@ -255,8 +337,15 @@ pub fn validate_schedule(
         reward: 0.0,
         makespan_s: 0.0,
     };
+    let on_its_way =
+        |i: usize| before.is_some_and(|st| st.committed.iter().any(|c| c.brick.index() == i));
     for &(_, e, i) in &phases {
         if let Some(t) = budget_s {
+            if e > t + TIME_EPS && on_its_way(i) {
+                // Flown, but it earns nothing.
+                eval.makespan_s = eval.makespan_s.max(e);
+                continue;
+            }
             if e > t + TIME_EPS {
                 return Err(ScheduleError::Budget {
                     brick: label(i),
