@@ -53,6 +53,14 @@ pub struct TeamModel {
     pub concurrency: Concurrency,
 }
 
+/// The longest placing phase or rest a model may set (s).
+pub const MAX_SECONDS: f64 = 1e7;
+/// The largest reward a model may set.
+pub const MAX_REWARD: f64 = 1e9;
+/// The largest concurrency distance (m): beyond it the conflict lists grow with the square of
+/// the wall, and the zone rule says the same thing.
+pub const MAX_DISTANCE_M: f64 = 10.0;
+
 /// Flying into and out of the wall zone (s) in the simulator's UAV model, duplicated here because `order` sits
 /// below `mission`; a mission test checks the two agree.
 pub const THESIS_ZONE_TRANSIT_S: f64 = 2.0;
@@ -116,8 +124,8 @@ impl TeamModel {
         &self.types[kind.index()]
     }
 
-    /// Checks every parameter: finite, times ≥ 0 with a positive cycle, 1–2 UAVs per brick,
-    /// rewards ≥ 0, a positive finite distance.
+    /// Checks every parameter: placing in (0, 10⁷] s, rest in [0, 10⁷] s, 1–2 UAVs per brick,
+    /// rewards in [0, 10⁹], a distance in [0, 10] m.
     pub fn validate(&self) -> Result<(), TeamModelError> {
         let err = |field: String, value: f64, reason| {
             Err(TeamModelError {
@@ -129,37 +137,37 @@ impl TeamModel {
         for kind in BrickType::ALL {
             let t = self.of(kind);
             let n = kind.name();
-            if !(t.place_s.is_finite() && t.place_s > 0.0) {
+            if !(t.place_s > 0.0 && t.place_s <= MAX_SECONDS) {
                 return err(
                     format!("{n}.place_s"),
                     t.place_s,
-                    "must be a finite number of seconds > 0",
+                    "must be a number of seconds in (0, 10⁷]",
                 );
             }
-            if !(t.cycle_rest_s.is_finite() && t.cycle_rest_s >= 0.0) {
+            if !(0.0..=MAX_SECONDS).contains(&t.cycle_rest_s) {
                 return err(
                     format!("{n}.cycle_rest_s"),
                     t.cycle_rest_s,
-                    "must be a finite number of seconds ≥ 0",
+                    "must be a number of seconds in [0, 10⁷]",
                 );
             }
             if !(1..=2).contains(&t.uavs) {
                 return err(format!("{n}.uavs"), f64::from(t.uavs), "must be 1 or 2");
             }
-            if !(t.reward.is_finite() && t.reward >= 0.0) {
+            if !(0.0..=MAX_REWARD).contains(&t.reward) {
                 return err(
                     format!("{n}.reward"),
                     t.reward,
-                    "must be a finite number ≥ 0",
+                    "must be a number in [0, 10⁹]",
                 );
             }
         }
         if let Concurrency::Distance { distance_m } = self.concurrency {
-            if !(distance_m.is_finite() && distance_m >= 0.0) {
+            if !(0.0..=MAX_DISTANCE_M).contains(&distance_m) {
                 return err(
                     "distance_m".into(),
                     distance_m,
-                    "must be a finite number of metres ≥ 0",
+                    "must be a number of metres in [0, 10] (one brick at a time is concurrency = \"zone\")",
                 );
             }
         }
@@ -214,9 +222,18 @@ impl TeamModel {
     }
 }
 
+/// ` = value` as a person writes it (nothing for a text value, which the field shows).
+fn shown_value(x: f64) -> String {
+    match x {
+        x if x.is_nan() => String::new(),
+        x if x.abs() < 1e12 => format!(" = {x}"),
+        x => format!(" = {x:e}"),
+    }
+}
+
 /// A parameter out of range.
 #[derive(Clone, Debug, PartialEq, Error)]
-#[error("team model: `{field}` = {value} is invalid: {reason}")]
+#[error("team model: `{field}`{} is invalid: {reason}", shown_value(*.value))]
 pub struct TeamModelError {
     /// The parameter.
     pub field: String,
@@ -334,6 +351,36 @@ mod tests {
         assert_eq!(
             TeamModel::from_patch(&neg, "x").unwrap_err().field,
             "distance_m"
+        );
+        let far = TeamModelPatch {
+            distance_m: Some(1e9),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&far, "x").unwrap_err().field,
+            "distance_m"
+        );
+        let rich = TeamModelPatch {
+            green: Some(TypePatch {
+                reward: Some(1e300),
+                ..Default::default()
+            }),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&rich, "x").unwrap_err().field,
+            "green.reward"
+        );
+        let nan = TeamModelPatch {
+            orange: Some(TypePatch {
+                cycle_rest_s: Some(f64::NAN),
+                ..Default::default()
+            }),
+            ..Default::default()
+        };
+        assert_eq!(
+            TeamModel::from_patch(&nan, "x").unwrap_err().field,
+            "orange.cycle_rest_s"
         );
         let zero = TeamModelPatch {
             blue: Some(TypePatch {

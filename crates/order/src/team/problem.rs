@@ -61,6 +61,15 @@ impl fmt::Display for Objective {
     }
 }
 
+/// A number as written by a person: plain when short, scientific when huge.
+fn short(x: f64) -> String {
+    if x.is_finite() && x.abs() < 1e12 {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// A problem that cannot be posed.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum TeamProblemError {
@@ -81,7 +90,7 @@ pub enum TeamProblemError {
     #[error("a team of {0} UAVs is more than the {max} the planners take", max = MAX_UAVS)]
     TeamTooLarge(usize),
     /// The budget is not a positive number.
-    #[error("budget {0} s: expected a positive number of seconds")]
+    #[error("budget {} s: expected a number of seconds in (0, 10⁹]", short(*.0))]
     Budget(f64),
     /// `makespan` plans the whole wall: a budget would leave bricks out.
     #[error(
@@ -184,7 +193,7 @@ impl<'w> TeamProblem<'w> {
     ) -> Result<Self, TeamProblemError> {
         model.validate()?;
         if let Some(t) = budget_s {
-            if !(t.is_finite() && t > 0.0) {
+            if !(t > 0.0 && t <= 1e9) {
                 return Err(TeamProblemError::Budget(t));
             }
         }
