@@ -4,8 +4,8 @@
 
 use crate::demo::format_ms;
 use crate::fail::{input_error, CliResult};
-use crate::schedule_cmd::{solve, ScheduleRequest};
-use mason_order::team::{Objective, TeamModel, TeamProblem};
+use crate::schedule_cmd::{problem, solve, ScheduleRequest};
+use mason_order::team::{Objective, TeamModel};
 use mason_wall::{parse_cmcp, CmcpSizes};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -152,15 +152,11 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> CliResult<String> {
                 } else {
                     Objective::Makespan
                 };
-                let p = TeamProblem::new(&wall, TeamModel::cmcp(), 3, budget, objective)
-                    .map_err(|e| input_error(e.to_string()))?;
                 let req = ScheduleRequest {
-                    objective,
-                    uavs: 3,
-                    budget_s: budget,
                     time_limit,
-                    seed: 0,
+                    ..ScheduleRequest::new(objective, 3, budget)
                 };
+                let p = problem(&wall, TeamModel::cmcp(), &req)?;
                 let c = solve(&p, &req)?;
                 let o = &c.outcome;
                 let gap = o.gap(objective);

@@ -155,13 +155,7 @@ fn schedules(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
         (Objective::Makespan, None, "schedule-makespan.svg"),
         (Objective::Reward, Some(900.0), "schedule-reward-900.svg"),
     ] {
-        let req = ScheduleRequest {
-            objective,
-            uavs: 3,
-            budget_s: budget,
-            time_limit: None,
-            seed: 0,
-        };
+        let req = ScheduleRequest::new(objective, 3, budget);
         let p = problem(&wall, TeamModel::from_cost_model(model), &req)?;
         let c = plan_team(&p, &req)?;
         text.push_str(&format!(
@@ -185,13 +179,7 @@ fn schedules(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
         .outcome
         .order
         .expect("an order");
-    let req = ScheduleRequest {
-        objective: Objective::Makespan,
-        uavs: 3,
-        budget_s: None,
-        time_limit: None,
-        seed: 0,
-    };
+    let req = ScheduleRequest::new(Objective::Makespan, 3, None);
     let flight = flight_plan(&wall, model, &req, &exact)?;
     let fly = |order: &[mason_wall::BrickId], lists: Option<&[Vec<mason_wall::BrickId>]>| {
         let input = MissionInput {

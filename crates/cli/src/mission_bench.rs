@@ -165,13 +165,7 @@ pub fn replan(runs: usize) -> CliResult<String> {
         (Objective::Makespan, None),
         (Objective::Reward, Some(1500.0)),
     ] {
-        let req = ScheduleRequest {
-            objective,
-            uavs: 3,
-            budget_s: budget,
-            time_limit: None,
-            seed: 0,
-        };
+        let req = ScheduleRequest::new(objective, 3, budget);
         let flight = flight_plan(&wall, &model, &req, &base)?;
         let planner =
             mason_mission::ScheduleReplanner::new(flight.team.clone(), objective, budget, 0);

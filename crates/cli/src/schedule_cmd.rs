@@ -43,6 +43,19 @@ pub struct ScheduleRequest {
     pub seed: u64,
 }
 
+impl ScheduleRequest {
+    /// Seed 0 and the deterministic default search (no deadline).
+    pub fn new(objective: Objective, uavs: usize, budget_s: Option<f64>) -> Self {
+        ScheduleRequest {
+            objective,
+            uavs,
+            budget_s,
+            time_limit: None,
+            seed: 0,
+        }
+    }
+}
+
 /// A planned, validated schedule.
 pub struct CheckedSchedule {
     /// The planner's outcome.
