@@ -604,6 +604,17 @@ fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failure> {
                     inner_right as f64 + area(inner_right..limit)
                 }
             };
+            if right - left < MIN_COLOUR_PX as f64 - 0.5 {
+                return Err((
+                    Location::Pixel(s.start as u32, middle),
+                    format!(
+                        "a {} mark {:.1} px wide is too narrow for a brick (at least \
+                         {MIN_COLOUR_PX} px of colour)",
+                        s.kind,
+                        right - left
+                    ),
+                ));
+            }
             runs.push(Run {
                 layer: index,
                 kind: s.kind,

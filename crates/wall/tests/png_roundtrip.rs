@@ -373,6 +373,158 @@ fn brick_of_wrong_length_names_its_pixel() {
     );
 }
 
+/// Drawings made with ImageMagick (`scripts/draw-fixtures.sh`), not by Mason's renderer:
+/// stroked rectangles with anti-aliased edges, at other proportions and on other paper.
+#[test]
+fn drawings_made_with_imagemagick_read_back() {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data");
+    for (file, text) in [
+        ("wall-imagemagick.png", "R G R\nG B R G\nB O R G"),
+        ("thesis-figure-3-2-imagemagick.png", "R G B G R\nG B R R G"),
+        ("wall-imagemagick-borderless.png", "R R G . B\nO R R G R R"),
+    ] {
+        let bytes = std::fs::read(data.join(file)).unwrap();
+        let read = read_png(&bytes, file).unwrap_or_else(|e| panic!("{e}"));
+        let expected = parse_layer_text(text, file).unwrap();
+        assert_eq!(canonical(&read), canonical(&expected), "{file}");
+    }
+}
+
+/// A wall drawn with filled rectangles: `(x, y, width, height, colour)`.
+fn rectangles(width: u32, height: u32, shapes: &[(u32, u32, u32, u32, [u8; 3])]) -> RgbImage {
+    let mut img = RgbImage::from_pixel(width, height, Rgb([255, 255, 255]));
+    for &(x, y, w, h, colour) in shapes {
+        for yy in y..y + h {
+            for xx in x..x + w {
+                img.put_pixel(xx, yy, Rgb(colour));
+            }
+        }
+    }
+    img
+}
+
+const RED: [u8; 3] = [235, 20, 20];
+const GREEN: [u8; 3] = [20, 200, 40];
+
+fn layout_error(img: &RgbImage) -> (String, Location) {
+    let e = read_image(img, "bad.png").unwrap_err();
+    (e.to_string(), e.location)
+}
+
+#[test]
+fn a_stray_mark_too_thin_for_a_layer_is_named() {
+    // A red and a green brick, and far above them a 2 px red line.
+    let img = rectangles(
+        60,
+        40,
+        &[
+            (2, 25, 18, 12, RED),
+            (22, 25, 38, 12, GREEN),
+            (10, 5, 20, 2, RED),
+        ],
+    );
+    let (message, at) = layout_error(&img);
+    assert!(message.contains("2 px tall stands alone"), "{message}");
+    assert!(matches!(at, Location::Pixel(9..=10, 5)), "{at:?}");
+}
+
+#[test]
+fn a_mark_too_narrow_for_a_brick_is_named() {
+    let img = rectangles(
+        80,
+        20,
+        &[
+            (2, 4, 18, 12, RED),
+            (22, 4, 38, 12, GREEN),
+            (70, 4, 2, 12, RED),
+        ],
+    );
+    let (message, at) = layout_error(&img);
+    assert!(message.contains("wide is too narrow"), "{message}");
+    assert!(matches!(at, Location::Pixel(69..=72, _)), "{at:?}");
+}
+
+#[test]
+fn a_brick_off_the_grid_is_named() {
+    // Reds and a green on a 20 px grid with 2 px borders, and one red half a unit off.
+    let img = rectangles(
+        160,
+        20,
+        &[
+            (1, 4, 18, 12, RED),
+            (21, 4, 38, 12, GREEN),
+            (61, 4, 18, 12, RED),
+            (111, 4, 18, 12, RED),
+        ],
+    );
+    // Three of the four bricks sit on one grid; the message names a brick and the reason.
+    let (message, at) = layout_error(&img);
+    assert!(
+        message.contains("off the 0.30 m grid") || message.contains("bricks are"),
+        "{message}"
+    );
+    assert!(matches!(at, Location::Pixel(..)), "{at:?}");
+}
+
+#[test]
+fn bricks_too_small_for_any_unit_are_refused() {
+    // One red brick 3 px long: a unit of 3 px is below the smallest the reader looks for.
+    let img = rectangles(10, 10, &[(3, 2, 3, 6, RED)]);
+    let (message, _) = layout_error(&img);
+    assert!(message.contains("no unit of at least"), "{message}");
+}
+
+#[test]
+fn touching_bricks_must_show_the_border_seen_elsewhere() {
+    // 2 px borders everywhere, but the last two bricks touch across 6 px.
+    let img = rectangles(
+        170,
+        40,
+        &[
+            (1, 4, 18, 12, RED),
+            (21, 4, 38, 12, GREEN),
+            (61, 4, 18, 12, RED),
+            (81, 4, 38, 12, GREEN),
+            (1, 18, 38, 12, GREEN),
+            (41, 18, 18, 12, RED),
+            (61, 18, 38, 12, GREEN),
+            (105, 18, 12, 12, RED),
+        ],
+    );
+    let e = read_image(&img, "bad.png").unwrap_err();
+    assert!(matches!(e.location, Location::Pixel(..)), "{e}");
+}
+
+/// The image's size is checked before it is decoded: a PNG whose header claims 10 000 ×
+/// 10 000 pixels is refused at once.
+#[test]
+fn an_oversized_image_is_refused_before_decoding() {
+    let mut bytes = png_bytes(&RgbImage::new(1, 1));
+    // IHDR: 8-byte signature, 4-byte length, "IHDR", width, height, then its CRC at 29..33.
+    bytes[16..20].copy_from_slice(&10_000u32.to_be_bytes());
+    bytes[20..24].copy_from_slice(&10_000u32.to_be_bytes());
+    let crc = crc32(&bytes[12..29]);
+    bytes[29..33].copy_from_slice(&crc.to_be_bytes());
+    let e = read_png(&bytes, "huge.png").unwrap_err();
+    assert!(e.to_string().contains("more than the"), "{e}");
+}
+
+/// CRC-32 (IEEE), for patching a PNG header.
+fn crc32(data: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in data {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
 #[test]
 fn floating_brick_in_an_image_names_its_pixel() {
     // Two layers: bottom R at units 0–1, top R drawn at units 3–4.
