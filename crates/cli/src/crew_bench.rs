@@ -12,8 +12,6 @@ use std::path::PathBuf;
 /// The paper's Table 2 robot counts.
 const ROBOTS: [usize; 7] = [3, 5, 10, 15, 25, 30, 50];
 
-/// What the paper reports for its setting (the issue quotes the 50-robot row; the other rows
-/// of the paper's table are not on file here).
 /// The paper's Table 2: path-planning time (s) on its 450×450 warehouse, Python 3.6 on a
 /// Core i5 at 2.3 GHz, 3-minute bound: (robots, A*, PRM); A* did not finish above 30.
 const PAPER_TABLE_2: [(usize, Option<f64>, f64); 7] = [
