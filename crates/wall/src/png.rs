@@ -1075,7 +1075,18 @@ fn candidate_units(runs: &[Run]) -> Vec<f64> {
 /// border and right edge plus half a border, and unit and offset are refitted to them by
 /// least squares. On failure, how many runs fitted and the first that did not.
 fn read_at(runs: &[Run], unit: f64) -> Result<Reading, (usize, Misfit)> {
-    let border = circular_border(runs, unit);
+    // With few runs the border is poorly determined (it trades off against the unit); a
+    // drawing with no border is tried as well before giving up.
+    read_with(runs, unit, None).or_else(|e| read_with(runs, unit, Some(0.0)).map_err(|_| e))
+}
+
+/// [`read_at`] with the border fitted, or fixed at `border`.
+fn read_with(
+    runs: &[Run],
+    unit: f64,
+    fixed_border: Option<f64>,
+) -> Result<Reading, (usize, Misfit)> {
+    let border = fixed_border.unwrap_or_else(|| circular_border(runs, unit));
     // Grid lines in order along the wall, numbered by rounding the step from the last one.
     let mut lines: Vec<(f64, usize, bool)> = Vec::with_capacity(2 * runs.len());
     for (i, r) in runs.iter().enumerate() {
@@ -1108,10 +1119,10 @@ fn read_at(runs: &[Run], unit: f64) -> Result<Reading, (usize, Misfit)> {
         unit,
         border,
     };
-    let mut grid = fit_edges(&edges, |_| true).unwrap_or(guess);
+    let mut grid = fit_edges(&edges, |_| true, fixed_border).unwrap_or(guess);
     // Once more without the edges far off it, so that one misdrawn brick does not tilt it.
     let near = |k: usize| grid.off(edges[k]) <= tolerance(grid.unit);
-    if let Some(refit) = fit_edges(&edges, near) {
+    if let Some(refit) = fit_edges(&edges, near, fixed_border) {
         grid = refit;
     }
     let Grid {
@@ -1272,9 +1283,14 @@ impl Grid {
     }
 }
 
-/// Offset, unit and border by least squares over the edges `keep` keeps (`None` when they do
-/// not determine all three).
-fn fit_edges(edges: &[(f64, i64, f64)], keep: impl Fn(usize) -> bool) -> Option<Grid> {
+/// Offset, unit and border by least squares over the edges `keep` keeps, or offset and unit
+/// alone with the border fixed (`None` when the edges do not determine them). A border
+/// cannot be negative: where the free fit says so, the best fit has none.
+fn fit_edges(
+    edges: &[(f64, i64, f64)],
+    keep: impl Fn(usize) -> bool,
+    fixed_border: Option<f64>,
+) -> Option<Grid> {
     // Normal equations of position = offset + k · unit + side · border.
     let mut ata = [[0f64; 3]; 3];
     let mut aty = [0f64; 3];
@@ -1283,12 +1299,26 @@ fn fit_edges(edges: &[(f64, i64, f64)], keep: impl Fn(usize) -> bool) -> Option<
             continue;
         }
         let row = [1.0, k as f64, side];
+        let y = position - side * fixed_border.unwrap_or(0.0);
         for a in 0..3 {
             for b in 0..3 {
                 ata[a][b] += row[a] * row[b];
             }
-            aty[a] += row[a] * position;
+            aty[a] += row[a] * y;
         }
+    }
+    // Offset and unit with the border given.
+    let two = |border: f64| {
+        let (n, sk, skk) = (ata[0][0], ata[0][1], ata[1][1]);
+        let d = n * skk - sk * sk;
+        (d.abs() >= 1e-9).then(|| Grid {
+            offset: (aty[0] * skk - sk * aty[1]) / d,
+            unit: (n * aty[1] - sk * aty[0]) / d,
+            border,
+        })
+    };
+    if let Some(border) = fixed_border {
+        return two(border);
     }
     let det = |m: &[[f64; 3]; 3]| {
         m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
@@ -1307,10 +1337,14 @@ fn fit_edges(edges: &[(f64, i64, f64)], keep: impl Fn(usize) -> bool) -> Option<
         }
         det(&m) / d
     };
+    let border = solve(2);
+    if border < 0.0 {
+        return two(0.0);
+    }
     Some(Grid {
         offset: solve(0),
         unit: solve(1),
-        border: solve(2),
+        border,
     })
 }
 
