@@ -14,15 +14,21 @@
 //!    is classified by its mean with its left and right neighbours.
 //! 2. [`find_layers`]: rows whose coloured runs agree form a band; a border line or a change of
 //!    colour between rows ends it. Bands thinner than [`MIN_COLOUR_PX`] are the blurred edges
-//!    of their neighbours; two touching bands that agree are one layer.
+//!    of their neighbours; touching bands that agree are one, split again where their colour
+//!    dips (a faint border line between two layers drawn alike).
 //! 3. [`find_runs`]: in each band, columns take their rows' majority colour, and runs of one
-//!    colour are found. Each run's sub-pixel edges come from its colour's area and centroid
-//!    (a blurred or anti-aliased edge keeps both).
+//!    colour are found (and split where their colour dips). Each run's sub-pixel edges come
+//!    from its colour's area (a blurred or anti-aliased edge keeps it); where two colours blend
+//!    into each other, the edge is where they blend half and half, which is their grid line.
 //! 4. [`fit_grid`]: the unit (pixels per 0.30 m) and the border width are the ones that put
-//!    every run's left and right edges on one grid and make every run a whole number of its
-//!    colour's length. Candidate units come from the distances between edges; the reading
-//!    with the fewest bricks wins, and a tie between different walls is settled by the border
-//!    seen between layers, or else reported as ambiguous.
+//!    every run's edges on one grid of whole units (least squares over all edges) and make
+//!    every run a whole number of its colour's length; touching bricks must show the border,
+//!    and so must the seams of a run read as several bricks. Candidate units come from the
+//!    distances between edges. Of the readings that fit, one at a whole fraction of another's
+//!    unit only cuts bricks into seamless pieces and is dropped; the border seen between
+//!    layers (or around the wall) picks among the rest; then the fewest bricks win, a clearly
+//!    better fit settles a tie, and what is still tied, or rests on a thick border where thin
+//!    borders and more bricks fit as well, is reported as ambiguous.
 //! 5. [`cut_bricks`]: a run `k` times its colour's length is `k` bricks (two touching reds
 //!    with no border between them are two reds).
 //! 6. [`assemble`]: bricks get levels (bottom band = level 1), grid positions, labels and
@@ -30,8 +36,9 @@
 //!    [`Wall::from_bricks`] checks that nothing floats.
 //!
 //! Limits, each a clear error: at most [`MAX_PIXELS`] pixels; every brick shows at least
-//! [`MIN_COLOUR_PX`] pixels of its colour each way; the unit is at least [`MIN_UNIT_PX`]
-//! pixels; borders are narrower than [`MAX_BORDER_SHARE`] of a unit.
+//! [`MIN_COLOUR_PX`] pixels of its colour each way (5 px across when blurred with no border,
+//! as tested); the unit is at least [`MIN_UNIT_PX`] pixels; borders are narrower than
+//! [`MAX_BORDER_SHARE`] of a unit.
 //!
 //! Tested by drawing random walls over a grid of proportions (layer height 0.3–3 units,
 //! borders 0–4 px, unit 8–40 px, blur, noise, white, grey and black borders, white and pale
