@@ -215,8 +215,8 @@ struct Span {
     end: usize,
 }
 
-/// Runs of one class at least [`MIN_COLOUR_PX`] long in a sequence of classes.
-fn spans(classes: impl Iterator<Item = Option<BrickType>>) -> Vec<Span> {
+/// Runs of one class at least `shortest` long in a sequence of classes.
+fn spans(classes: impl Iterator<Item = Option<BrickType>>, shortest: usize) -> Vec<Span> {
     let mut out = Vec::new();
     let mut open: Option<Span> = None;
     for (x, c) in classes.chain(std::iter::once(None)).enumerate() {
@@ -225,7 +225,7 @@ fn spans(classes: impl Iterator<Item = Option<BrickType>>) -> Vec<Span> {
             _ => {
                 if let Some(mut s) = open.take() {
                     s.end = x;
-                    if s.end - s.start >= MIN_COLOUR_PX {
+                    if s.end - s.start >= shortest {
                         out.push(s);
                     }
                 }
@@ -279,7 +279,12 @@ type Failure = (Location, String);
 /// Touching layers whose runs agree are one layer drawn with no border.
 fn find_layers(px: &Pixels) -> Result<Vec<Layer>, Failure> {
     let row_spans: Vec<Vec<Span>> = (0..px.height)
-        .map(|y| spans(px.class[y * px.width..(y + 1) * px.width].iter().copied()))
+        .map(|y| {
+            spans(
+                px.class[y * px.width..(y + 1) * px.width].iter().copied(),
+                MIN_COLOUR_PX,
+            )
+        })
         .collect();
     let mut segments: Vec<Layer> = Vec::new();
     for y in 0..px.height {
@@ -396,7 +401,7 @@ fn split_at_faint_borders(px: &Pixels, band: Layer) -> Vec<Layer> {
 
 /// The runs of a layer, from its columns' majority colours.
 fn band_spans(px: &Pixels, layer: Layer) -> Vec<Span> {
-    spans(column_classes(px, layer).into_iter())
+    spans(column_classes(px, layer).into_iter(), MIN_COLOUR_PX)
 }
 
 /// Each column's majority class over the layer's rows (no class wins ties with a colour).
@@ -518,62 +523,21 @@ fn colour_share(p: [f32; 3], reference: [f32; 3]) -> f64 {
 fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failure> {
     let mut runs = Vec::new();
     for (index, &layer) in layers.iter().enumerate() {
-        let classes = column_classes(px, layer);
         let means = column_means(px, layer);
-        let mut all = Vec::new();
-        let mut x = 0;
-        while x < classes.len() {
-            let Some(kind) = classes[x] else {
-                x += 1;
-                continue;
-            };
-            let start = x;
-            while x < classes.len() && classes[x] == Some(kind) {
-                x += 1;
-            }
-            all.push(Span {
-                kind,
-                start,
-                end: x,
-            });
-        }
         let middle = ((layer.top + layer.bottom) / 2) as u32;
-        let mut kept: Vec<Span> = Vec::new();
-        for (i, s) in all.iter().enumerate() {
-            if s.end - s.start >= MIN_COLOUR_PX {
-                kept.push(*s);
-                continue;
-            }
-            let touching = (i > 0 && all[i - 1].end == s.start)
-                || all.get(i + 1).is_some_and(|n| n.start == s.end);
-            if !touching {
-                return Err((
-                    Location::Pixel(s.start as u32, middle),
-                    format!(
-                        "a {} mark {} px wide is too narrow for a brick (at least \
-                         {MIN_COLOUR_PX} px of colour)",
-                        s.kind,
-                        s.end - s.start
-                    ),
-                ));
-            }
-        }
+        // A run too short for a brick that touches another is the blend where two colours
+        // meet; alone, it is measured (and refused below as too narrow).
+        let all = spans(column_classes(px, layer).into_iter(), 1);
+        let touches = |i: usize| {
+            (i > 0 && all[i - 1].end == all[i].start)
+                || all.get(i + 1).is_some_and(|n| n.start == all[i].end)
+        };
         // A border too faint to break a run's colour still dims it: split the run there.
-        let kept: Vec<Span> = kept
-            .into_iter()
-            .flat_map(|s| split_at_dips(&means, s))
+        let kept: Vec<Span> = (0..all.len())
+            .filter(|&i| all[i].end - all[i].start >= MIN_COLOUR_PX || !touches(i))
+            .flat_map(|i| split_at_dips(&means, all[i]))
             .collect();
-        let references: Vec<[f32; 3]> = kept
-            .iter()
-            .map(|s| {
-                let inner = if s.end - s.start > 2 {
-                    s.start + 1..s.end - 1
-                } else {
-                    s.start..s.end
-                };
-                median_colour(&means[inner])
-            })
-            .collect();
+        let references: Vec<[f32; 3]> = kept.iter().map(|s| reference_colour(&means, *s)).collect();
         // Where two runs meet with no border between them, the edge is where their colours
         // blend half and half.
         let junction: Vec<Option<f64>> = kept
@@ -645,12 +609,7 @@ fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failure> {
 /// A run's pieces between the columns where its colour dips below [`DIP_COVERAGE`] of itself
 /// with full colour on both sides (a faint border between touching bricks of one colour).
 fn split_at_dips(means: &[[f32; 3]], run: Span) -> Vec<Span> {
-    let inner = if run.end - run.start > 2 {
-        run.start + 1..run.end - 1
-    } else {
-        run.start..run.end
-    };
-    let k = median_colour(&means[inner]);
+    let k = reference_colour(means, run);
     let c: Vec<f64> = (run.start..run.end)
         .map(|x| coverage(means[x], k))
         .collect();
@@ -711,6 +670,15 @@ fn colour_junction(means: &[[f32; 3]], pair: &[Span], colours: &[[f32; 3]]) -> O
         .map(|x| 1.0 - f64::from(share_of_b(means[x])))
         .sum();
     Some(from as f64 + first_share)
+}
+
+/// A run's colour: the median of its columns, its two edge columns left out.
+fn reference_colour(means: &[[f32; 3]], run: Span) -> [f32; 3] {
+    if run.end - run.start > 2 {
+        median_colour(&means[run.start + 1..run.end - 1])
+    } else {
+        median_colour(&means[run.start..run.end])
+    }
 }
 
 fn median_colour(columns: &[[f32; 3]]) -> [f32; 3] {
