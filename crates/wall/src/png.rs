@@ -450,24 +450,6 @@ impl Run {
     fn width(&self) -> f64 {
         self.right - self.left
     }
-
-    fn brief(&self) -> Brief {
-        Brief {
-            kind: self.kind,
-            left: self.left,
-            width: self.width(),
-            pixel: self.pixel,
-        }
-    }
-}
-
-/// What a message says of a run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Brief {
-    kind: BrickType,
-    left: f64,
-    width: f64,
-    pixel: (u32, u32),
 }
 
 /// The mean colour of each column over the layer's rows.
@@ -833,80 +815,44 @@ struct Reading {
     residual: f64,
 }
 
-/// Why no grid fits, for the message.
+/// Why no grid fits: the pixel of the run to blame, and what is wrong.
 #[derive(Debug)]
-enum Misfit {
-    /// A run is not a whole number of its colour's length on the best grid.
-    Length { run: Brief, unit: f64, units: f64 },
-    /// A run's edge is off the best grid.
-    OffGrid { run: Brief, unit: f64, off: f64 },
-    /// A run touches the one before it across a gap unlike the border.
-    Gap { run: Brief, gap: f64, border: f64 },
-    /// Two grids read different walls equally well.
-    Ambiguous { run: Brief, units: (f64, f64) },
-    /// The runs are too small for any unit.
-    NoUnit { run: Brief },
+struct Misfit {
+    pixel: (u32, u32),
+    kind: WallErrorKind,
 }
 
 impl Misfit {
-    fn into_error(self, name: &str) -> WallError {
-        let at = |r: &Brief| Location::Pixel(r.pixel.0, r.pixel.1);
-        match self {
-            Misfit::Length { run, unit, units } => WallError::new(
-                name,
-                at(&run),
-                WallErrorKind::LengthMismatch {
-                    kind: run.kind,
-                    measured: units * UNIT_LENGTH,
-                    pixels: run.width.round() as u32,
-                    unit,
-                    expected: run.kind.length(),
-                },
-            ),
-            Misfit::OffGrid { run, unit, off } => WallError::new(
-                name,
-                at(&run),
-                WallErrorKind::ImageLayout {
-                    reason: format!(
-                        "this {} brick's edge is {off:.2} units off the 0.30 m grid \
-                         ({unit:.1} px per unit): bricks and gaps must be whole units",
-                        run.kind
-                    ),
-                },
-            ),
-            Misfit::Gap { run, gap, border } => WallError::new(
-                name,
-                at(&run),
-                WallErrorKind::ImageLayout {
-                    reason: format!(
-                        "this {} brick touches the brick before it across {gap:.1} px, but \
-                         borders elsewhere are {border:.1} px",
-                        run.kind
-                    ),
-                },
-            ),
-            Misfit::Ambiguous { run, units } => WallError::new(
-                name,
-                at(&run),
-                WallErrorKind::ImageLayout {
-                    reason: format!(
-                        "ambiguous drawing: {:.1} and {:.1} px per 0.30 m fit equally well and \
-                         place this {} brick differently; draw the borders darker than the \
-                         background, or add a layer",
-                        units.0, units.1, run.kind
-                    ),
-                },
-            ),
-            Misfit::NoUnit { run } => WallError::new(
-                name,
-                at(&run),
-                WallErrorKind::ImageLayout {
-                    reason: format!(
-                        "no unit of at least {MIN_UNIT_PX} px per 0.30 m fits the bricks"
-                    ),
-                },
-            ),
+    fn layout(run: &Run, reason: String) -> Misfit {
+        Misfit {
+            pixel: run.pixel,
+            kind: WallErrorKind::ImageLayout { reason },
         }
+    }
+
+    /// A run that is not a whole number of its colour's length (`units` long).
+    fn length(run: &Run, unit: f64, units: f64) -> Misfit {
+        Misfit {
+            pixel: run.pixel,
+            kind: WallErrorKind::LengthMismatch {
+                kind: run.kind,
+                measured: units * UNIT_LENGTH,
+                pixels: run.width().round() as u32,
+                unit,
+                expected: run.kind.length(),
+            },
+        }
+    }
+
+    fn no_unit(run: &Run) -> Misfit {
+        Misfit::layout(
+            run,
+            format!("no unit of at least {MIN_UNIT_PX} px per 0.30 m fits the bricks"),
+        )
+    }
+
+    fn into_error(self, name: &str) -> WallError {
+        WallError::new(name, Location::Pixel(self.pixel.0, self.pixel.1), self.kind)
     }
 }
 
@@ -936,9 +882,9 @@ fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading, Misfit> {
         }
     }
     if readings.is_empty() {
-        return Err(best_misfit.map(|(_, _, m)| m).unwrap_or(Misfit::NoUnit {
-            run: runs[0].brief(),
-        }));
+        return Err(best_misfit
+            .map(|(_, _, m)| m)
+            .unwrap_or_else(|| Misfit::no_unit(&runs[0])));
     }
     // The border seen between layers is the border between bricks.
     let mut hinted = false;
@@ -980,10 +926,15 @@ fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading, Misfit> {
         let differs = (0..runs.len())
             .find(|&i| a.places[i] != b.places[i])
             .unwrap_or(0);
-        Misfit::Ambiguous {
-            run: runs[differs].brief(),
-            units: (a.unit, b.unit),
-        }
+        Misfit::layout(
+            &runs[differs],
+            format!(
+                "ambiguous drawing: {:.1} and {:.1} px per 0.30 m fit equally well and place \
+                 this {} brick differently; draw the borders darker than the background, or \
+                 add a layer",
+                a.unit, b.unit, runs[differs].kind
+            ),
+        )
     };
     if best.len() > 1 && best[0].residual + CLEARLY_BETTER_PX >= best[1].residual {
         return Err(ambiguous(&best[0], &best[1]));
@@ -1106,21 +1057,11 @@ fn read_with(
         border,
     } = grid;
     if unit < MIN_UNIT_PX {
-        return Err((
-            0,
-            Misfit::NoUnit {
-                run: runs[0].brief(),
-            },
-        ));
+        return Err((0, Misfit::no_unit(&runs[0])));
     }
     let tol = tolerance(unit);
     if border > MAX_BORDER_SHARE * unit || border < -tol {
-        return Err((
-            0,
-            Misfit::NoUnit {
-                run: runs[0].brief(),
-            },
-        ));
+        return Err((0, Misfit::no_unit(&runs[0])));
     }
     let border = border.max(0.0);
     let mut places = vec![(0i64, 0u32); runs.len()];
@@ -1141,20 +1082,20 @@ fn read_with(
         let n = ends[i] - places[i].0;
         let length = i64::from(r.kind.units());
         let misfit = if off[i] > tol {
-            Some(Misfit::OffGrid {
-                run: r.brief(),
-                unit,
-                off: off[i] / unit,
-            })
+            Some(Misfit::layout(
+                r,
+                format!(
+                    "this {} brick's edge is {:.2} units off the 0.30 m grid ({unit:.1} px per \
+                     unit): bricks and gaps must be whole units",
+                    r.kind,
+                    off[i] / unit
+                ),
+            ))
         } else if n < length
             || n % length != 0
             || !seams_show_the_border(r, places[i].0, n, length, (offset, unit), border)
         {
-            Some(Misfit::Length {
-                run: r.brief(),
-                unit,
-                units: (r.width() + border) / unit,
-            })
+            Some(Misfit::length(r, unit, (r.width() + border) / unit))
         } else {
             None
         };
@@ -1176,11 +1117,15 @@ fn read_with(
         let touching =
             runs[i].layer == runs[j].layer && ends[i] == places[j].0 && !runs[j].blended.0;
         if touching && (runs[j].left - runs[i].right - border).abs() > GAP_AGREEMENT_PX {
-            first_misfit.get_or_insert(Misfit::Gap {
-                run: runs[j].brief(),
-                gap: runs[j].left - runs[i].right,
-                border,
-            });
+            first_misfit.get_or_insert(Misfit::layout(
+                &runs[j],
+                format!(
+                    "this {} brick touches the brick before it across {:.1} px, but borders \
+                     elsewhere are {border:.1} px",
+                    runs[j].kind,
+                    runs[j].left - runs[i].right
+                ),
+            ));
             fits = fits.saturating_sub(1);
         }
     }
@@ -1414,6 +1359,10 @@ fn assemble(name: &str, found: Vec<Found>) -> Result<Wall, WallError> {
 mod tests {
     use super::*;
 
+    fn ambiguous(fit: Result<Reading, Misfit>) -> bool {
+        matches!(fit, Err(Misfit { kind: WallErrorKind::ImageLayout { reason }, .. }) if reason.contains("ambiguous"))
+    }
+
     /// A run drawn as a flat block of colour from `left` to `right`.
     fn run(layer: usize, kind: BrickType, left: f64, right: f64) -> Run {
         let first_column = left.floor() as usize;
@@ -1501,10 +1450,7 @@ mod tests {
         ];
         // With no border seen between layers, "R R" at 35 px per unit with a 15 px border
         // (two touching reds) explains it as well.
-        assert!(matches!(
-            fit_grid(&runs, None),
-            Err(Misfit::Ambiguous { .. })
-        ));
+        assert!(ambiguous(fit_grid(&runs, None)));
         let reading = fit_grid(&runs, Some(0.0)).unwrap();
         assert_eq!(reading.places, vec![(0, 2), (4, 1)]);
         let found = cut_bricks(&runs, &reading);
@@ -1519,10 +1465,7 @@ mod tests {
             run(0, BrickType::Red, 1.5, 8.5),
             run(0, BrickType::Red, 51.5, 58.5),
         ];
-        assert!(matches!(
-            fit_grid(&runs, None),
-            Err(Misfit::Ambiguous { .. })
-        ));
+        assert!(ambiguous(fit_grid(&runs, None)));
         let reading = fit_grid(&runs, Some(3.0)).unwrap();
         assert_eq!(reading.places, vec![(0, 1), (5, 1)]);
     }
@@ -1536,12 +1479,8 @@ mod tests {
             run(0, BrickType::Blue, 31.0, 69.0),
             run(0, BrickType::Red, 71.0, 84.0),
         ];
-        match fit_grid(&runs, None) {
-            Err(Misfit::Length { run, .. }) | Err(Misfit::OffGrid { run, .. }) => {
-                assert_eq!(run.left, 71.0)
-            }
-            other => panic!("{other:?}"),
-        }
+        let misfit = fit_grid(&runs, None).unwrap_err();
+        assert_eq!(misfit.pixel, (71, 0), "{misfit:?}");
     }
 
     #[test]
