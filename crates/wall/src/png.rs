@@ -65,6 +65,9 @@ pub const MIN_UNIT_PX: f64 = 4.0;
 pub const MAX_BORDER_SHARE: f64 = 0.6;
 /// Touching bricks show the border between them within this many pixels.
 const GAP_AGREEMENT_PX: f64 = 1.0;
+/// A reading whose edges are this much farther (px) from its grid than the best reading's
+/// does not explain the drawing.
+const FIT_SLACK_PX: f64 = 0.75;
 /// Borders up to this share of a unit are thin.
 const THIN_BORDER_SHARE: f64 = 0.2;
 /// A reading whose edges are this much closer (px) to its grid than any other's is preferred.
@@ -602,8 +605,8 @@ fn split_at_dips(means: &[[f32; 3]], run: Span) -> Vec<Span> {
         let lowest = c[i] < DIP_COVERAGE && c[i] <= c[i - 1] && c[i] < c[i + 1];
         if lowest
             && i >= start + MIN_COLOUR_PX
-            && full(i.saturating_sub(EDGE_REACH)..i)
-            && full(i + 1..(i + 1 + EDGE_REACH).min(c.len()))
+            && full(i.saturating_sub(2 * EDGE_REACH)..i)
+            && full(i + 1..(i + 1 + 2 * EDGE_REACH).min(c.len()))
         {
             pieces.push(Span {
                 start: run.start + start,
@@ -683,7 +686,25 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         if lower.top - upper.bottom > 4 * EDGE_REACH {
             continue;
         }
-        let columns = inside_runs(px, runs, &[pair, pair + 1]);
+        // Where one colour sits on the same colour, no blend of two colours blurs the gap.
+        let all = inside_runs(px, runs, &[pair, pair + 1]);
+        let kind_at = |l: usize, x: usize| {
+            runs.iter()
+                .find(|r| r.layer == l && r.left <= x as f64 && x as f64 <= r.right)
+                .map(|r| r.kind)
+        };
+        let alike: Vec<usize> = all
+            .iter()
+            .copied()
+            .filter(|&x| kind_at(pair, x) == kind_at(pair + 1, x))
+            .collect();
+        // Over two colours blending into each other, faint shares count (they add up to the
+        // whole); over a border, a faint tint is the paper's.
+        let (columns, share_of): (Vec<usize>, fn([f32; 3], [f32; 3]) -> f64) = if alike.is_empty() {
+            (all, colour_share)
+        } else {
+            (alike, coverage)
+        };
         if columns.is_empty() {
             continue;
         }
@@ -693,7 +714,7 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         let share = |y: usize, colours: &[[f32; 3]]| -> f64 {
             columns
                 .iter()
-                .map(|&x| coverage(px.rgb[y * px.width + x], colours[x]))
+                .map(|&x| share_of(px.rgb[y * px.width + x], colours[x]))
                 .sum::<f64>()
                 / columns.len() as f64
         };
@@ -796,9 +817,8 @@ fn inside_runs(px: &Pixels, runs: &[Run], layers: &[usize]) -> Vec<usize> {
     (0..px.width)
         .filter(|&x| {
             layers.iter().all(|&l| {
-                runs.iter().any(|r| {
-                    r.layer == l && r.left + 2.0 <= x as f64 && (x as f64) + 3.0 <= r.right
-                })
+                runs.iter()
+                    .any(|r| r.layer == l && r.left <= x as f64 && (x as f64) + 1.0 <= r.right)
             })
         })
         .collect()
@@ -910,6 +930,12 @@ fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading, Misfit> {
             distinct.push(r);
         }
     }
+    // Only readings that fit about as well as the best are explanations at all.
+    let closest = distinct
+        .iter()
+        .map(|r| r.residual)
+        .fold(f64::INFINITY, f64::min);
+    distinct.retain(|r| r.residual <= closest + FIT_SLACK_PX);
     // The fewest bricks explain the drawing best ("R R" with a border, not "RRRR . RRRR"
     // with none); of different walls with as few, one that fits clearly better wins.
     let bricks = |r: &Reading| -> u64 {
@@ -1448,11 +1474,11 @@ mod tests {
             run(0, BrickType::Red, 0.0, 20.0),
             run(0, BrickType::Red, 40.0, 50.0),
         ];
-        // With no border seen between layers, "R R" at 35 px per unit with a 15 px border
-        // (two touching reds) explains it as well.
-        assert!(ambiguous(fit_grid(&runs, None)));
-        let reading = fit_grid(&runs, Some(0.0)).unwrap();
+        // A thick-bordered reading (one red at 35 px per unit with a 15 px border) would need
+        // the two runs to be as long as each other; it does not fit.
+        let reading = fit_grid(&runs, None).unwrap();
         assert_eq!(reading.places, vec![(0, 2), (4, 1)]);
+        assert_eq!(reading.border, 0.0);
         let found = cut_bricks(&runs, &reading);
         assert_eq!(found.iter().map(|f| f.x).collect::<Vec<_>>(), vec![0, 1, 4]);
     }
