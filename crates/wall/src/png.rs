@@ -676,6 +676,9 @@ fn median_colour(columns: &[[f32; 3]]) -> [f32; 3] {
     out
 }
 
+/// How much of a reference colour a pixel holds.
+type ShareOf = fn([f32; 3], [f32; 3]) -> f64;
+
 /// The border between layers (px), where layers touch: the median gap between the colour of
 /// a layer and of the layer below it, over columns where both have colour. `None` for a
 /// single layer or layers that never sit on each other.
@@ -700,7 +703,7 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
             .collect();
         // Over two colours blending into each other, faint shares count (they add up to the
         // whole); over a border, a faint tint is the paper's.
-        let (columns, share_of): (Vec<usize>, fn([f32; 3], [f32; 3]) -> f64) = if alike.is_empty() {
+        let (columns, share_of): (Vec<usize>, ShareOf) = if alike.is_empty() {
             (all, colour_share)
         } else {
             (alike, coverage)
