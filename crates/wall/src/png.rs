@@ -64,7 +64,7 @@ pub const MIN_UNIT_PX: f64 = 4.0;
 /// Borders are narrower than this share of a unit.
 pub const MAX_BORDER_SHARE: f64 = 0.6;
 /// Touching bricks show the border between them within this many pixels.
-const GAP_AGREEMENT_PX: f64 = 1.0;
+const GAP_AGREEMENT_PX: f64 = 1.25;
 /// A reading whose edges are this much farther (px) from its grid than the best reading's
 /// does not explain the drawing.
 const FIT_SLACK_PX: f64 = 0.75;
@@ -331,12 +331,16 @@ fn find_layers(px: &Pixels) -> Result<Vec<Layer>, Failure> {
         .flat_map(|&b| split_at_faint_borders(px, b))
         .filter(tall)
         .collect();
-    // A thin segment is the blurred edge of a layer at most two rows away, or a stray mark.
+    // A thin segment is the blurred edge of a layer at most two rows away, a speck of noise
+    // (no run as long as two bricks' least colour), or a stray mark.
     for s in segments.iter().filter(|s| !tall(s)) {
         let near = bands
             .iter()
             .any(|l| l.bottom + 2 >= s.top && s.bottom + 2 >= l.top);
-        if !near {
+        let speck = (s.top..s.bottom)
+            .flat_map(|y| &row_spans[y])
+            .all(|r| r.end - r.start < 2 * MIN_COLOUR_PX);
+        if !near && !speck {
             let first = row_spans[s.top][0];
             return Err((
                 Location::Pixel(first.start as u32, s.top as u32),
