@@ -42,6 +42,7 @@ fn methods(seed: u64) -> Vec<Method> {
         paths: PathMethod::Astar,
         resolve: Resolution::Paper,
         prm,
+        ..CrewConfig::default()
     };
     vec![
         Method {
@@ -226,6 +227,7 @@ fn movingai_warehouse() -> CliResult<String> {
                 paths: PathMethod::Astar,
                 resolve,
                 prm: PrmConfig::default(),
+                ..CrewConfig::default()
             };
             let r = run_solve(&inst, &config, Some(600.0))?;
             let (soc, ratio) = match (r.metrics, r.lower_bound()) {

@@ -6,8 +6,9 @@ use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
     solve, validate, AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid,
-    Instance, PathMethod, PlanMetrics, PrmConfig, Resolution, Status,
+    Instance, PathMethod, PlanMetrics, PrmConfig, RefineConfig, Resolution, Status,
 };
+use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::path::Path;
 use std::time::Duration;
@@ -32,33 +33,64 @@ pub struct CrewChoices {
     pub connectivity: Connectivity,
 }
 
+/// The solver flags as given.
+pub struct RawChoices<'a> {
+    /// `--assign`.
+    pub assign: Option<&'a str>,
+    /// `--paths`.
+    pub paths: &'a str,
+    /// `--resolve`.
+    pub resolve: Option<&'a str>,
+    /// `--connectivity`.
+    pub connectivity: &'a str,
+    /// `--seed`.
+    pub seed: u64,
+    /// `--refine-rounds`.
+    pub refine_rounds: Option<u64>,
+}
+
 /// Parses the solver options (usage errors exit 2).
-pub fn choices(
-    assign: Option<&str>,
-    paths: &str,
-    resolve: &str,
-    connectivity: &str,
-    prm: PrmConfig,
-    has_pairing: bool,
-) -> CliResult<CrewChoices> {
-    let assign: AssignMethod = match assign {
+pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliResult<CrewChoices> {
+    let assign: AssignMethod = match raw.assign {
         Some(a) => a
             .parse()
             .map_err(|e| input_error(format!("--assign: {e}")))?,
         None if has_pairing => AssignMethod::Given,
-        None => AssignMethod::Hungarian,
+        None => AssignMethod::Joint,
     };
-    let paths: PathMethod = paths
+    let paths: PathMethod = raw
+        .paths
         .parse()
         .map_err(|e| input_error(format!("--paths: {e}")))?;
-    let resolve: Resolution = resolve
+    if assign == AssignMethod::Joint && raw.resolve.is_some() {
+        return Err(input_error(
+            "--assign joint plans the paths itself (TSWAP); drop --resolve, or choose another --assign",
+        ));
+    }
+    if assign == AssignMethod::Joint && paths != PathMethod::Astar {
+        return Err(input_error(
+            "--assign joint moves robots on the grid itself; drop --paths prm",
+        ));
+    }
+    let resolve: Resolution = raw
+        .resolve
+        .unwrap_or("st")
         .parse()
         .map_err(|e| input_error(format!("--resolve: {e}")))?;
-    let connectivity: Connectivity = connectivity
+    let connectivity: Connectivity = raw
+        .connectivity
         .parse()
         .map_err(|e| input_error(format!("--connectivity: {e}")))?;
     if prm.samples == 0 || prm.neighbours == 0 {
         return Err(input_error("--samples and --neighbours must be at least 1"));
+    }
+    if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
+        return Err(input_error("--refine-rounds applies to --resolve lacam"));
+    }
+    let mut refine = RefineConfig::default();
+    if let Some(r) = raw.refine_rounds {
+        refine.rounds = Some(r);
+        refine.stall = None;
     }
     Ok(CrewChoices {
         config: CrewConfig {
@@ -66,9 +98,20 @@ pub fn choices(
             paths,
             resolve,
             prm,
+            seed: raw.seed,
+            refine,
         },
         connectivity,
     })
+}
+
+/// "assign joint", "resolve lacam", … for titles.
+pub fn method_label(config: &CrewConfig) -> String {
+    if config.assign == AssignMethod::Joint {
+        "joint (TSWAP)".into()
+    } else {
+        format!("assign {:?}, resolve {:?}", config.assign, config.resolve).to_lowercase()
+    }
 }
 
 fn read(path: &Path) -> CliResult<Vec<u8>> {
@@ -191,7 +234,7 @@ pub fn run_solve(
     };
     let shortest = inst
         .robots
-        .iter()
+        .par_iter()
         .zip(&outcome.goals)
         .map(|(&s, &g)| {
             let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
@@ -238,6 +281,7 @@ pub fn crew_json(
         "resolve": format!("{:?}", config.resolve).to_lowercase(),
         "prm": {"samples": config.prm.samples, "neighbours": config.prm.neighbours},
         "seed": seed,
+        "refine_rounds_limit": config.refine.rounds,
         "status": o.status,
         "reason": o.reason,
         "agents": agents,
@@ -246,8 +290,14 @@ pub fn crew_json(
         "lower_bound_sum_of_costs": r.lower_bound(),
         "stats": {
             "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "first_solution_ms": o.stats.first_solution.map(|d| d.as_secs_f64() * 1e3),
+            "first_sum_of_costs": o.stats.first_sum_of_costs,
+            "configurations": o.stats.configurations,
+            "refine_rounds": o.stats.refine_rounds,
+            "improvements": o.stats.improvements,
             "expanded": o.stats.expanded,
             "waits": o.stats.waits,
+            "peak_memory_mb": peak_memory_mb(),
         },
     })
 }
@@ -292,10 +342,25 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
     }
     if let Some(m) = r.metrics {
         s.push_str(&format!(
-            "sum of costs: {} (lower bound {}), makespan: {}\n",
+            "sum of costs: {} (lower bound {}{}), makespan: {}\n",
             m.sum_of_costs,
             r.lower_bound().map_or("-".into(), |b| b.to_string()),
+            r.lower_bound()
+                .filter(|&b| b > 0)
+                .map_or(String::new(), |b| format!(
+                    ", +{:.1} %",
+                    (m.sum_of_costs as f64 / b as f64 - 1.0) * 100.0
+                )),
             m.makespan
+        ));
+    }
+    if let (Some(first), Some(soc)) = (o.stats.first_solution, o.stats.first_sum_of_costs) {
+        s.push_str(&format!(
+            "first plan after {:.2} ms with sum of costs {soc}; {} configurations; {} refinement rounds, {} kept\n",
+            first.as_secs_f64() * 1e3,
+            o.stats.configurations,
+            o.stats.refine_rounds,
+            o.stats.improvements
         ));
     }
     s.push_str(&format!(
@@ -316,4 +381,12 @@ pub fn exit_for(r: &CrewResult) -> CliResult<()> {
             r.outcome.reason.as_deref().unwrap_or("no plan")
         ))),
     }
+}
+
+/// The process's peak resident memory in MB (Linux `VmHWM`), if known.
+pub fn peak_memory_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
 }

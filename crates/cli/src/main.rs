@@ -232,22 +232,29 @@ struct CrewArgs {
     /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
     #[arg(long)]
     image: Option<PathBuf>,
-    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian
-    /// (default with --image) or path (Hungarian on path lengths)
+    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
+    /// path (Hungarian on path lengths) or joint (interchangeable robots: TSWAP solves the
+    /// assignment and the paths together; default with --image)
     #[arg(long)]
     assign: Option<String>,
     /// Single-robot paths: astar or prm
     #[arg(long, default_value = "astar")]
     paths: String,
-    /// Collision resolution: paper (priority waits) or st (space-time A*)
-    #[arg(long, default_value = "st")]
-    resolve: String,
+    /// Collision resolution: paper (priority waits), st (prioritized space-time A*; default)
+    /// or lacam (complete LaCAM, then refinement until --time-limit); not with --assign joint
+    #[arg(long)]
+    resolve: Option<String>,
     /// 4 or 8 (diagonals only past two free sides)
     #[arg(long, default_value = "8")]
     connectivity: String,
-    /// Seed of the roadmap sampler
+    /// Seed of the roadmap sampler and of lacam (same seed, same plan, unless --time-limit
+    /// stops the refinement)
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// lacam: refinement rounds at most (0: the first plan as it is; default: until
+    /// --time-limit, or 1000 rounds in a row without improvement)
+    #[arg(long)]
+    refine_rounds: Option<u64>,
     /// PRM samples
     #[arg(long, default_value_t = 2000)]
     samples: usize,
@@ -734,10 +741,14 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         seed: a.seed,
     };
     let choices = crew_cmd::choices(
-        a.assign.as_deref(),
-        &a.paths,
-        &a.resolve,
-        &a.connectivity,
+        crew_cmd::RawChoices {
+            assign: a.assign.as_deref(),
+            paths: &a.paths,
+            resolve: a.resolve.as_deref(),
+            connectivity: &a.connectivity,
+            seed: a.seed,
+            refine_rounds: a.refine_rounds,
+        },
         prm,
         a.scen.is_some(),
     )?;
@@ -754,7 +765,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             "{source} — {} robots, {} ({})",
             inst.robot_count(),
             result.outcome.status,
-            a.resolve
+            crew_cmd::method_label(&choices.config)
         );
         let paths = result.outcome.paths.clone().unwrap_or_default();
         let svg = mason_report::crew_svg(
@@ -767,7 +778,11 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         write_file(path, svg.as_bytes())?;
     }
     if let (Some(path), Some(paths)) = (&a.html, &result.outcome.paths) {
-        let title = format!("{source} — {} robots ({})", inst.robot_count(), a.resolve);
+        let title = format!(
+            "{source} — {} robots ({})",
+            inst.robot_count(),
+            crew_cmd::method_label(&choices.config)
+        );
         let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
         write_file(path, page.as_bytes())?;
     }
