@@ -16,6 +16,7 @@
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
 //! - [`reservation`], [`paper`], [`st`]: collision resolution, prioritized (incomplete);
 //! - [`moves`], [`pibt`], [`lacam`], [`refine`]: complete and anytime labelled MAPF;
+//! - [`cbs`]: optimal labelled MAPF for a few robots (the tests' yardstick);
 //! - [`tswap`]: unlabelled MAPF (assignment and paths together); [`solve`]: the pipeline;
 //! - [`validate`]: the plan checker; [`outcome`]: status, budget, stats; [`generate`]: test worlds.
 //!
@@ -39,6 +40,7 @@
 
 pub mod assign;
 pub mod astar;
+pub mod cbs;
 pub mod distance;
 pub mod error;
 pub mod generate;
