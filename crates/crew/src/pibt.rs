@@ -23,6 +23,8 @@ use rand_chacha::ChaCha8Rng;
 pub struct Pibt<'a> {
     graph: &'a MoveGraph,
     dist: &'a [Vec<u32>],
+    /// Per-robot distance tables that replace `dist` (detours), when set.
+    detour: Vec<Option<Vec<u32>>>,
     occupied_now: Vec<u32>,
     occupied_next: Vec<u32>,
     rng: ChaCha8Rng,
@@ -34,10 +36,17 @@ impl<'a> Pibt<'a> {
         Pibt {
             graph,
             dist,
+            detour: vec![None; dist.len()],
             occupied_now: vec![NIL; graph.cells()],
             occupied_next: vec![NIL; graph.cells()],
             rng: ChaCha8Rng::seed_from_u64(seed),
         }
+    }
+
+    /// Makes robot `i` follow `table` (step distances to its goal on some detour) instead of
+    /// its true distances, or its true distances again with `None`.
+    pub fn set_detour(&mut self, i: usize, table: Option<Vec<u32>>) {
+        self.detour[i] = table;
     }
 
     /// Fills `to` with one legal step from `from`: constrained robots go where `constraints`
@@ -107,7 +116,9 @@ impl<'a> Pibt<'a> {
     /// PIBT for robot `i`: true when it moved (or stayed) without pushing anyone into a dead end.
     fn push(&mut self, i: u32, from: &[u32], to: &mut [u32]) -> bool {
         let v = from[i as usize];
-        let dist = &self.dist[i as usize];
+        let dist = self.detour[i as usize]
+            .as_deref()
+            .unwrap_or(&self.dist[i as usize]);
         let mut cand = [(0u32, 0u32, 0u32, 0u32); 9];
         let mut len = 0;
         for &u in std::iter::once(&v).chain(self.graph.neighbours(v)) {

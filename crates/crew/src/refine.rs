@@ -65,13 +65,13 @@ pub struct RefineStats {
 }
 
 /// Everyone's paths indexed by (cell, step), kept in step with `paths`.
-struct Occupancy {
+pub(crate) struct Occupancy {
     /// (step << 32 | cell) → robot, for every step before the robot's last.
-    at: FxHashMap<u64, u32>,
+    pub(crate) at: FxHashMap<u64, u32>,
     /// cell → (first step, robot) of the robot resting there for good.
-    rest: Vec<(u32, u32)>,
+    pub(crate) rest: Vec<(u32, u32)>,
     /// cell → (step, robot) of every visit before a robot's last step.
-    visits: Vec<Vec<(u32, u32)>>,
+    pub(crate) visits: Vec<Vec<(u32, u32)>>,
 }
 
 #[inline]
@@ -80,7 +80,7 @@ fn key(cell: u32, t: u32) -> u64 {
 }
 
 impl Occupancy {
-    fn new(cells: usize, paths: &[Vec<u32>]) -> Self {
+    pub(crate) fn new(cells: usize, paths: &[Vec<u32>]) -> Self {
         let mut o = Occupancy {
             at: FxHashMap::default(),
             rest: vec![(0, NIL); cells],
@@ -92,7 +92,7 @@ impl Occupancy {
         o
     }
 
-    fn add(&mut self, r: u32, p: &[u32]) {
+    pub(crate) fn add(&mut self, r: u32, p: &[u32]) {
         let last = p.len() - 1;
         for (t, &c) in p[..last].iter().enumerate() {
             self.at.insert(key(c, t as u32), r);
@@ -101,7 +101,7 @@ impl Occupancy {
         self.rest[p[last] as usize] = (last as u32, r);
     }
 
-    fn remove(&mut self, r: u32, p: &[u32]) {
+    pub(crate) fn remove(&mut self, r: u32, p: &[u32]) {
         let last = p.len() - 1;
         for (t, &c) in p[..last].iter().enumerate() {
             self.at.remove(&key(c, t as u32));
@@ -130,7 +130,7 @@ fn pos(p: &[u32], t: u32) -> u32 {
 }
 
 /// Steps until a path last arrives on its final cell.
-fn arrival(p: &[u32]) -> u64 {
+pub(crate) fn arrival(p: &[u32]) -> u64 {
     let last = p[p.len() - 1];
     p.iter()
         .rposition(|&c| c != last)
@@ -203,7 +203,7 @@ pub fn refine(
                 &occ,
                 paths,
                 &dist[r],
-                (pos(&paths[r], 0), goals[r]),
+                (pos(&paths[r], 0), 0, goals[r]),
                 config.node_limit,
                 &mut stats.expanded,
             );
@@ -349,14 +349,14 @@ fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, rng: &mut ChaCha8Rng)
 }
 
 /// Space-time A* with reusable buffers.
-struct Search {
+pub(crate) struct Search {
     nodes: Vec<(u32, u32, u32)>,
     closed: FxHashSet<u64>,
     open: BinaryHeap<(Reverse<u32>, u32, Reverse<u32>)>,
 }
 
 impl Search {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Search {
             nodes: Vec::new(),
             closed: FxHashSet::default(),
@@ -364,16 +364,17 @@ impl Search {
         }
     }
 
-    /// The quickest path from `start` to `goal` around `occ` (which must not hold the robot
-    /// itself), or `None` when there is none within the cap.
+    /// The quickest path from `start` at step `t0` to `goal` around `occ` (which must not hold
+    /// the robot itself from `t0` on), as the cells from step `t0`; `None` when there is none
+    /// within the cap.
     #[allow(clippy::too_many_arguments)]
-    fn plan(
+    pub(crate) fn plan(
         &mut self,
         graph: &MoveGraph,
         occ: &Occupancy,
         paths: &[Vec<u32>],
         dist: &[u32],
-        (start, goal): (u32, u32),
+        (start, t0, goal): (u32, u32, u32),
         node_limit: u64,
         expanded: &mut u64,
     ) -> Option<Vec<u32>> {
@@ -390,7 +391,8 @@ impl Search {
             .map(|p| p.len() as u32)
             .max()
             .unwrap_or(0)
-            .max(free_from);
+            .max(free_from)
+            .max(t0 + 1);
         self.nodes.clear();
         self.closed.clear();
         self.open.clear();
@@ -398,8 +400,9 @@ impl Search {
         if h0 == NIL {
             return None;
         }
-        self.nodes.push((start, 0, NIL));
-        self.open.push((Reverse(h0.max(free_from)), 0, Reverse(0)));
+        self.nodes.push((start, t0, NIL));
+        self.open
+            .push((Reverse((t0 + h0).max(free_from)), t0, Reverse(0)));
         let mut local = 0u64;
         while let Some((_, t, Reverse(id))) = self.open.pop() {
             let (cell, _, _) = self.nodes[id as usize];

@@ -11,6 +11,7 @@ use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
 use crate::refine::{refine, RefineConfig};
+use crate::repair::{rollout_and_repair, RepairEnd};
 use crate::rra::GoalDistance;
 use crate::st::{space_time_plan, StFailure};
 use crate::tswap::{bottleneck_assignment, tswap, TswapEnd};
@@ -335,7 +336,25 @@ fn solve_lacam(
     }
     let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
     let targets: Vec<u32> = goals.iter().map(|c| c.0).collect();
-    let (end, configurations) = lacam(&graph, &dist, &starts, &targets, budget, config.seed);
+    let max_d = (0..starts.len())
+        .map(|r| dist[r][starts[r] as usize])
+        .max()
+        .unwrap_or(0);
+    let (quick, repaired) = rollout_and_repair(
+        &graph,
+        &dist,
+        &starts,
+        &targets,
+        8 * max_d + 256,
+        budget,
+        config.seed,
+    );
+    stats.expanded += repaired.expanded;
+    let (end, configurations) = match quick {
+        RepairEnd::Found(paths) => (LacamEnd::Found(paths), 0),
+        RepairEnd::Budget => (LacamEnd::Budget, 0),
+        RepairEnd::GaveUp => lacam(&graph, &dist, &starts, &targets, budget, config.seed),
+    };
     stats.configurations = configurations;
     match end {
         LacamEnd::Found(mut paths) => {
@@ -371,7 +390,10 @@ fn solve_lacam(
         )),
         LacamEnd::Budget => Err((
             Status::Timeout,
-            format!("the budget ran out after {configurations} configurations, before a first plan"),
+            format!(
+                "the budget ran out before a first plan ({} PIBT steps, {} robots left to repair, {configurations} LaCAM configurations)",
+                repaired.steps, repaired.stuck
+            ),
         )),
     }
 }
