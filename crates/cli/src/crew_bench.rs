@@ -163,7 +163,7 @@ pub fn paper(runs: usize, show_progress: bool) -> CliResult<String> {
 }
 
 /// Where the shared MAPF benchmarks are, if present.
-fn benchmarks_dir() -> Option<PathBuf> {
+pub(crate) fn benchmarks_dir() -> Option<PathBuf> {
     let candidates = [
         std::env::var_os("MASON_BENCHMARKS").map(PathBuf::from),
         Some(PathBuf::from("../shared/benchmarks")),

@@ -110,7 +110,11 @@ pub fn method_label(config: &CrewConfig) -> String {
     if config.assign == AssignMethod::Joint {
         "joint (TSWAP)".into()
     } else {
-        format!("assign {:?}, resolve {:?}", config.assign, config.resolve).to_lowercase()
+        format!(
+            "assign {:?}, paths {:?}, resolve {:?}",
+            config.assign, config.paths, config.resolve
+        )
+        .to_lowercase()
     }
 }
 
@@ -192,14 +196,21 @@ pub struct CrewResult {
     pub outcome: CrewOutcome,
     /// The validator's metrics, when there is a plan.
     pub metrics: Option<PlanMetrics>,
-    /// Each robot's fewest steps to its assigned goal; `None` when unreachable.
+    /// Each robot's fewest steps to its assigned goal (`None` when unreachable); empty when the
+    /// solver gave the sum and there are too many robots to list.
     pub shortest: Vec<Option<u64>>,
 }
+
+/// Robots listed one per row in the text table.
+const TABLE_ROWS: usize = 60;
 
 impl CrewResult {
     /// Σ of the robots' shortest step distances (a lower bound on the sum of costs); `None`
     /// when some goal is unreachable.
     pub fn lower_bound(&self) -> Option<u64> {
+        if self.shortest.is_empty() {
+            return self.outcome.stats.lower_bound;
+        }
         self.shortest.iter().copied().sum()
     }
 }
@@ -232,15 +243,19 @@ pub fn run_solve(
         ),
         None => None,
     };
-    let shortest = inst
-        .robots
-        .par_iter()
-        .zip(&outcome.goals)
-        .map(|(&s, &g)| {
-            let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
-            (d != UNREACHABLE).then_some(u64::from(d))
-        })
-        .collect();
+    // Per robot only where the table shows it, or when the solver did not sum it already.
+    let shortest = if inst.robot_count() <= TABLE_ROWS || outcome.stats.lower_bound.is_none() {
+        inst.robots
+            .par_iter()
+            .zip(&outcome.goals)
+            .map(|(&s, &g)| {
+                let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
+                (d != UNREACHABLE).then_some(u64::from(d))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     Ok(CrewResult {
         outcome,
         metrics,
@@ -307,19 +322,16 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
     let g = &inst.grid;
     let o = &r.outcome;
     let mut s = format!(
-        "{source}: {} robots on {}×{} ({} free cells), {}-connected; assign {:?}, paths {:?}, resolve {:?}\n",
+        "{source}: {} robots on {}×{} ({} free cells), {}-connected; {}\n",
         inst.robot_count(),
         g.width(),
         g.height(),
         g.free_count(),
         inst.connectivity.degree(),
-        config.assign,
-        config.paths,
-        config.resolve
-    )
-    .to_lowercase();
+        method_label(config)
+    );
     if let Some(paths) = &o.paths {
-        if inst.robot_count() <= 60 {
+        if inst.robot_count() <= TABLE_ROWS {
             s.push_str(&format!(
                 "  {:>5} {:>12} {:>12} {:>8} {:>9}\n",
                 "robot", "start", "goal", "arrives", "shortest"

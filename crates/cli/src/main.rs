@@ -11,6 +11,7 @@ mod crew_cmd;
 mod demo;
 mod fail;
 mod input;
+mod mapf_bench;
 mod mission_bench;
 mod plan;
 mod progress;
@@ -124,7 +125,8 @@ enum Command {
         /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time), paper (the
         /// crew paper's Table 2 setting and the MovingAI warehouse), thesis-mission (Table 5.1
         /// setting), missions (simulator throughput), cmcp (team schedules on the CMCP walls
-        /// beside GRASP) or replan (static against re-planned schedules under UAV failures)
+        /// beside GRASP), replan (static against re-planned schedules under UAV failures) or
+        /// mapf (MovingAI maps at rising agent counts: lacam and joint)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -135,9 +137,13 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         runs: usize,
         /// cmcp: the benchmark directory holding config/ and GRASP-RESULTS.md (default
-        /// ../shared/benchmarks/walls-cmcp)
+        /// ../shared/benchmarks/walls-cmcp); mapf: the directory holding maps/ and scen/
+        /// (default ../shared/benchmarks/mapf)
         #[arg(long)]
         data: Option<PathBuf>,
+        /// mapf: the long sweep (more maps, 30 s per case) instead of the default few minutes
+        #[arg(long)]
+        long: bool,
     },
 }
 
@@ -389,7 +395,11 @@ fn run(cli: Cli) -> CliResult<()> {
             time_limit,
             runs,
             data,
+            long,
         } => {
+            if long && suite != "mapf" {
+                return Err(input_error("--long applies to bench mapf"));
+            }
             let limit = plan::time_limit(Some(time_limit))?.unwrap_or(60.0);
             let text = match suite.as_str() {
                 "thesis" => bench::thesis(limit)?,
@@ -399,9 +409,10 @@ fn run(cli: Cli) -> CliResult<()> {
                 "missions" => mission_bench::throughput(runs)?,
                 "cmcp" => cmcp_bench::cmcp(data.as_deref(), None)?,
                 "replan" => mission_bench::replan(runs.max(1) * 50)?,
+                "mapf" => mapf_bench::mapf(data.as_deref(), long, !cli.quiet)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions, cmcp or replan"
+                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions, cmcp, replan or mapf"
                     )))
                 }
             };

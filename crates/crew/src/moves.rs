@@ -4,7 +4,6 @@
 //! [`Grid::for_each_move`] (diagonals only past two free sides). Also the rule that two
 //! simultaneous diagonal moves may not cross inside one 2×2 square, as `crew::validate` checks.
 
-use crate::distance::step_distances;
 use crate::grid::{Cell, Connectivity, Grid};
 use rayon::prelude::*;
 
@@ -49,6 +48,29 @@ impl MoveGraph {
         &self.targets[self.offsets[c as usize] as usize..self.offsets[c as usize + 1] as usize]
     }
 
+    /// Fewest steps from `source` to every cell (moves are symmetric, so also to `source`);
+    /// [`crate::distance::UNREACHABLE`] where no path goes. `source` must be free.
+    /// Breadth-first search, O(cells).
+    pub fn distances_from(&self, source: u32) -> Vec<u32> {
+        let mut dist = vec![NIL; self.cells()];
+        dist[source as usize] = 0;
+        let mut queue = Vec::with_capacity(self.cells());
+        queue.push(source);
+        let mut head = 0;
+        while head < queue.len() {
+            let c = queue[head];
+            head += 1;
+            let d = dist[c as usize] + 1;
+            for &m in self.neighbours(c) {
+                if dist[m as usize] == NIL {
+                    dist[m as usize] = d;
+                    queue.push(m);
+                }
+            }
+        }
+        dist
+    }
+
     /// For a diagonal move `a → b`, the two other corners of its 2×2 square; `None` for a
     /// straight move or a wait.
     #[inline]
@@ -62,9 +84,10 @@ impl MoveGraph {
 /// Step distances to each of `goals`, one breadth-first search per goal, run on all cores.
 /// The result does not depend on the number of threads. Memory: cells × goals × 4 bytes.
 pub fn goal_distances(grid: &Grid, conn: Connectivity, goals: &[Cell]) -> Vec<Vec<u32>> {
+    let graph = MoveGraph::new(grid, conn);
     goals
         .par_iter()
-        .map(|&g| step_distances(grid, conn, g))
+        .map(|&g| graph.distances_from(g.0))
         .collect()
 }
 
@@ -92,6 +115,12 @@ mod tests {
             assert_eq!(got, want, "cell {c}");
         }
         assert_eq!(m.corners(0, 4), Some((1, 3)));
+        for c in [0, 2, 5, 8] {
+            assert_eq!(
+                m.distances_from(c),
+                crate::distance::step_distances(&g, Connectivity::Eight, Cell(c))
+            );
+        }
         assert_eq!(m.corners(0, 1), None);
     }
 }

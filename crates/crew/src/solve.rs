@@ -258,8 +258,7 @@ pub fn solve(
     match result {
         Ok(paths) => {
             let lower_bound_met = config.resolve == Resolution::Lacam
-                && stats.first_sum_of_costs.is_some()
-                && lower_bound(inst, &goals) == Some(sum_of_costs(&paths));
+                && stats.lower_bound == Some(sum_of_costs(&paths));
             let status = if (n == 1 && config.resolve == Resolution::St) || lower_bound_met {
                 Status::Optimal
             } else {
@@ -298,18 +297,6 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
-/// Σ of each robot's fewest steps to its goal; `None` when a goal is unreachable.
-fn lower_bound(inst: &Instance, goals: &[Cell]) -> Option<u64> {
-    inst.robots
-        .iter()
-        .zip(goals)
-        .map(|(&s, &g)| {
-            let d = crate::distance::step_distances(&inst.grid, inst.connectivity, g)[s.0 as usize];
-            (d != UNREACHABLE).then_some(u64::from(d))
-        })
-        .sum()
-}
-
 /// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
 fn solve_lacam(
     inst: &Instance,
@@ -336,6 +323,13 @@ fn solve_lacam(
     }
     let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
     let targets: Vec<u32> = goals.iter().map(|c| c.0).collect();
+    stats.lower_bound = Some(
+        starts
+            .iter()
+            .enumerate()
+            .map(|(r, &s)| u64::from(dist[r][s as usize]))
+            .sum(),
+    );
     let max_d = (0..starts.len())
         .map(|r| dist[r][starts[r] as usize])
         .max()
@@ -439,6 +433,13 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
     match tswap(&graph, &dist, &goal_cells, &starts, &initial, max_steps, budget) {
         TswapEnd::Found { goals, paths } => {
             stats.first_solution = Some(started.elapsed());
+            stats.lower_bound = Some(
+                starts
+                    .iter()
+                    .zip(&goals)
+                    .map(|(&s, &g)| u64::from(dist[g][s as usize]))
+                    .sum(),
+            );
             done(Status::Feasible, goals, Some(to_cells(paths)), None, stats)
         }
         TswapEnd::Unreachable { robot } => done(

@@ -69,7 +69,14 @@ pub fn bottleneck_assignment(dist: &[Vec<u32>], starts: &[u32]) -> Vec<Option<us
     if levels.is_empty() {
         return vec![None; n];
     }
-    let (mut lo, mut hi) = (0, levels.len() - 1);
+    // No pairing is shorter than the farthest of each robot's nearest goals.
+    let floor = options
+        .iter()
+        .filter_map(|o| o.first())
+        .map(|o| o.0)
+        .max()
+        .unwrap_or(0);
+    let (mut lo, mut hi) = (levels.partition_point(|&d| d < floor), levels.len() - 1);
     let mut best = matching(&options, dist.len(), levels[hi]);
     if best.iter().any(Option::is_none) {
         return best;
@@ -95,7 +102,21 @@ fn matching(options: &[Vec<(u32, u32)>], goals: usize, limit: u32) -> Vec<Option
     let mut robot_of = vec![NIL; goals];
     let mut seen = vec![0u32; goals];
     let mut stamp = 0u32;
+    // Greedy start: each robot takes its nearest free goal within the limit.
+    for (r, opts) in options.iter().enumerate() {
+        if let Some(&(_, g)) = opts
+            .iter()
+            .take_while(|&&(d, _)| d <= limit)
+            .find(|&&(_, g)| robot_of[g as usize] == NIL)
+        {
+            goal_of[r] = g;
+            robot_of[g as usize] = r as u32;
+        }
+    }
     for r in 0..n {
+        if goal_of[r] != NIL {
+            continue;
+        }
         stamp += 1;
         // Depth-first search for an augmenting path, with an explicit stack of (robot, next option).
         let mut stack: Vec<(u32, usize)> = vec![(r as u32, 0)];
