@@ -26,7 +26,7 @@ pub fn crew_svg(
     let thinned = if paths.len() > MAX_PATHS {
         let every = paths.len().div_ceil(MAX_PATHS);
         format!(
-            " — paths drawn for every {every}th robot ({} of {}); every start (circle) and goal (square) shown",
+            " — paths drawn for one robot in {every} ({} of {}); every start (circle) and goal (square) shown",
             paths.len().div_ceil(every),
             paths.len()
         )
@@ -128,4 +128,29 @@ fn dedup(path: &[Cell]) -> Vec<Cell> {
     let mut out: Vec<Cell> = path.to_vec();
     out.dedup();
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn many_robots_thin_the_paths_and_say_so() {
+        let grid = Grid::open(40, 40);
+        let n = 400;
+        let starts: Vec<Cell> = (0..n).map(|i| Cell(i as u32)).collect();
+        let goals: Vec<Cell> = (0..n).map(|i| Cell(1599 - i as u32)).collect();
+        let paths: Vec<Vec<Cell>> = starts
+            .iter()
+            .zip(&goals)
+            .map(|(&s, &g)| vec![s, g])
+            .collect();
+        let svg = crew_svg("t", &grid, &starts, &goals, &paths);
+        assert_eq!(svg.matches("<polyline").count(), 134);
+        assert!(svg.contains("one robot in 3 (134 of 400)"));
+        assert_eq!(svg.matches("<circle").count(), n);
+        let few = crew_svg("t", &grid, &starts[..5], &goals[..5], &paths[..5]);
+        assert_eq!(few.matches("<polyline").count(), 5);
+        assert!(!few.contains("one robot in"));
+    }
 }
