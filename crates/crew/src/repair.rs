@@ -33,8 +33,9 @@ use std::collections::VecDeque;
 pub enum RepairEnd {
     /// A plan: `paths[i][t]`, each cut at the robot's last arrival.
     Found(Vec<Vec<u32>>),
-    /// Some robot could not be repaired (or PIBT could not step); try LaCAM.
-    GaveUp,
+    /// Some robot could not be repaired (or PIBT could not step); try LaCAM. The valid partial
+    /// plan so far (robots short of their goals rest where their paths end), if any.
+    GaveUp(Option<Vec<Vec<u32>>>),
     /// The deadline came first.
     Budget,
 }
@@ -78,6 +79,7 @@ pub fn rollout_and_repair(
     let mut nearest: Vec<u32> = (0..n).map(|i| dist[i][starts[i] as usize]).collect();
     let mut idle = vec![0u32; n];
     let mut detoured = vec![false; n];
+    let patience = 2 * max_d as usize + 64;
     while best_home < n && configs.len() <= max_steps as usize {
         if configs.len() % 32 == 0 && budget.out_of_time() {
             return (RepairEnd::Budget, stats);
@@ -86,7 +88,7 @@ pub fn rollout_and_repair(
         order.sort_by(|&a, &b| priority[b as usize].total_cmp(&priority[a as usize]));
         let mut next = vec![0; n];
         if !pibt.step(q, &mut next, &order, &[]) {
-            return (RepairEnd::GaveUp, stats);
+            return (RepairEnd::GaveUp(None), stats);
         }
         for i in 0..n {
             let p = priority[i];
@@ -124,7 +126,7 @@ pub fn rollout_and_repair(
             (best_step, best_home) = (configs.len() - 1, h);
         }
         // Stop early once PIBT has circled for long without bringing anyone new home.
-        if configs.len() - 1 > best_step + 2 * max_d as usize + 64 {
+        if configs.len() - 1 > best_step + patience {
             break;
         }
     }
@@ -160,7 +162,7 @@ pub fn rollout_and_repair(
         }
         tries[a] += 1;
         if tries[a] > 6 {
-            return (RepairEnd::GaveUp, stats);
+            return (RepairEnd::GaveUp(Some(paths)), stats);
         }
         let size = 1 + 4 * tries[a] as usize;
         let group = blockers(graph, &occ, starts, goals, a, size);

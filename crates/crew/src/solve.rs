@@ -297,6 +297,24 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
+/// `prefix[i]` held (resting) until step `end`, then `rest[i]` from its second cell, cut at the
+/// last arrival.
+fn join(prefix: Vec<Vec<u32>>, rest: Vec<Vec<u32>>, end: usize) -> Vec<Vec<u32>> {
+    prefix
+        .into_iter()
+        .zip(rest)
+        .map(|(mut p, r)| {
+            let last = p[p.len() - 1];
+            p.resize(end + 1, last);
+            p.extend_from_slice(&r[1..]);
+            let g = p[p.len() - 1];
+            let arrive = p.iter().rposition(|&c| c != g).map_or(0, |t| t + 1);
+            p.truncate(arrive + 1);
+            p
+        })
+        .collect()
+}
+
 /// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
 fn solve_lacam(
     inst: &Instance,
@@ -347,7 +365,20 @@ fn solve_lacam(
     let (end, configurations) = match quick {
         RepairEnd::Found(paths) => (LacamEnd::Found(paths), 0),
         RepairEnd::Budget => (LacamEnd::Budget, 0),
-        RepairEnd::GaveUp => lacam(&graph, &dist, &starts, &targets, budget, config.seed),
+        RepairEnd::GaveUp(None) => lacam(&graph, &dist, &starts, &targets, budget, config.seed),
+        RepairEnd::GaveUp(Some(partial)) => {
+            // LaCAM from where the partial plan leaves everyone (configurations reachable from
+            // the start reach the goals whenever the start does: moves are reversible).
+            let end = partial.iter().map(Vec::len).max().unwrap_or(1) - 1;
+            let here: Vec<u32> = partial.iter().map(|p| p[p.len() - 1]).collect();
+            match lacam(&graph, &dist, &here, &targets, budget, config.seed) {
+                (LacamEnd::Found(rest), k) => (LacamEnd::Found(join(partial, rest, end)), k),
+                (LacamEnd::Exhausted, _) => {
+                    lacam(&graph, &dist, &starts, &targets, budget, config.seed)
+                }
+                other => other,
+            }
+        }
     };
     stats.configurations = configurations;
     match end {
