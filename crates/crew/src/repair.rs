@@ -357,7 +357,10 @@ fn replan(
     }
     let mut placed = 0;
     for &r in order {
-        let here = paths[r][paths[r].len() - 1];
+        // Every member keeps its path up to `t0` and gets a new one from there (a robot
+        // repaired before may have moved on past `t0`; that part is replaced too).
+        let p = &paths[r];
+        let here = p[(t0 as usize).min(p.len() - 1)];
         match search.plan(
             graph,
             occ,
@@ -369,7 +372,8 @@ fn replan(
         ) {
             Some(rest) => {
                 let mut p = paths[r].clone();
-                p.resize(t0 as usize, here);
+                p.resize(t0 as usize + 1, here);
+                p.truncate(t0 as usize);
                 p.extend_from_slice(&rest);
                 let g = p[p.len() - 1];
                 let arrive = p.iter().rposition(|&c| c != g).map_or(0, |t| t + 1);

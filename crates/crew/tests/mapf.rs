@@ -328,3 +328,59 @@ fn joint_on_a_warehouse_is_valid() {
     )
     .expect("valid");
 }
+
+#[test]
+fn dense_warehouses_take_the_repair_and_lacam_paths_and_stay_valid() {
+    // Dense enough that the PIBT rollout leaves robots short, so that the continuation repair
+    // (with groups) and LaCAM from the partial plan both run; a regression test for a repair
+    // that once replaced part of a path without telling the others.
+    let (mut repaired, mut searched) = (0, 0);
+    for seed in 0..3 {
+        let grid = aisles(47, 22);
+        let n = 60 + 12 * seed as usize;
+        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
+        let inst = Instance::new(
+            grid,
+            Connectivity::Four,
+            robots,
+            goals,
+            Some((0..n).collect()),
+            "dense",
+        )
+        .unwrap();
+        let out = solve(&inst, &lacam_config(0, seed), &capped()).unwrap();
+        let Some(paths) = out.paths else {
+            panic!("seed {seed}: {:?} {:?}", out.status, out.reason)
+        };
+        validate(
+            &inst.grid,
+            inst.connectivity,
+            &inst.robots,
+            &out.goals,
+            &paths,
+        )
+        .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        if out.stats.expanded > 0 {
+            repaired += 1;
+        }
+        if out.stats.configurations > 0 {
+            searched += 1;
+        }
+    }
+    assert_eq!(repaired, 3, "every instance needs repair");
+    assert!(searched >= 1, "LaCAM from the partial plan never ran");
+}
+
+/// Shelves two cells deep between one-cell aisles, with one-cell gaps every 11 columns and open
+/// ends, like MovingAI's warehouse-10-20-10-2-1.
+fn aisles(w: u32, h: u32) -> Grid {
+    let mut grid = Grid::open(w, h);
+    for y in 0..h {
+        for x in 3..w - 3 {
+            if y % 3 != 0 && (x - 3) % 11 != 10 {
+                grid.set_blocked(grid.cell(x as i64, y as i64).unwrap(), true);
+            }
+        }
+    }
+    grid
+}
