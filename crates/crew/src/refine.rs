@@ -15,7 +15,7 @@
 //! - *random*: robots drawn at random.
 //!
 //! Space-time A* is optimal for one robot given the others: states (cell, step), waits allowed,
-//! the true step distance as heuristic, and the robot may stop on its goal only after the last
+//! the true step distance as heuristic (ties to the state nearer the goal, then the deeper), and the robot may stop on its goal only after the last
 //! time anybody else passes there. Beyond the last step of the longest other path the world no
 //! longer changes, so states there are merged by cell and the search is finite.
 //! Each round is O(k · T · V log(T · V)) in the worst case for k robots and horizon T.
@@ -348,11 +348,15 @@ fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, rng: &mut ChaCha8Rng)
     }
 }
 
+/// An open state of space-time A*: (f, h, t, node), least f first, then nearest the goal, then
+/// deepest.
+type OpenEntry = (Reverse<u32>, Reverse<u32>, u32, Reverse<u32>);
+
 /// Space-time A* with reusable buffers.
 pub(crate) struct Search {
     nodes: Vec<(u32, u32, u32)>,
     closed: FxHashSet<u64>,
-    open: BinaryHeap<(Reverse<u32>, u32, Reverse<u32>)>,
+    open: BinaryHeap<OpenEntry>,
 }
 
 impl Search {
@@ -401,10 +405,14 @@ impl Search {
             return None;
         }
         self.nodes.push((start, t0, NIL));
-        self.open
-            .push((Reverse((t0 + h0).max(free_from)), t0, Reverse(0)));
+        self.open.push((
+            Reverse((t0 + h0).max(free_from)),
+            Reverse(h0),
+            t0,
+            Reverse(0),
+        ));
         let mut local = 0u64;
-        while let Some((_, t, Reverse(id))) = self.open.pop() {
+        while let Some((_, _, t, Reverse(id))) = self.open.pop() {
             let (cell, _, _) = self.nodes[id as usize];
             let k = key(cell, t.min(horizon));
             if !self.closed.insert(k) {
@@ -436,8 +444,12 @@ impl Search {
                 }
                 let nid = self.nodes.len() as u32;
                 self.nodes.push((next, t + 1, id));
-                self.open
-                    .push((Reverse((t + 1 + h).max(free_from)), t + 1, Reverse(nid)));
+                self.open.push((
+                    Reverse((t + 1 + h).max(free_from)),
+                    Reverse(h),
+                    t + 1,
+                    Reverse(nid),
+                ));
             }
         }
         None
