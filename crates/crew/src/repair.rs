@@ -153,6 +153,7 @@ pub fn rollout_and_repair(
     let mut search = Search::new();
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x4e9a_1200);
     let mut tries = vec![0u32; n];
+    let mut attempts = 0u64;
     while let Some(a) = queue.pop_front() {
         if paths[a][paths[a].len() - 1] == goals[a] {
             continue;
@@ -161,7 +162,8 @@ pub fn rollout_and_repair(
             return (RepairEnd::Budget, stats);
         }
         tries[a] += 1;
-        if tries[a] > 6 {
+        attempts += 1;
+        if tries[a] > MAX_TRIES || attempts > 4 * stats.stuck + 8 {
             return (RepairEnd::GaveUp(Some(paths)), stats);
         }
         let size = 1 + 4 * tries[a] as usize;
@@ -196,6 +198,10 @@ pub fn rollout_and_repair(
     }
     (RepairEnd::Found(paths), stats)
 }
+
+/// Repairs tried per robot (each with a larger group) before giving up; in all, at most four times
+/// as many repairs as robots left short (plus a few).
+const MAX_TRIES: u32 = 6;
 
 /// Steps without progress after which a robot in the rollout takes a detour.
 const DETOUR_AFTER: u32 = 12;

@@ -297,9 +297,20 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
-/// `prefix[i]` held (resting) until step `end`, then `rest[i]` from its second cell, cut at the
-/// last arrival.
-fn join(prefix: Vec<Vec<u32>>, rest: Vec<Vec<u32>>, end: usize) -> Vec<Vec<u32>> {
+/// Rollouts tried one after the other before LaCAM takes over.
+const ROLLOUTS: u64 = 12;
+
+fn count_home(q: &[u32], goals: &[u32]) -> usize {
+    q.iter().zip(goals).filter(|(a, b)| a == b).count()
+}
+
+/// `rest` (which starts where every path of `prefix` ends) after `prefix`, whose paths are held
+/// (resting) until the longest ends; each cut at its last arrival. No prefix: `rest` itself.
+fn append(prefix: Option<Vec<Vec<u32>>>, rest: Vec<Vec<u32>>) -> Vec<Vec<u32>> {
+    let Some(prefix) = prefix else {
+        return rest;
+    };
+    let end = prefix.iter().map(Vec::len).max().unwrap_or(1) - 1;
     prefix
         .into_iter()
         .zip(rest)
@@ -352,33 +363,61 @@ fn solve_lacam(
         .map(|r| dist[r][starts[r] as usize])
         .max()
         .unwrap_or(0);
-    let (quick, repaired) = rollout_and_repair(
-        &graph,
-        &dist,
-        &starts,
-        &targets,
-        8 * max_d + 256,
-        budget,
-        config.seed,
-    );
-    stats.expanded += repaired.expanded;
-    let (end, configurations) = match quick {
-        RepairEnd::Found(paths) => (LacamEnd::Found(paths), 0),
-        RepairEnd::Budget => (LacamEnd::Budget, 0),
-        RepairEnd::GaveUp(None) => lacam(&graph, &dist, &starts, &targets, budget, config.seed),
-        RepairEnd::GaveUp(Some(partial)) => {
-            // LaCAM from where the partial plan leaves everyone (configurations reachable from
-            // the start reach the goals whenever the start does: moves are reversible).
-            let end = partial.iter().map(Vec::len).max().unwrap_or(1) - 1;
-            let here: Vec<u32> = partial.iter().map(|p| p[p.len() - 1]).collect();
-            match lacam(&graph, &dist, &here, &targets, budget, config.seed) {
-                (LacamEnd::Found(rest), k) => (LacamEnd::Found(join(partial, rest, end)), k),
-                (LacamEnd::Exhausted, _) => {
-                    lacam(&graph, &dist, &starts, &targets, budget, config.seed)
+    // Rollouts with repair, each from where the last one left the robots, until two in a row
+    // bring no more robots home; then LaCAM from there (configurations reachable from the start reach
+    // the goals whenever the start does: moves are reversible).
+    let mut prefix: Option<Vec<Vec<u32>>> = None;
+    let mut from = starts.clone();
+    let mut home = count_home(&from, &targets);
+    let mut end = None;
+    let mut idle = 0;
+    for round in 0..ROLLOUTS {
+        let (quick, repaired) = rollout_and_repair(
+            &graph,
+            &dist,
+            &from,
+            &targets,
+            8 * max_d + 256,
+            budget,
+            config.seed.wrapping_add(round),
+        );
+        stats.expanded += repaired.expanded;
+        match quick {
+            RepairEnd::Found(paths) => {
+                end = Some((LacamEnd::Found(append(prefix.take(), paths)), 0));
+                break;
+            }
+            RepairEnd::Budget => {
+                end = Some((LacamEnd::Budget, 0));
+                break;
+            }
+            RepairEnd::GaveUp(None) => break,
+            RepairEnd::GaveUp(Some(partial)) => {
+                let here: Vec<u32> = partial.iter().map(|p| p[p.len() - 1]).collect();
+                let now = count_home(&here, &targets);
+                prefix = Some(append(prefix.take(), partial));
+                from = here;
+                if now <= home {
+                    idle += 1;
+                    if idle >= 2 {
+                        break;
+                    }
+                } else {
+                    idle = 0;
+                    home = now;
                 }
-                other => other,
             }
         }
+    }
+    let (end, configurations) = match end {
+        Some(e) => e,
+        None => match lacam(&graph, &dist, &from, &targets, budget, config.seed) {
+            (LacamEnd::Found(rest), k) => (LacamEnd::Found(append(prefix, rest)), k),
+            (LacamEnd::Exhausted, _) if prefix.is_some() => {
+                lacam(&graph, &dist, &starts, &targets, budget, config.seed)
+            }
+            other => other,
+        },
     };
     stats.configurations = configurations;
     match end {
@@ -416,14 +455,14 @@ fn solve_lacam(
         LacamEnd::Budget => Err((
             Status::Timeout,
             format!(
-                "the budget ran out before a first plan ({} PIBT steps, {} robots left to repair, {configurations} LaCAM configurations)",
-                repaired.steps, repaired.stuck
+                "the budget ran out before a first plan ({home} of {} robots home where the last PIBT rollout began; {configurations} LaCAM configurations)",
+                targets.len()
             ),
         )),
     }
 }
 
-/// Unlabelled: TSWAP from the greedy step-distance assignment.
+/// Unlabelled: TSWAP from the bottleneck step-distance assignment.
 fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcome {
     let (grid, conn) = (&inst.grid, inst.connectivity);
     let graph = MoveGraph::new(grid, conn);
@@ -489,5 +528,22 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
             )),
             stats,
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::append;
+
+    #[test]
+    fn append_holds_the_prefix_then_continues() {
+        // Robot 0 arrives at step 2, robot 1 at step 1; the continuation starts at step 2.
+        let prefix = vec![vec![0, 1, 2], vec![5, 6]];
+        let rest = vec![vec![2, 3], vec![6, 6]];
+        assert_eq!(
+            append(Some(prefix), rest),
+            vec![vec![0, 1, 2, 3], vec![5, 6]]
+        );
+        assert_eq!(append(None, vec![vec![4]]), vec![vec![4]]);
     }
 }

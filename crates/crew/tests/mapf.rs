@@ -330,11 +330,11 @@ fn joint_on_a_warehouse_is_valid() {
 }
 
 #[test]
-fn dense_warehouses_take_the_repair_and_lacam_paths_and_stay_valid() {
+fn dense_warehouses_take_the_repair_path_and_stay_valid() {
     // Dense enough that the PIBT rollout leaves robots short, so that the continuation repair
-    // (with groups) and LaCAM from the partial plan both run; a regression test for a repair
-    // that once replaced part of a path without telling the others.
-    let (mut repaired, mut searched) = (0, 0);
+    // (with groups, and further rollouts from a partial plan) runs; a regression test for a
+    // repair that once replaced part of a path without telling the others.
+    let mut repaired = 0;
     for seed in 0..3 {
         let grid = aisles(47, 22);
         let n = 60 + 12 * seed as usize;
@@ -363,12 +363,8 @@ fn dense_warehouses_take_the_repair_and_lacam_paths_and_stay_valid() {
         if out.stats.expanded > 0 {
             repaired += 1;
         }
-        if out.stats.configurations > 0 {
-            searched += 1;
-        }
     }
     assert_eq!(repaired, 3, "every instance needs repair");
-    assert!(searched >= 1, "LaCAM from the partial plan never ran");
 }
 
 /// Shelves two cells deep between one-cell aisles, with one-cell gaps every 11 columns and open
