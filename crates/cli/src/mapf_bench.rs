@@ -40,6 +40,8 @@ fn sweep(long: bool) -> Vec<Case> {
         case(w, 200, "lacam", 2.0),
         case(w, 300, "lacam", 3.0),
         case(w, 500, "lacam", 10.0),
+        case(w, 700, "lacam", 20.0),
+        case(w, 800, "lacam", 20.0),
         case(w, 1000, "lacam", 30.0),
         case("random-32-32-10", 100, "lacam", 1.0),
         case("random-32-32-10", 461, "lacam", 1.0),
