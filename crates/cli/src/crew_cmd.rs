@@ -33,6 +33,9 @@ pub struct CrewChoices {
     pub connectivity: Connectivity,
 }
 
+/// The time limit of `--resolve lacam` when `--time-limit` is not given, in seconds.
+pub const LACAM_DEFAULT_LIMIT_S: f64 = 60.0;
+
 /// The solver flags as given.
 pub struct RawChoices<'a> {
     /// `--assign`.

@@ -267,7 +267,7 @@ struct CrewArgs {
     /// PRM neighbours per node
     #[arg(long, default_value_t = 10)]
     neighbours: usize,
-    /// Time budget in seconds
+    /// Time budget in seconds (lacam: 60 when not given; it refines until then)
     #[arg(long, allow_negative_numbers = true)]
     time_limit: Option<f64>,
     /// Print JSON instead of a table
@@ -763,6 +763,14 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         prm,
         a.scen.is_some(),
     )?;
+    // lacam is anytime and, on a hard instance, its search could grow until memory runs out:
+    // without a limit it gets a default one.
+    let limit = match (limit, choices.config.resolve, choices.config.assign) {
+        (None, mason_crew::Resolution::Lacam, a) if a != mason_crew::AssignMethod::Joint => {
+            Some(crew_cmd::LACAM_DEFAULT_LIMIT_S)
+        }
+        (l, _, _) => l,
+    };
     let input = crew_cmd::CrewInput {
         map: a.map.as_deref(),
         scen: a.scen.as_deref(),
