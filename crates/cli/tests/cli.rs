@@ -102,7 +102,7 @@ fn brute_out_of_time_reports_timeout_with_an_order() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["status"], "timeout");
-    assert_eq!(v["order"].as_array().unwrap().len(), 43);
+    assert_eq!(v["order"].as_array().unwrap().len(), 50);
 }
 
 #[test]

@@ -71,9 +71,29 @@ pub fn hungarian(cost: &[Vec<f64>]) -> Vec<usize> {
     col_of
 }
 
+/// The crew paper's Table 1 (Upadhyay et al. 2018): the distance from robot `R_j` (row) to
+/// goal `G_i` (column) in its worked 8×8 example.
+pub const PAPER_TABLE_1: [[f64; 3]; 3] = [[6.0, 7.0, 9.0], [7.0, 14.0, 10.0], [8.0, 7.0, 5.0]];
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The paper's worked example: its best combination is R0→G1, R1→G0, R2→G2 with cost 19,
+    /// and both Hungarian and the paper's own enumeration find it.
+    #[test]
+    fn the_papers_table_1_example() {
+        let cost: Vec<Vec<f64>> = PAPER_TABLE_1.iter().map(|r| r.to_vec()).collect();
+        for assignment in [hungarian(&cost), crate::perm::permutation_assignment(&cost)] {
+            assert_eq!(assignment, vec![1, 0, 2]);
+            let total: f64 = assignment
+                .iter()
+                .enumerate()
+                .map(|(r, &g)| cost[r][g])
+                .sum();
+            assert_eq!(total, 19.0);
+        }
+    }
 
     #[test]
     fn small_square_and_rectangular() {

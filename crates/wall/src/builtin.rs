@@ -26,14 +26,14 @@ pub const BUILTIN_WALLS: [BuiltinWall; 4] = [
     },
     BuiltinWall {
         name: "levels5-width5",
-        description: "5 levels, up to 5 bricks per level",
-        text: "G R\nB R\nR G B\nG B R G\nB R G R G\n",
+        description: "thesis Table 3.4 size: 5 levels of 5 bricks (25)",
+        text: "R R R R R\nR R G R R\nR G R G R\nG R B R G\nB G R G B\n",
         mbzirc: false,
     },
     BuiltinWall {
         name: "levels5-width10",
-        description: "5 levels, up to 10 bricks per level",
-        text: "R G R G R B\nG R G B R G R G\nR G R B G R G R G\nG R G R B R G R G R\nO R G R G R B R G R\n",
+        description: "thesis Table 3.5 size: 5 levels of 10 bricks (50)",
+        text: "R R G R R R G R R R\nR G R R G R R G R R\nR G R G R B R G R R\nG R G B R G R G R G\nO G R B G R G B R G\n",
         mbzirc: false,
     },
     BuiltinWall {
@@ -73,8 +73,9 @@ mod tests {
             .map(|b| (b.wall().levels(), b.wall().len()))
             .collect();
         assert_eq!(sizes[0], (2, 10));
-        assert_eq!(sizes[1].0, 5);
-        assert_eq!(sizes[2].0, 5);
+        // Tables 3.4 and 3.5: 5 levels, 25 and 50 bricks, at most 5 and 10 on a level.
+        assert_eq!(sizes[1], (5, 25));
+        assert_eq!(sizes[2], (5, 50));
         assert_eq!(sizes[3], (2, 42));
         for b in &BUILTIN_WALLS[1..3] {
             let w = b.wall();

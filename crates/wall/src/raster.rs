@@ -1,7 +1,8 @@
 //! Front-view raster rendering of a wall (the inverse of [`crate::read_png`]).
 //!
-//! Bricks are drawn at `unit_px` pixels per 0.30 m (fractional scales allowed) and 0.20 m
-//! high, separated by borders of `border_px` pixels. Edges are anti-aliased by 4×4
+//! Bricks are drawn at `unit_px` pixels per 0.30 m (fractional scales allowed) and
+//! `layer_units` units high (0.20 m, two thirds of a unit, by default; drawings of walls are
+//! seldom to scale in height), separated by borders of `border_px` pixels. Edges are anti-aliased by 4×4
 //! supersampling, so the output looks like an exported drawing rather than a pixel grid.
 
 use crate::brick::{BrickType, UNIT_LENGTH};
@@ -23,6 +24,8 @@ pub fn brick_rgb(kind: BrickType) -> [u8; 3] {
 pub struct RasterStyle {
     /// Pixels per 0.30 m (at least 1).
     pub unit_px: f64,
+    /// Height of a layer in units of 0.30 m (the physical 0.20 m is 2/3).
+    pub layer_units: f64,
     /// Border thickness between bricks (px).
     pub border_px: f64,
     /// Border colour.
@@ -37,6 +40,7 @@ impl Default for RasterStyle {
     fn default() -> Self {
         RasterStyle {
             unit_px: 24.0,
+            layer_units: 2.0 / 3.0,
             border_px: 2.0,
             border: [0, 0, 0],
             background: [255, 255, 255],
@@ -50,7 +54,7 @@ const SS: usize = 4;
 /// Renders the wall seen from the front (x to the right, level 1 at the bottom).
 pub fn render(wall: &Wall, style: &RasterStyle) -> RgbImage {
     let unit = style.unit_px.max(1.0);
-    let height_px = unit * 2.0 / 3.0;
+    let height_px = unit * style.layer_units.max(1.0 / unit);
     let x_min = wall
         .bricks()
         .iter()
