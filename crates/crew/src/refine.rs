@@ -48,7 +48,7 @@ impl Default for RefineConfig {
             neighbourhood: 8,
             rounds: None,
             stall: Some(1000),
-            node_limit: 200_000,
+            node_limit: 30_000,
         }
     }
 }
