@@ -78,6 +78,7 @@ fn methods(seed: u64) -> Vec<Method> {
         paths: PathMethod::Astar,
         resolve: Resolution::Paper,
         prm,
+        ..CrewConfig::default()
     };
     vec![
         Method {
@@ -200,7 +201,7 @@ pub fn paper(runs: usize, show_progress: bool) -> CliResult<String> {
 }
 
 /// Where the shared MAPF benchmarks are, if present.
-fn benchmarks_dir() -> Option<PathBuf> {
+pub(crate) fn benchmarks_dir() -> Option<PathBuf> {
     let candidates = [
         std::env::var_os("MASON_BENCHMARKS").map(PathBuf::from),
         Some(PathBuf::from("../shared/benchmarks")),
@@ -264,6 +265,7 @@ fn movingai_warehouse() -> CliResult<String> {
                 paths: PathMethod::Astar,
                 resolve,
                 prm: PrmConfig::default(),
+                ..CrewConfig::default()
             };
             let r = run_solve(&inst, &config, Some(600.0))?;
             let (soc, ratio) = match (r.metrics, r.lower_bound()) {

@@ -6,8 +6,9 @@ use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
     solve, validate, AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid,
-    Instance, PathMethod, PlanMetrics, PrmConfig, Resolution, Status,
+    Instance, PathMethod, PlanMetrics, PrmConfig, RefineConfig, Resolution, Status,
 };
+use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::path::Path;
 use std::time::Duration;
@@ -32,33 +33,67 @@ pub struct CrewChoices {
     pub connectivity: Connectivity,
 }
 
+/// The time limit of `--resolve lacam` when `--time-limit` is not given, in seconds.
+pub const LACAM_DEFAULT_LIMIT_S: f64 = 60.0;
+
+/// The solver flags as given.
+pub struct RawChoices<'a> {
+    /// `--assign`.
+    pub assign: Option<&'a str>,
+    /// `--paths`.
+    pub paths: &'a str,
+    /// `--resolve`.
+    pub resolve: Option<&'a str>,
+    /// `--connectivity`.
+    pub connectivity: &'a str,
+    /// `--seed`.
+    pub seed: u64,
+    /// `--refine-rounds`.
+    pub refine_rounds: Option<u64>,
+}
+
 /// Parses the solver options (usage errors exit 2).
-pub fn choices(
-    assign: Option<&str>,
-    paths: &str,
-    resolve: &str,
-    connectivity: &str,
-    prm: PrmConfig,
-    has_pairing: bool,
-) -> CliResult<CrewChoices> {
-    let assign: AssignMethod = match assign {
+pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliResult<CrewChoices> {
+    let assign: AssignMethod = match raw.assign {
         Some(a) => a
             .parse()
             .map_err(|e| input_error(format!("--assign: {e}")))?,
         None if has_pairing => AssignMethod::Given,
-        None => AssignMethod::Hungarian,
+        None => AssignMethod::Joint,
     };
-    let paths: PathMethod = paths
+    let paths: PathMethod = raw
+        .paths
         .parse()
         .map_err(|e| input_error(format!("--paths: {e}")))?;
-    let resolve: Resolution = resolve
+    if assign == AssignMethod::Joint && raw.resolve.is_some() {
+        return Err(input_error(
+            "--assign joint plans the paths itself (TSWAP); drop --resolve, or choose another --assign",
+        ));
+    }
+    if assign == AssignMethod::Joint && paths != PathMethod::Astar {
+        return Err(input_error(
+            "--assign joint moves robots on the grid itself; drop --paths prm",
+        ));
+    }
+    let resolve: Resolution = raw
+        .resolve
+        .unwrap_or("st")
         .parse()
         .map_err(|e| input_error(format!("--resolve: {e}")))?;
-    let connectivity: Connectivity = connectivity
+    let connectivity: Connectivity = raw
+        .connectivity
         .parse()
         .map_err(|e| input_error(format!("--connectivity: {e}")))?;
     if prm.samples == 0 || prm.neighbours == 0 {
         return Err(input_error("--samples and --neighbours must be at least 1"));
+    }
+    if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
+        return Err(input_error("--refine-rounds applies to --resolve lacam"));
+    }
+    let mut refine = RefineConfig::default();
+    if let Some(r) = raw.refine_rounds {
+        refine.rounds = Some(r);
+        refine.stall = None;
     }
     Ok(CrewChoices {
         config: CrewConfig {
@@ -66,9 +101,24 @@ pub fn choices(
             paths,
             resolve,
             prm,
+            seed: raw.seed,
+            refine,
         },
         connectivity,
     })
+}
+
+/// "assign joint", "resolve lacam", … for titles.
+pub fn method_label(config: &CrewConfig) -> String {
+    if config.assign == AssignMethod::Joint {
+        "joint (TSWAP)".into()
+    } else {
+        format!(
+            "assign {:?}, paths {:?}, resolve {:?}",
+            config.assign, config.paths, config.resolve
+        )
+        .to_lowercase()
+    }
 }
 
 fn read(path: &Path) -> CliResult<Vec<u8>> {
@@ -149,14 +199,21 @@ pub struct CrewResult {
     pub outcome: CrewOutcome,
     /// The validator's metrics, when there is a plan.
     pub metrics: Option<PlanMetrics>,
-    /// Each robot's fewest steps to its assigned goal; `None` when unreachable.
+    /// Each robot's fewest steps to its assigned goal (`None` when unreachable); empty when the
+    /// solver gave the sum and there are too many robots to list.
     pub shortest: Vec<Option<u64>>,
 }
+
+/// Robots listed one per row in the text table.
+const TABLE_ROWS: usize = 60;
 
 impl CrewResult {
     /// Σ of the robots' shortest step distances (a lower bound on the sum of costs); `None`
     /// when some goal is unreachable.
     pub fn lower_bound(&self) -> Option<u64> {
+        if self.shortest.is_empty() {
+            return self.outcome.stats.lower_bound;
+        }
         self.shortest.iter().copied().sum()
     }
 }
@@ -189,15 +246,19 @@ pub fn run_solve(
         ),
         None => None,
     };
-    let shortest = inst
-        .robots
-        .iter()
-        .zip(&outcome.goals)
-        .map(|(&s, &g)| {
-            let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
-            (d != UNREACHABLE).then_some(u64::from(d))
-        })
-        .collect();
+    // Per robot only where the table shows it, or when the solver did not sum it already.
+    let shortest = if inst.robot_count() <= TABLE_ROWS || outcome.stats.lower_bound.is_none() {
+        inst.robots
+            .par_iter()
+            .zip(&outcome.goals)
+            .map(|(&s, &g)| {
+                let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
+                (d != UNREACHABLE).then_some(u64::from(d))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     Ok(CrewResult {
         outcome,
         metrics,
@@ -238,6 +299,7 @@ pub fn crew_json(
         "resolve": format!("{:?}", config.resolve).to_lowercase(),
         "prm": {"samples": config.prm.samples, "neighbours": config.prm.neighbours},
         "seed": seed,
+        "refine_rounds_limit": config.refine.rounds,
         "status": o.status,
         "reason": o.reason,
         "agents": agents,
@@ -246,8 +308,14 @@ pub fn crew_json(
         "lower_bound_sum_of_costs": r.lower_bound(),
         "stats": {
             "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "first_solution_ms": o.stats.first_solution.map(|d| d.as_secs_f64() * 1e3),
+            "first_sum_of_costs": o.stats.first_sum_of_costs,
+            "configurations": o.stats.configurations,
+            "refine_rounds": o.stats.refine_rounds,
+            "improvements": o.stats.improvements,
             "expanded": o.stats.expanded,
             "waits": o.stats.waits,
+            "peak_memory_mb": peak_memory_mb(),
         },
     })
 }
@@ -257,19 +325,16 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
     let g = &inst.grid;
     let o = &r.outcome;
     let mut s = format!(
-        "{source}: {} robots on {}×{} ({} free cells), {}-connected; assign {:?}, paths {:?}, resolve {:?}\n",
+        "{source}: {} robots on {}×{} ({} free cells), {}-connected; {}\n",
         inst.robot_count(),
         g.width(),
         g.height(),
         g.free_count(),
         inst.connectivity.degree(),
-        config.assign,
-        config.paths,
-        config.resolve
-    )
-    .to_lowercase();
+        method_label(config)
+    );
     if let Some(paths) = &o.paths {
-        if inst.robot_count() <= 60 {
+        if inst.robot_count() <= TABLE_ROWS {
             s.push_str(&format!(
                 "  {:>5} {:>12} {:>12} {:>8} {:>9}\n",
                 "robot", "start", "goal", "arrives", "shortest"
@@ -292,10 +357,25 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
     }
     if let Some(m) = r.metrics {
         s.push_str(&format!(
-            "sum of costs: {} (lower bound {}), makespan: {}\n",
+            "sum of costs: {} (lower bound {}{}), makespan: {}\n",
             m.sum_of_costs,
             r.lower_bound().map_or("-".into(), |b| b.to_string()),
+            r.lower_bound()
+                .filter(|&b| b > 0)
+                .map_or(String::new(), |b| format!(
+                    ", +{:.1} %",
+                    (m.sum_of_costs as f64 / b as f64 - 1.0) * 100.0
+                )),
             m.makespan
+        ));
+    }
+    if let (Some(first), Some(soc)) = (o.stats.first_solution, o.stats.first_sum_of_costs) {
+        s.push_str(&format!(
+            "first plan after {:.2} ms with sum of costs {soc}; {} configurations; {} refinement rounds, {} kept\n",
+            first.as_secs_f64() * 1e3,
+            o.stats.configurations,
+            o.stats.refine_rounds,
+            o.stats.improvements
         ));
     }
     s.push_str(&format!(
@@ -316,4 +396,12 @@ pub fn exit_for(r: &CrewResult) -> CliResult<()> {
             r.outcome.reason.as_deref().unwrap_or("no plan")
         ))),
     }
+}
+
+/// The process's peak resident memory in MB (Linux `VmHWM`), if known.
+pub fn peak_memory_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
 }

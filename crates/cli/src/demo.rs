@@ -331,6 +331,7 @@ fn crew(out: &Path) -> CliResult<(String, String)> {
             paths,
             resolve,
             prm: PrmConfig::default(),
+            ..CrewConfig::default()
         };
         let r = run_solve(&inst, &config, Some(60.0))?;
         text.push_str(&format!(

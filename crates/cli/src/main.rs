@@ -11,6 +11,7 @@ mod crew_cmd;
 mod demo;
 mod fail;
 mod input;
+mod mapf_bench;
 mod mission_bench;
 mod plan;
 mod progress;
@@ -124,7 +125,8 @@ enum Command {
         /// thesis (Tables 3.3–3.5 setting), planning (whole-process planning time), paper (the
         /// crew paper's Table 2 setting and the MovingAI warehouse), thesis-mission (Table 5.1
         /// setting), missions (simulator throughput), cmcp (team schedules on the CMCP walls
-        /// beside GRASP) or replan (static against re-planned schedules under UAV failures)
+        /// beside GRASP), replan (static against re-planned schedules under UAV failures) or
+        /// mapf (MovingAI maps at rising agent counts: lacam and joint)
         suite: String,
         /// Seconds brute force may search per wall (thesis)
         #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
@@ -135,9 +137,13 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         runs: usize,
         /// cmcp: the benchmark directory holding config/ and GRASP-RESULTS.md (default
-        /// ../shared/benchmarks/walls-cmcp)
+        /// ../shared/benchmarks/walls-cmcp); mapf: the directory holding maps/ and scen/
+        /// (default ../shared/benchmarks/mapf)
         #[arg(long)]
         data: Option<PathBuf>,
+        /// mapf: the long sweep (more maps, 30 s per case) instead of the default few minutes
+        #[arg(long)]
+        long: bool,
     },
 }
 
@@ -232,29 +238,36 @@ struct CrewArgs {
     /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
     #[arg(long)]
     image: Option<PathBuf>,
-    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian
-    /// (default with --image) or path (Hungarian on path lengths)
+    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
+    /// path (Hungarian on path lengths) or joint (interchangeable robots: TSWAP solves the
+    /// assignment and the paths together; default with --image)
     #[arg(long)]
     assign: Option<String>,
     /// Single-robot paths: astar or prm
     #[arg(long, default_value = "astar")]
     paths: String,
-    /// Collision resolution: paper (priority waits) or st (space-time A*)
-    #[arg(long, default_value = "st")]
-    resolve: String,
+    /// Collision resolution: paper (priority waits), st (prioritized space-time A*; default)
+    /// or lacam (complete LaCAM, then refinement until --time-limit); not with --assign joint
+    #[arg(long)]
+    resolve: Option<String>,
     /// 4 or 8 (diagonals only past two free sides)
     #[arg(long, default_value = "8")]
     connectivity: String,
-    /// Seed of the roadmap sampler
+    /// Seed of the roadmap sampler and of lacam (same seed, same plan, unless --time-limit
+    /// stops the refinement)
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// lacam: refinement rounds at most (0: the first plan as it is; default: until
+    /// --time-limit, or 1000 rounds in a row without improvement)
+    #[arg(long)]
+    refine_rounds: Option<u64>,
     /// PRM samples
     #[arg(long, default_value_t = 2000)]
     samples: usize,
     /// PRM neighbours per node
     #[arg(long, default_value_t = 10)]
     neighbours: usize,
-    /// Time budget in seconds
+    /// Time budget in seconds (lacam: 60 when not given; it refines until then)
     #[arg(long, allow_negative_numbers = true)]
     time_limit: Option<f64>,
     /// Print JSON instead of a table
@@ -382,7 +395,11 @@ fn run(cli: Cli) -> CliResult<()> {
             time_limit,
             runs,
             data,
+            long,
         } => {
+            if long && suite != "mapf" {
+                return Err(input_error("--long applies to bench mapf"));
+            }
             let limit = plan::time_limit(Some(time_limit))?.unwrap_or(60.0);
             let text = match suite.as_str() {
                 "thesis" => bench::thesis(limit)?,
@@ -392,9 +409,10 @@ fn run(cli: Cli) -> CliResult<()> {
                 "missions" => mission_bench::throughput(runs)?,
                 "cmcp" => cmcp_bench::cmcp(data.as_deref(), None)?,
                 "replan" => mission_bench::replan(runs.max(1) * 50)?,
+                "mapf" => mapf_bench::mapf(data.as_deref(), long, !cli.quiet)?,
                 other => {
                     return Err(input_error(format!(
-                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions, cmcp or replan"
+                        "unknown bench suite `{other}`: expected thesis, planning, paper, thesis-mission, missions, cmcp, replan or mapf"
                     )))
                 }
             };
@@ -734,13 +752,25 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         seed: a.seed,
     };
     let choices = crew_cmd::choices(
-        a.assign.as_deref(),
-        &a.paths,
-        &a.resolve,
-        &a.connectivity,
+        crew_cmd::RawChoices {
+            assign: a.assign.as_deref(),
+            paths: &a.paths,
+            resolve: a.resolve.as_deref(),
+            connectivity: &a.connectivity,
+            seed: a.seed,
+            refine_rounds: a.refine_rounds,
+        },
         prm,
         a.scen.is_some(),
     )?;
+    // lacam is anytime and, on a hard instance, its search could grow until memory runs out:
+    // without a limit it gets a default one.
+    let limit = match (limit, choices.config.resolve, choices.config.assign) {
+        (None, mason_crew::Resolution::Lacam, a) if a != mason_crew::AssignMethod::Joint => {
+            Some(crew_cmd::LACAM_DEFAULT_LIMIT_S)
+        }
+        (l, _, _) => l,
+    };
     let input = crew_cmd::CrewInput {
         map: a.map.as_deref(),
         scen: a.scen.as_deref(),
@@ -754,7 +784,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             "{source} — {} robots, {} ({})",
             inst.robot_count(),
             result.outcome.status,
-            a.resolve
+            crew_cmd::method_label(&choices.config)
         );
         let paths = result.outcome.paths.clone().unwrap_or_default();
         let svg = mason_report::crew_svg(
@@ -767,7 +797,11 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         write_file(path, svg.as_bytes())?;
     }
     if let (Some(path), Some(paths)) = (&a.html, &result.outcome.paths) {
-        let title = format!("{source} — {} robots ({})", inst.robot_count(), a.resolve);
+        let title = format!(
+            "{source} — {} robots ({})",
+            inst.robot_count(),
+            crew_cmd::method_label(&choices.config)
+        );
         let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
         write_file(path, page.as_bytes())?;
     }

@@ -378,6 +378,101 @@ fn crew_infeasible_exits_1_with_the_reason() {
 }
 
 #[test]
+fn crew_lacam_and_joint_report_bounds_and_valid_plans() {
+    let room = data("crew-room.map");
+    let scen = data("crew-room.scen");
+    for extra in [
+        &["--resolve", "lacam", "--refine-rounds", "50"][..],
+        &["--assign", "joint"][..],
+    ] {
+        let mut args = vec!["crew", &room, "--scen", &scen, "--json"];
+        args.extend_from_slice(extra);
+        let o = mason(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+        let soc = v["sum_of_costs"].as_u64().unwrap();
+        let lb = v["lower_bound_sum_of_costs"].as_u64().unwrap();
+        assert!(soc >= lb, "{extra:?}: {soc} < {lb}");
+        assert!(v["makespan"].as_u64().is_some());
+        assert!(v["stats"]["first_solution_ms"].as_f64().is_some());
+        let agents = v["agents"].as_array().unwrap();
+        for a in agents {
+            let path = a["path"].as_array().unwrap();
+            assert_eq!(path[path.len() - 1], a["goal"], "{extra:?}");
+        }
+    }
+    // Same seed, same plan.
+    let run = |seed: &str| {
+        stdout(&mason(&[
+            "crew",
+            &room,
+            "--scen",
+            &scen,
+            "--resolve",
+            "lacam",
+            "--refine-rounds",
+            "30",
+            "--seed",
+            seed,
+            "--json",
+        ]))
+    };
+    let strip = |s: String| {
+        let mut v: Value = serde_json::from_str(&s).unwrap();
+        v["stats"] = Value::Null;
+        v
+    };
+    assert_eq!(strip(run("3")), strip(run("3")));
+    // The corridor that prioritized planning calls infeasible is infeasible for lacam too, and
+    // proven so.
+    let o = mason(&[
+        "crew",
+        &data("crew-corridor.map"),
+        "--scen",
+        &data("crew-corridor.scen"),
+        "--resolve",
+        "lacam",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no plan exists"), "{}", stderr(&o));
+}
+
+#[test]
+fn crew_new_flags_are_checked() {
+    let room = data("crew-room.map");
+    let scen = data("crew-room.scen");
+    assert_input_error(
+        &mason(&["crew", &room, "--scen", &scen, "--resolve", "lacam2"]),
+        &["--resolve", "unknown resolution `lacam2`"],
+    );
+    assert_input_error(
+        &mason(&[
+            "crew",
+            &room,
+            "--scen",
+            &scen,
+            "--assign",
+            "joint",
+            "--resolve",
+            "st",
+        ]),
+        &["--assign joint plans the paths itself"],
+    );
+    assert_input_error(
+        &mason(&["crew", &room, "--scen", &scen, "--refine-rounds", "5"]),
+        &["--refine-rounds applies to --resolve lacam"],
+    );
+    assert_input_error(
+        &mason(&["bench", "mapf", "--data", &data("missing-dir")]),
+        &["not a MovingAI benchmark directory"],
+    );
+    assert_input_error(
+        &mason(&["bench", "paper", "--long"]),
+        &["--long applies to bench mapf"],
+    );
+}
+
+#[test]
 fn crew_bad_inputs_exit_2_with_one_line() {
     let room = data("crew-room.map");
     let scen = data("crew-room.scen");

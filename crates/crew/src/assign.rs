@@ -3,7 +3,9 @@
 use crate::distance::path_lengths;
 use crate::hungarian::hungarian;
 use crate::instance::Instance;
+use crate::moves::goal_distances;
 use crate::perm::{permutation_assignment, PERM_LIMIT};
+use crate::tswap::bottleneck_assignment;
 use thiserror::Error;
 
 /// How robots get their goals.
@@ -17,6 +19,9 @@ pub enum AssignMethod {
     Hungarian,
     /// Hungarian method on true shortest-path lengths.
     Path,
+    /// Assignment and paths solved together for interchangeable robots (TSWAP,
+    /// [`crate::tswap`]); on its own, the greedy step-distance assignment TSWAP starts from.
+    Joint,
 }
 
 impl std::str::FromStr for AssignMethod {
@@ -27,9 +32,10 @@ impl std::str::FromStr for AssignMethod {
             "perm" => AssignMethod::Perm,
             "hungarian" => AssignMethod::Hungarian,
             "path" => AssignMethod::Path,
+            "joint" => AssignMethod::Joint,
             _ => {
                 return Err(format!(
-                    "unknown assignment `{s}` (given, perm, hungarian, path)"
+                    "unknown assignment `{s}` (given, perm, hungarian, path, joint)"
                 ))
             }
         })
@@ -97,6 +103,21 @@ pub fn assign(inst: &Instance, method: AssignMethod) -> Result<Vec<usize>, Assig
                 })
                 .collect();
             hungarian(&cost)
+        }
+        AssignMethod::Joint => {
+            let dist = goal_distances(&inst.grid, inst.connectivity, &inst.goals);
+            let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
+            let greedy = bottleneck_assignment(&dist, &starts);
+            let mut free: Vec<usize> = {
+                let mut used = vec![false; inst.goals.len()];
+                greedy.iter().flatten().for_each(|&g| used[g] = true);
+                (0..inst.goals.len()).filter(|&g| !used[g]).collect()
+            };
+            free.reverse();
+            greedy
+                .into_iter()
+                .map(|g| g.unwrap_or_else(|| free.pop().expect("n ≤ m goals")))
+                .collect()
         }
     })
 }

@@ -3,7 +3,10 @@
 //! A UAV sees a grid world from above. It gives each of n robots one of the goals
 //! ([`assign`]), plans each robot's path with A* ([`astar`]) or a probabilistic roadmap
 //! ([`prm`]), and resolves collisions: by the paper's priority waits ([`paper`]) or by
-//! prioritized space-time A* ([`st`]). [`validate`] checks any plan without knowing who made it.
+//! prioritized space-time A* ([`st`]), or completely by LaCAM over PIBT steps ([`lacam`],
+//! [`pibt`]) refined by large neighbourhood search ([`refine`]). For interchangeable robots,
+//! TSWAP ([`tswap`]) solves the assignment and the paths together. [`validate`] checks any plan
+//! without knowing who made it.
 //!
 //! Modules, one concept each:
 //! - [`grid`]: cells, connectivity and legal moves; [`instance`]: robots and goals on a grid;
@@ -11,7 +14,10 @@
 //! - [`distance`]: BFS step distances and Dijkstra path lengths; [`rra`]: distances on demand;
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
-//! - [`reservation`], [`paper`], [`st`]: collision resolution; [`solve`]: the pipeline;
+//! - [`reservation`], [`paper`], [`st`]: collision resolution, prioritized (incomplete);
+//! - [`moves`], [`pibt`], [`repair`], [`lacam`], [`refine`]: complete and anytime labelled MAPF;
+//! - [`cbs`]: optimal labelled MAPF for a few robots (the tests' yardstick);
+//! - [`tswap`]: unlabelled MAPF (assignment and paths together); [`solve`]: the pipeline;
 //! - [`validate`]: the plan checker; [`outcome`]: status, budget, stats; [`generate`]: test worlds.
 //!
 //! ```
@@ -34,6 +40,7 @@
 
 pub mod assign;
 pub mod astar;
+pub mod cbs;
 pub mod distance;
 pub mod error;
 pub mod generate;
@@ -41,16 +48,22 @@ pub mod grid;
 pub mod hungarian;
 pub mod image;
 pub mod instance;
+pub mod lacam;
 pub mod line;
+pub mod moves;
 pub mod movingai;
 pub mod outcome;
 pub mod paper;
 pub mod perm;
+pub mod pibt;
 pub mod prm;
+pub mod refine;
+pub mod repair;
 pub mod reservation;
 pub mod rra;
 pub mod solve;
 pub mod st;
+pub mod tswap;
 pub mod validate;
 
 pub use assign::{AssignError, AssignMethod};
@@ -59,5 +72,6 @@ pub use grid::{Cell, Connectivity, Grid};
 pub use instance::Instance;
 pub use outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 pub use prm::PrmConfig;
+pub use refine::RefineConfig;
 pub use solve::{solve, CrewConfig, PathMethod, Resolution, SetupError};
 pub use validate::{validate, PlanError, PlanMetrics};

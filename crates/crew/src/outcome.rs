@@ -72,6 +72,19 @@ pub struct CrewStats {
     pub expanded: u64,
     /// Waits inserted by `paper` resolution.
     pub waits: u64,
+    /// Time to the first plan (`lacam`, `joint`); the rest of `elapsed` went to refinement.
+    pub first_solution: Option<Duration>,
+    /// Sum of costs of the first plan, before refinement (`lacam`).
+    pub first_sum_of_costs: Option<u64>,
+    /// Configurations created by LaCAM.
+    pub configurations: u64,
+    /// Refinement rounds run, and how many of them improved the plan.
+    pub refine_rounds: u64,
+    /// Refinement rounds whose new paths were kept.
+    pub improvements: u64,
+    /// Σ of each robot's fewest steps to its assigned goal, when the solver computed it on the
+    /// way (`lacam`, `joint`).
+    pub lower_bound: Option<u64>,
 }
 
 /// A crew solve's result.

@@ -5,11 +5,16 @@ use crate::astar::astar;
 use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
-use crate::outcome::{Budget, CrewOutcome, CrewStats, Status};
+use crate::lacam::{lacam, LacamEnd};
+use crate::moves::{goal_distances, MoveGraph};
+use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
+use crate::refine::{refine, RefineConfig};
+use crate::repair::{rollout_and_repair, RepairEnd};
 use crate::rra::GoalDistance;
 use crate::st::{space_time_plan, StFailure};
+use crate::tswap::{bottleneck_assignment, tswap, TswapEnd};
 use std::time::Instant;
 use thiserror::Error;
 
@@ -40,6 +45,8 @@ pub enum Resolution {
     Paper,
     /// Prioritized space-time A* with a reservation table.
     St,
+    /// LaCAM over PIBT steps (complete), then anytime refinement by large neighbourhood search.
+    Lacam,
 }
 
 impl std::str::FromStr for Resolution {
@@ -48,7 +55,8 @@ impl std::str::FromStr for Resolution {
         match s {
             "paper" => Ok(Resolution::Paper),
             "st" => Ok(Resolution::St),
-            _ => Err(format!("unknown resolution `{s}` (paper, st)")),
+            "lacam" => Ok(Resolution::Lacam),
+            _ => Err(format!("unknown resolution `{s}` (paper, st, lacam)")),
         }
     }
 }
@@ -62,8 +70,12 @@ pub struct CrewConfig {
     pub paths: PathMethod,
     /// Collision resolution.
     pub resolve: Resolution,
-    /// Roadmap settings (`prm` only); its seed is the solve's seed.
+    /// Roadmap settings (`prm` only); its seed is the roadmap's seed.
     pub prm: PrmConfig,
+    /// Seed of LaCAM's tie-breaking and of refinement (`lacam`).
+    pub seed: u64,
+    /// When refinement stops besides the deadline (`lacam`).
+    pub refine: RefineConfig,
 }
 
 impl Default for CrewConfig {
@@ -73,6 +85,8 @@ impl Default for CrewConfig {
             paths: PathMethod::Astar,
             resolve: Resolution::St,
             prm: PrmConfig::default(),
+            seed: 0,
+            refine: RefineConfig::default(),
         }
     }
 }
@@ -84,7 +98,7 @@ pub enum SetupError {
     #[error(transparent)]
     Assign(#[from] AssignError),
     /// `st` plans its own paths on the grid.
-    #[error("--resolve st searches space-time paths on the grid itself; use --paths astar (prm goes with --resolve paper)")]
+    #[error("--resolve st and lacam search on the grid itself; use --paths astar (prm goes with --resolve paper)")]
     StNeedsGrid,
 }
 
@@ -96,8 +110,11 @@ pub fn solve(
     budget: &Budget,
 ) -> Result<CrewOutcome, SetupError> {
     let started = Instant::now();
-    if config.resolve == Resolution::St && config.paths == PathMethod::Prm {
+    if config.resolve != Resolution::Paper && config.paths == PathMethod::Prm {
         return Err(SetupError::StNeedsGrid);
+    }
+    if config.assign == AssignMethod::Joint {
+        return Ok(solve_joint(inst, budget, started));
     }
     let goal_index = assign(inst, config.assign)?;
     let goals: Vec<Cell> = goal_index.iter().map(|&g| inst.goals[g]).collect();
@@ -235,11 +252,14 @@ pub fn solve(
                 ),
             })
         }
+        Resolution::Lacam => solve_lacam(inst, &goals, config, budget, &mut stats, started),
     };
     stats.elapsed = started.elapsed();
     match result {
         Ok(paths) => {
-            let status = if n == 1 && config.resolve == Resolution::St {
+            let lower_bound_met = config.resolve == Resolution::Lacam
+                && stats.lower_bound == Some(sum_of_costs(&paths));
+            let status = if (n == 1 && config.resolve == Resolution::St) || lower_bound_met {
                 Status::Optimal
             } else {
                 Status::Feasible
@@ -261,4 +281,269 @@ fn priority_order(lengths: &[u64]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..lengths.len()).collect();
     order.sort_by(|&a, &b| lengths[b].cmp(&lengths[a]).then(a.cmp(&b)));
     order
+}
+
+fn to_cells(paths: Vec<Vec<u32>>) -> Paths {
+    paths
+        .into_iter()
+        .map(|p| p.into_iter().map(Cell).collect())
+        .collect()
+}
+
+fn sum_of_costs(paths: &Paths) -> u64 {
+    paths
+        .iter()
+        .map(|p| crate::validate::arrival(p) as u64)
+        .sum()
+}
+
+/// Rollouts tried one after the other before LaCAM takes over.
+const ROLLOUTS: u64 = 12;
+
+fn count_home(q: &[u32], goals: &[u32]) -> usize {
+    q.iter().zip(goals).filter(|(a, b)| a == b).count()
+}
+
+/// `rest` (which starts where every path of `prefix` ends) after `prefix`, whose paths are held
+/// (resting) until the longest ends; each cut at its last arrival. No prefix: `rest` itself.
+fn append(prefix: Option<Vec<Vec<u32>>>, rest: Vec<Vec<u32>>) -> Vec<Vec<u32>> {
+    let Some(prefix) = prefix else {
+        return rest;
+    };
+    let end = prefix.iter().map(Vec::len).max().unwrap_or(1) - 1;
+    prefix
+        .into_iter()
+        .zip(rest)
+        .map(|(mut p, r)| {
+            let last = p[p.len() - 1];
+            p.resize(end + 1, last);
+            p.extend_from_slice(&r[1..]);
+            let g = p[p.len() - 1];
+            let arrive = p.iter().rposition(|&c| c != g).map_or(0, |t| t + 1);
+            p.truncate(arrive + 1);
+            p
+        })
+        .collect()
+}
+
+/// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
+fn solve_lacam(
+    inst: &Instance,
+    goals: &[Cell],
+    config: &CrewConfig,
+    budget: &Budget,
+    stats: &mut CrewStats,
+    started: Instant,
+) -> Result<Paths, (Status, String)> {
+    let (grid, conn) = (&inst.grid, inst.connectivity);
+    let graph = MoveGraph::new(grid, conn);
+    let dist = goal_distances(grid, conn, goals);
+    for (r, (&s, &g)) in inst.robots.iter().zip(goals).enumerate() {
+        if dist[r][s.0 as usize] == UNREACHABLE {
+            return Err((
+                Status::Infeasible,
+                format!(
+                    "robot {r} cannot reach its goal {:?} from {:?}: no path exists on the grid",
+                    grid.xy(g),
+                    grid.xy(s)
+                ),
+            ));
+        }
+    }
+    let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
+    let targets: Vec<u32> = goals.iter().map(|c| c.0).collect();
+    stats.lower_bound = Some(
+        starts
+            .iter()
+            .enumerate()
+            .map(|(r, &s)| u64::from(dist[r][s as usize]))
+            .sum(),
+    );
+    let max_d = (0..starts.len())
+        .map(|r| dist[r][starts[r] as usize])
+        .max()
+        .unwrap_or(0);
+    // Rollouts with repair, each from where the last one left the robots, until two in a row
+    // bring no more robots home; then LaCAM from there (configurations reachable from the start reach
+    // the goals whenever the start does: moves are reversible).
+    let mut prefix: Option<Vec<Vec<u32>>> = None;
+    let mut from = starts.clone();
+    let mut home = count_home(&from, &targets);
+    let mut end = None;
+    let mut idle = 0;
+    for round in 0..ROLLOUTS {
+        let (quick, repaired) = rollout_and_repair(
+            &graph,
+            &dist,
+            &from,
+            &targets,
+            8 * max_d + 256,
+            budget,
+            config.seed.wrapping_add(round),
+        );
+        stats.expanded += repaired.expanded;
+        match quick {
+            RepairEnd::Found(paths) => {
+                end = Some((LacamEnd::Found(append(prefix.take(), paths)), 0));
+                break;
+            }
+            RepairEnd::Budget => {
+                end = Some((LacamEnd::Budget, 0));
+                break;
+            }
+            RepairEnd::GaveUp(None) => break,
+            RepairEnd::GaveUp(Some(partial)) => {
+                let here: Vec<u32> = partial.iter().map(|p| p[p.len() - 1]).collect();
+                let now = count_home(&here, &targets);
+                prefix = Some(append(prefix.take(), partial));
+                from = here;
+                if now <= home {
+                    idle += 1;
+                    if idle >= 2 {
+                        break;
+                    }
+                } else {
+                    idle = 0;
+                    home = now;
+                }
+            }
+        }
+    }
+    let (end, configurations) = match end {
+        Some(e) => e,
+        None => match lacam(&graph, &dist, &from, &targets, budget, config.seed) {
+            (LacamEnd::Found(rest), k) => (LacamEnd::Found(append(prefix, rest)), k),
+            (LacamEnd::Exhausted, _) if prefix.is_some() => {
+                lacam(&graph, &dist, &starts, &targets, budget, config.seed)
+            }
+            other => other,
+        },
+    };
+    stats.configurations = configurations;
+    match end {
+        LacamEnd::Found(mut paths) => {
+            stats.first_solution = Some(started.elapsed());
+            stats.first_sum_of_costs = Some(
+                paths
+                    .iter()
+                    .map(|p| {
+                        let g = p[p.len() - 1];
+                        p.iter().rposition(|&c| c != g).map_or(0, |t| t as u64 + 1)
+                    })
+                    .sum(),
+            );
+            let r = refine(
+                &graph,
+                &dist,
+                &targets,
+                &mut paths,
+                &config.refine,
+                budget,
+                config.seed,
+            );
+            stats.refine_rounds = r.rounds;
+            stats.improvements = r.improvements;
+            stats.expanded += r.expanded;
+            Ok(to_cells(paths))
+        }
+        LacamEnd::Exhausted => Err((
+            Status::Infeasible,
+            format!(
+                "LaCAM explored all {configurations} reachable configurations and none has every robot on its goal: no plan exists"
+            ),
+        )),
+        LacamEnd::Budget => Err((
+            Status::Timeout,
+            format!(
+                "the budget ran out before a first plan ({home} of {} robots home where the last PIBT rollout began; {configurations} LaCAM configurations)",
+                targets.len()
+            ),
+        )),
+    }
+}
+
+/// Unlabelled: TSWAP from the bottleneck step-distance assignment.
+fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcome {
+    let (grid, conn) = (&inst.grid, inst.connectivity);
+    let graph = MoveGraph::new(grid, conn);
+    let dist = goal_distances(grid, conn, &inst.goals);
+    let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
+    let goal_cells: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
+    let greedy = bottleneck_assignment(&dist, &starts);
+    let mut stats = CrewStats::default();
+    let done = |status, goals: Vec<usize>, paths, reason, mut stats: CrewStats| {
+        stats.elapsed = started.elapsed();
+        CrewOutcome {
+            status,
+            goals: goals.iter().map(|&g| inst.goals[g]).collect(),
+            paths,
+            reason,
+            stats,
+        }
+    };
+    let fallback: Vec<usize> = (0..inst.robot_count()).collect();
+    if let Some(r) = greedy.iter().position(Option::is_none) {
+        return done(
+            Status::Infeasible,
+            fallback,
+            None,
+            Some(format!(
+                "robot {r} at {:?} can reach none of the goals left to it",
+                grid.xy(inst.robots[r])
+            )),
+            stats,
+        );
+    }
+    let initial: Vec<usize> = greedy.into_iter().map(|g| g.expect("checked")).collect();
+    let longest = (0..inst.robot_count())
+        .map(|r| dist[initial[r]][starts[r] as usize])
+        .max()
+        .unwrap_or(0);
+    let max_steps = (longest + inst.robot_count() as u32 + grid.len() as u32).saturating_mul(4);
+    match tswap(&graph, &dist, &goal_cells, &starts, &initial, max_steps, budget) {
+        TswapEnd::Found { goals, paths } => {
+            stats.first_solution = Some(started.elapsed());
+            stats.lower_bound = Some(
+                starts
+                    .iter()
+                    .zip(&goals)
+                    .map(|(&s, &g)| u64::from(dist[g][s as usize]))
+                    .sum(),
+            );
+            done(Status::Feasible, goals, Some(to_cells(paths)), None, stats)
+        }
+        TswapEnd::Unreachable { robot } => done(
+            Status::Infeasible,
+            initial,
+            None,
+            Some(format!("robot {robot} cannot reach its goal")),
+            stats,
+        ),
+        TswapEnd::Budget => done(
+            Status::Timeout,
+            initial,
+            None,
+            Some(format!(
+                "TSWAP did not bring every robot to a goal within the budget ({max_steps} steps at most)"
+            )),
+            stats,
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::append;
+
+    #[test]
+    fn append_holds_the_prefix_then_continues() {
+        // Robot 0 arrives at step 2, robot 1 at step 1; the continuation starts at step 2.
+        let prefix = vec![vec![0, 1, 2], vec![5, 6]];
+        let rest = vec![vec![2, 3], vec![6, 6]];
+        assert_eq!(
+            append(Some(prefix), rest),
+            vec![vec![0, 1, 2, 3], vec![5, 6]]
+        );
+        assert_eq!(append(None, vec![vec![4]]), vec![vec![4]]);
+    }
 }

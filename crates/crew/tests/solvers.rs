@@ -120,6 +120,7 @@ proptest! {
             paths: if paper && prm { PathMethod::Prm } else { PathMethod::Astar },
             resolve: if paper { Resolution::Paper } else { Resolution::St },
             prm: PrmConfig { samples: 40, neighbours: 6, seed: 7 },
+            ..CrewConfig::default()
         };
         let out = solve(&inst, &config, &Budget { deadline: None, node_limit: Some(200_000) }).unwrap();
         match out.status {

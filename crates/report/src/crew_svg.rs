@@ -5,7 +5,12 @@ use crate::svg::{escape, robot_colour};
 use mason_crew::{Cell, Grid};
 use std::fmt::Write;
 
+/// Paths drawn at most; beyond, every k-th robot's path is drawn and the title says so.
+pub const MAX_PATHS: usize = 150;
+
 /// An SVG of a crew plan. `paths` may be empty (no plan): then only starts and goals show.
+/// With more than [`MAX_PATHS`] robots, only every k-th path is drawn (the title says which);
+/// every start and goal is always drawn.
 pub fn crew_svg(
     title: &str,
     grid: &Grid,
@@ -18,6 +23,16 @@ pub fn crew_svg(
     let top = 28.0;
     let (width, height) = (f64::from(w) * cell, f64::from(h) * cell + top);
     let mut svg = String::new();
+    let thinned = if paths.len() > MAX_PATHS {
+        let every = paths.len().div_ceil(MAX_PATHS);
+        format!(
+            " — paths drawn for one robot in {every} ({} of {}); every start (circle) and goal (square) shown",
+            paths.len().div_ceil(every),
+            paths.len()
+        )
+    } else {
+        String::new()
+    };
     let _ = write!(
         svg,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.1} {height:.1}" font-family="sans-serif">"#
@@ -28,8 +43,9 @@ pub fn crew_svg(
     );
     let _ = write!(
         svg,
-        r##"<text x="4" y="18" font-size="13" fill="#222">{}</text>"##,
-        escape(title)
+        r##"<text x="4" y="18" font-size="13" fill="#222">{}{}</text>"##,
+        escape(title),
+        escape(&thinned)
     );
     let _ = write!(
         svg,
@@ -67,7 +83,8 @@ pub fn crew_svg(
         ((f64::from(x) + 0.5) * cell, (f64::from(y) + 0.5) * cell)
     };
     let stroke = (cell * 0.35).max(0.8);
-    for (i, path) in paths.iter().enumerate() {
+    let every = paths.len().div_ceil(MAX_PATHS).max(1);
+    for (i, path) in paths.iter().enumerate().step_by(every) {
         let points: Vec<String> = dedup(path)
             .into_iter()
             .map(|c| {
@@ -111,4 +128,29 @@ fn dedup(path: &[Cell]) -> Vec<Cell> {
     let mut out: Vec<Cell> = path.to_vec();
     out.dedup();
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn many_robots_thin_the_paths_and_say_so() {
+        let grid = Grid::open(40, 40);
+        let n = 400;
+        let starts: Vec<Cell> = (0..n).map(|i| Cell(i as u32)).collect();
+        let goals: Vec<Cell> = (0..n).map(|i| Cell(1599 - i as u32)).collect();
+        let paths: Vec<Vec<Cell>> = starts
+            .iter()
+            .zip(&goals)
+            .map(|(&s, &g)| vec![s, g])
+            .collect();
+        let svg = crew_svg("t", &grid, &starts, &goals, &paths);
+        assert_eq!(svg.matches("<polyline").count(), 134);
+        assert!(svg.contains("one robot in 3 (134 of 400)"));
+        assert_eq!(svg.matches("<circle").count(), n);
+        let few = crew_svg("t", &grid, &starts[..5], &goals[..5], &paths[..5]);
+        assert_eq!(few.matches("<polyline").count(), 5);
+        assert!(!few.contains("one robot in"));
+    }
 }

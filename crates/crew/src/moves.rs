@@ -1,0 +1,126 @@
+//! The move graph of a grid as flat adjacency lists, for the solvers that step many robots at
+//! once ([`crate::pibt`], [`crate::lacam`], [`crate::refine`], [`crate::tswap`]). Cells keep their
+//! grid indices; each free cell lists the cells one legal move away, exactly the moves of
+//! [`Grid::for_each_move`] (diagonals only past two free sides). Also the rule that two
+//! simultaneous diagonal moves may not cross inside one 2×2 square, as `crew::validate` checks.
+
+use crate::grid::{Cell, Connectivity, Grid};
+use rayon::prelude::*;
+
+/// Marks "no robot" or "no cell" in the solvers' dense arrays.
+pub const NIL: u32 = u32::MAX;
+
+/// Adjacency lists of the grid's legal moves (waiting excluded).
+#[derive(Clone, Debug)]
+pub struct MoveGraph {
+    width: u32,
+    offsets: Vec<u32>,
+    targets: Vec<u32>,
+}
+
+impl MoveGraph {
+    /// The moves of `grid` under `conn`. O(cells).
+    pub fn new(grid: &Grid, conn: Connectivity) -> Self {
+        let mut offsets = Vec::with_capacity(grid.len() + 1);
+        let mut targets = Vec::new();
+        offsets.push(0);
+        for c in 0..grid.len() as u32 {
+            if grid.is_free(Cell(c)) {
+                grid.for_each_move(Cell(c), conn, |n, _| targets.push(n.0));
+            }
+            offsets.push(targets.len() as u32);
+        }
+        MoveGraph {
+            width: grid.width(),
+            offsets,
+            targets,
+        }
+    }
+
+    /// Number of cells (free or not).
+    pub fn cells(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// The cells one move away from `c`.
+    #[inline]
+    pub fn neighbours(&self, c: u32) -> &[u32] {
+        &self.targets[self.offsets[c as usize] as usize..self.offsets[c as usize + 1] as usize]
+    }
+
+    /// Fewest steps from `source` to every cell (moves are symmetric, so also to `source`);
+    /// [`crate::distance::UNREACHABLE`] where no path goes. `source` must be free.
+    /// Breadth-first search, O(cells).
+    pub fn distances_from(&self, source: u32) -> Vec<u32> {
+        let mut dist = vec![NIL; self.cells()];
+        dist[source as usize] = 0;
+        let mut queue = Vec::with_capacity(self.cells());
+        queue.push(source);
+        let mut head = 0;
+        while head < queue.len() {
+            let c = queue[head];
+            head += 1;
+            let d = dist[c as usize] + 1;
+            for &m in self.neighbours(c) {
+                if dist[m as usize] == NIL {
+                    dist[m as usize] = d;
+                    queue.push(m);
+                }
+            }
+        }
+        dist
+    }
+
+    /// For a diagonal move `a → b`, the two other corners of its 2×2 square; `None` for a
+    /// straight move or a wait.
+    #[inline]
+    pub fn corners(&self, a: u32, b: u32) -> Option<(u32, u32)> {
+        let (ax, ay) = (a % self.width, a / self.width);
+        let (bx, by) = (b % self.width, b / self.width);
+        (ax != bx && ay != by).then(|| (ay * self.width + bx, by * self.width + ax))
+    }
+}
+
+/// Step distances to each of `goals`, one breadth-first search per goal, run on all cores.
+/// The result does not depend on the number of threads. Memory: cells × goals × 4 bytes.
+pub fn goal_distances(grid: &Grid, conn: Connectivity, goals: &[Cell]) -> Vec<Vec<u32>> {
+    let graph = MoveGraph::new(grid, conn);
+    goals
+        .par_iter()
+        .map(|&g| graph.distances_from(g.0))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lists_the_grids_moves() {
+        let mut g = Grid::open(3, 3);
+        g.set_blocked(g.cell(1, 0).unwrap(), true);
+        let m = MoveGraph::new(&g, Connectivity::Eight);
+        for c in 0..g.len() as u32 {
+            let mut want: Vec<u32> = if g.is_free(Cell(c)) {
+                g.moves(Cell(c), Connectivity::Eight)
+                    .iter()
+                    .map(|x| x.0 .0)
+                    .collect()
+            } else {
+                vec![]
+            };
+            let mut got = m.neighbours(c).to_vec();
+            want.sort_unstable();
+            got.sort_unstable();
+            assert_eq!(got, want, "cell {c}");
+        }
+        assert_eq!(m.corners(0, 4), Some((1, 3)));
+        for c in [0, 2, 5, 8] {
+            assert_eq!(
+                m.distances_from(c),
+                crate::distance::step_distances(&g, Connectivity::Eight, Cell(c))
+            );
+        }
+        assert_eq!(m.corners(0, 1), None);
+    }
+}
