@@ -53,7 +53,11 @@ fn tasks(grid: &Grid, n: usize, picks: &[u32]) -> Option<(Vec<Cell>, Vec<Cell>)>
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig {
+        cases: 200,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6372_6577),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn hungarian_equals_perm(n in 1usize..=7, extra in 0usize..3, seed in any::<u64>()) {

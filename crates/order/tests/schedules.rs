@@ -2,6 +2,7 @@
 //! against the exhaustive oracle on tiny walls, the bounds against the optimum, and one
 //! hand-made broken schedule per rule of `validate_schedule`.
 
+use mason_order::team::search::SCENARIOS;
 use mason_order::team::{
     bounds, exhaustive_schedule, plan_schedule, validate_schedule, validate_schedule_claim,
     Objective, Placement, Schedule, ScheduleError, TeamModel, TeamProblem,
@@ -66,10 +67,19 @@ fn random_objective(rng: &mut ChaCha8Rng, wall: &Wall) -> (Objective, Option<f64
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 120, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: 120,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7363_6865_6475),
+        ..ProptestConfig::default()
+    })]
 
     /// Every planned schedule passes the validator, with the reported reward and makespan, and
-    /// sits on the right side of its bound.
+    /// sits on the right side of its bound. The expected reward is an average over
+    /// `SCENARIOS` sampled failure scenarios while the bound holds for the true expectation,
+    /// so the average may pass the bound by sampling error: at most three standard errors of
+    /// a reward between 0 and the whole wall's (regression: a 2-brick wall, 40 s budget, 2.3
+    /// failures an hour, where no sampled scenario failed and the average was the full 6
+    /// against a bound of 5.94).
     #[test]
     fn planned_schedules_are_valid_and_respect_their_bounds(seed in any::<u64>()) {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -89,7 +99,9 @@ proptest! {
             }
             Objective::Reward => prop_assert!(out.reward <= out.bound + 1e-6),
             Objective::Expected { .. } => {
-                prop_assert!(out.expected_reward.unwrap() <= out.bound + 1e-6);
+                let whole: f64 = wall.ids().map(|b| p.reward(b)).sum();
+                let allowance = 3.0 * whole / 2.0 / (SCENARIOS as f64).sqrt();
+                prop_assert!(out.expected_reward.unwrap() <= out.bound + allowance + 1e-6);
                 prop_assert!(out.expected_reward.unwrap() <= out.reward + 1e-6);
             }
         }
@@ -135,7 +147,11 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 80, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: 80,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7469_6e79),
+        ..ProptestConfig::default()
+    })]
 
     /// Plans from random start states (a prefix of the wall placed, the next bricks on their
     /// way with random crews and starts, random UAV ready times, maybe a UAV gone) pass
