@@ -60,6 +60,11 @@ pub fn choices(
     if prm.samples == 0 || prm.neighbours == 0 {
         return Err(input_error("--samples and --neighbours must be at least 1"));
     }
+    if prm.samples > MAX_PRM_SAMPLES || prm.neighbours > MAX_PRM_NEIGHBOURS {
+        return Err(input_error(format!(
+            "--samples is at most {MAX_PRM_SAMPLES} and --neighbours at most {MAX_PRM_NEIGHBOURS}"
+        )));
+    }
     Ok(CrewChoices {
         config: CrewConfig {
             assign,
@@ -71,8 +76,13 @@ pub fn choices(
     })
 }
 
+/// The most PRM samples `--samples` accepts.
+pub const MAX_PRM_SAMPLES: usize = 1_000_000;
+/// The most PRM neighbours `--neighbours` accepts.
+pub const MAX_PRM_NEIGHBOURS: usize = 1_000;
+
 fn read(path: &Path) -> CliResult<Vec<u8>> {
-    std::fs::read(path).map_err(|e| input_error(format!("{}: {e}", path.display())))
+    crate::input::read_input(path, crate::input::MAX_INPUT_BYTES)
 }
 
 fn read_text(path: &Path) -> CliResult<String> {

@@ -42,11 +42,18 @@ pub fn solve(
     })
 }
 
-/// Parses `--time-limit`.
+/// The largest `--time-limit` accepted, in seconds (about 31 years): a larger one is refused,
+/// never turned into a `Duration` that overflows. Omit the flag for no limit.
+pub const MAX_TIME_LIMIT_S: f64 = 1e9;
+
+/// Parses `--time-limit`: a positive number of seconds up to [`MAX_TIME_LIMIT_S`].
 pub fn time_limit(s: Option<f64>) -> CliResult<Option<f64>> {
     match s {
         Some(v) if !(v.is_finite() && v > 0.0) => Err(input_error(format!(
             "--time-limit {v}: expected a positive number of seconds"
+        ))),
+        Some(v) if v > MAX_TIME_LIMIT_S => Err(input_error(format!(
+            "--time-limit {v:e}: at most {MAX_TIME_LIMIT_S:e} s (omit --time-limit for no limit)"
         ))),
         other => Ok(other),
     }

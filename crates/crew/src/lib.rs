@@ -41,6 +41,7 @@ pub mod grid;
 pub mod hungarian;
 pub mod image;
 pub mod instance;
+pub mod limits;
 pub mod line;
 pub mod movingai;
 pub mod outcome;

@@ -74,6 +74,16 @@ pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
             "the header needs both `height` and `width`",
         ));
     };
+    if u64::from(width) * u64::from(height) > crate::limits::MAX_CELLS {
+        return Err(CrewError::new(
+            source_name,
+            Location::Whole,
+            format!(
+                "{width}×{height} is more than the {} cells a map may have (mason_crew::limits::MAX_CELLS)",
+                crate::limits::MAX_CELLS
+            ),
+        ));
+    }
     let mut blocked = Vec::with_capacity(width as usize * height as usize);
     let mut rows = 0u32;
     let mut last_line = 0;
@@ -155,6 +165,15 @@ pub fn parse_scen(
         let line = raw.trim();
         if line.is_empty() {
             continue;
+        }
+        if agents.len() == crate::limits::MAX_AGENTS {
+            return Err(err(
+                no,
+                format!(
+                    "more than {} agents (mason_crew::limits::MAX_AGENTS); take fewer with --agents N",
+                    crate::limits::MAX_AGENTS
+                ),
+            ));
         }
         if line.starts_with("version") {
             if i != 0 {
