@@ -81,6 +81,20 @@ pub const MAX_PRM_SAMPLES: usize = 1_000_000;
 /// The most PRM neighbours `--neighbours` accepts.
 pub const MAX_PRM_NEIGHBOURS: usize = 1_000;
 
+/// Refuses an instance over [`mason_crew::limits::MAX_AGENT_CELLS`] (robots × free cells).
+pub fn check_size(inst: &Instance, source: &str) -> CliResult<()> {
+    let size = inst.robot_count() as u64 * inst.grid.free_count() as u64;
+    let limit = mason_crew::limits::MAX_AGENT_CELLS;
+    if size > limit {
+        return Err(input_error(format!(
+            "{source}: {} robots × {} free cells is more than {limit} (mason_crew::limits::MAX_AGENT_CELLS); take fewer robots (--agents N) or a smaller map",
+            inst.robot_count(),
+            inst.grid.free_count()
+        )));
+    }
+    Ok(())
+}
+
 fn read(path: &Path) -> CliResult<Vec<u8>> {
     crate::input::read_input(path, crate::input::MAX_INPUT_BYTES)
 }

@@ -321,6 +321,7 @@ fn run(cli: Cli) -> CliResult<()> {
             svg,
             html,
         } => {
+            let started = std::time::Instant::now();
             check_outputs(&[&svg, &html])?;
             if let Some(objective) = objective {
                 let req = ScheduleArgs {
@@ -376,6 +377,7 @@ fn run(cli: Cli) -> CliResult<()> {
             } else {
                 print!("{}", plan::plan_table(&problem, &checked));
             }
+            plan::report_overrun(limit, started, &checked);
             plan::exit_for(&checked)
         }
         Command::Simulate(args) => simulate(args, cli.quiet),
@@ -779,6 +781,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         image: a.image.as_deref(),
     };
     let (inst, source) = crew_cmd::load_instance(&input, choices.connectivity)?;
+    crew_cmd::check_size(&inst, &source)?;
     let result = crew_cmd::run_solve(&inst, &choices.config, limit)?;
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(path) = &a.svg {

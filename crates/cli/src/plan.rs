@@ -59,6 +59,21 @@ pub fn time_limit(s: Option<f64>) -> CliResult<Option<f64>> {
     }
 }
 
+/// With `--time-limit L`, says on stderr when the whole command took more than 10 % over L
+/// (the search stops in time; reading, checking and printing a huge wall take the rest).
+pub fn report_overrun(limit: Option<f64>, started: std::time::Instant, checked: &Checked) {
+    let Some(limit) = limit else {
+        return;
+    };
+    let total = started.elapsed().as_secs_f64();
+    if total > 1.1 * limit {
+        eprintln!(
+            "mason: warning: --time-limit {limit} s overrun: the command took {total:.1} s, of which the search {:.1} s (the rest is reading, checking and printing the wall)",
+            checked.outcome.stats.elapsed.as_secs_f64()
+        );
+    }
+}
+
 /// The exit status for an outcome.
 pub fn exit_for(checked: &Checked) -> CliResult<()> {
     match (checked.outcome.status, &checked.evaluation) {

@@ -518,3 +518,37 @@ fn crc32(bytes: &[u8]) -> u32 {
     }
     !crc
 }
+
+#[test]
+fn a_noisy_birdseye_image_over_robots_times_cells_is_refused() {
+    let dir = scratch("agent-cells");
+    let img = image::RgbImage::from_fn(1000, 1000, |x, y| match (x % 50, y % 50) {
+        (0, 0) if x < 500 => image::Rgb([255, 0, 0]),
+        (0, 0) => image::Rgb([0, 255, 0]),
+        _ => image::Rgb([255, 255, 255]),
+    });
+    let p = dir.join("sparse.png");
+    img.save(&p).unwrap();
+    let o = mason(&["crew", "--image", &p.to_string_lossy()]);
+    assert_input_error(&o, &["sparse.png", "200 robots", "MAX_AGENT_CELLS"]);
+}
+
+#[test]
+fn brute_on_a_deep_wall_keeps_its_budget_or_reports_the_overrun() {
+    // 1000 layers of 100 bricks: 100 000 bricks, as deep as the recursive search that
+    // overflowed the stack. The node budget is spent long before the time limit in a release
+    // build; either way there is no crash and any overrun is reported.
+    let dir = scratch("deep-brute");
+    let p = write(
+        &dir,
+        "deep.txt",
+        format!("{}\n", "R".repeat(100)).repeat(1000),
+    );
+    let o = mason(&["plan", &p, "--planner", "brute", "--time-limit", "1"]);
+    let err = stderr(&o);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("overflow"),
+        "{err}"
+    );
+}
