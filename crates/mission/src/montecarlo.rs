@@ -276,3 +276,39 @@ pub fn for_each_run(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod stream_tests {
+    use super::*;
+
+    #[test]
+    fn a_stream_equals_spread_of_up_to_the_cap() {
+        let values: Vec<f64> = (0..1000)
+            .map(|i| ((i * 7919) % 1000) as f64 * 0.5)
+            .collect();
+        let mut s = Stream::default();
+        for &v in &values {
+            s.push(v);
+        }
+        assert_eq!(s.spread(), Spread::of(&values));
+    }
+
+    #[test]
+    fn beyond_the_cap_memory_is_bounded_the_mean_exact_and_the_result_repeatable() {
+        let n = 3 * SAMPLE_CAP as u64 + 17;
+        let run = || {
+            let mut s = Stream::default();
+            for i in 0..n {
+                s.push((i % 1000) as f64);
+            }
+            assert_eq!(s.sample.len(), SAMPLE_CAP);
+            s.spread()
+        };
+        let a = run();
+        assert_eq!(a, run());
+        let exact_mean = (0..n).map(|i| (i % 1000) as f64).sum::<f64>() / n as f64;
+        assert!((a.mean - exact_mean).abs() < 1e-9);
+        assert!((a.p5 - 50.0).abs() <= 10.0, "{a:?}");
+        assert!((a.p95 - 950.0).abs() <= 10.0, "{a:?}");
+    }
+}
