@@ -371,6 +371,11 @@ fn fault_and_mission_file_errors_name_the_file_and_key() {
             "[faults]\nmsg_loss = 7\n",
             vec!["mission.toml", "faults.msg_loss"],
         ),
+        // A heartbeat of 1e-300 s made `--coord auto` spin forever.
+        (
+            "[coord]\nheartbeat_s = 1e-300\n",
+            vec!["mission.toml", "coord.heartbeat_s"],
+        ),
     ] {
         let p = write(&dir, "mission.toml", text);
         let o = mason(&["simulate", "builtin:thesis-2x5", "--mission", &p]);

@@ -136,6 +136,9 @@ fn err(field: &str, value: impl ToString, reason: &str) -> ConfigError {
     }
 }
 
+/// The shortest heartbeat period or timeout accepted (s).
+pub const MIN_HEARTBEAT_S: f64 = 0.1;
+
 /// The longest mission time accepted (s): a mission stops by then, whatever happens.
 pub const MAX_MISSION_TIME_S: f64 = 1e6;
 
@@ -218,8 +221,12 @@ impl MissionConfig {
             ("coord.heartbeat_s", c.heartbeat_s),
             ("coord.heartbeat_timeout_s", c.heartbeat_timeout_s),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(err(name, v, "must be positive"));
+            if !(MIN_HEARTBEAT_S..=MAX_MISSION_TIME_S).contains(&v) {
+                return Err(err(
+                    name,
+                    v,
+                    "must be between 0.1 s and 1e6 s (a shorter heartbeat floods the simulation)",
+                ));
             }
         }
         if let Some(s) = c.slot_s {

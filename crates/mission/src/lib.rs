@@ -44,6 +44,7 @@ pub use arena::{Arena, Point};
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use config::{
     ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,
+    MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
 pub use metrics::Metrics;
