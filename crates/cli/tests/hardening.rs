@@ -557,3 +557,32 @@ fn brute_on_a_deep_wall_keeps_its_budget_or_reports_the_overrun() {
         "{err}"
     );
 }
+
+#[test]
+fn a_huge_scenario_or_map_line_is_refused_without_being_split_or_echoed() {
+    let dir = scratch("scen-line");
+    let scen = write(
+        &dir,
+        "long.scen",
+        format!("version 1\n{}\n", "7 ".repeat(3_000_000)),
+    );
+    let o = mason(&["crew", &data("crew-room.map"), "--scen", &scen]);
+    assert_input_error(&o, &["long.scen:2", "found more"]);
+    let map = write(
+        &dir,
+        "long.map",
+        format!(
+            "type octile\nheight 1\nwidth 2\nmap\n{}\n",
+            ".".repeat(5_000_000)
+        ),
+    );
+    let o = mason(&["crew", &map, "--scen", &scen]);
+    assert_input_error(&o, &["long.map:5", "5000000 cells"]);
+    let map = write(
+        &dir,
+        "bad.map",
+        format!("type octile\nheight {}\n", "9".repeat(500)),
+    );
+    let o = mason(&["crew", &map, "--scen", &scen]);
+    assert_input_error(&o, &["bad.map:2", "(500 characters)"]);
+}
