@@ -251,7 +251,7 @@ mod tests {
                 WallErrorKind::BadField {
                     field: "x",
                     value: "NaN".into(),
-                    expected: "a finite number",
+                    expected: "a number of metres within ±100000 (mason_wall::limits::MAX_COORD_M)",
                 },
             ),
         ];
