@@ -163,6 +163,7 @@ pub fn planning(runs: usize) -> CliResult<String> {
     let exe =
         std::env::current_exe().map_err(|e| input_error(format!("cannot find mason: {e}")))?;
     let dir = std::env::temp_dir().join(format!("mason-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| input_error(format!("{}: {e}", dir.display())))?;
     let mut text = format!(
         "Whole-process time of `mason plan FILE --planner exact --json` ({runs} runs each; \
          build with --release for meaningful figures)\n  {:<12} {:>8} {:>12} {:>12} {:>12}\n",

@@ -29,7 +29,9 @@ struct Grasp {
 /// Reads the two tables of GRASP-RESULTS.md, keyed by wall name.
 fn read_grasp(dir: &Path) -> BTreeMap<String, Grasp> {
     let mut out: BTreeMap<String, Grasp> = BTreeMap::new();
-    let Ok(text) = std::fs::read_to_string(dir.join("GRASP-RESULTS.md")) else {
+    let Ok(text) =
+        crate::input::read_input_text(&dir.join("GRASP-RESULTS.md"), crate::input::MAX_TOML_BYTES)
+    else {
         return out;
     };
     let mut section = 0;
@@ -136,8 +138,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> CliResult<String> {
         ));
         for name in wall_names(&dir)? {
             let path = dir.join("config").join(&name);
-            let src = std::fs::read_to_string(&path)
-                .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+            let src = crate::input::read_input_text(&path, crate::input::MAX_INPUT_BYTES)?;
             let stem = name.trim_end_matches(".txt");
             let tables: &[(CmcpSizes, &str)] = if stem.ends_with("_multi") {
                 &[(CmcpSizes::Yaml, "yaml"), (CmcpSizes::Swapped, "swapped")]

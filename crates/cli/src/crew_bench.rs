@@ -224,9 +224,7 @@ fn movingai_warehouse() -> CliResult<String> {
     };
     let map_path = dir.join("maps").join(format!("{name}.map"));
     let scen_path = dir.join("scen").join(format!("{name}-random-1.scen"));
-    let read = |p: &PathBuf| {
-        std::fs::read_to_string(p).map_err(|e| input_error(format!("{}: {e}", p.display())))
-    };
+    let read = |p: &PathBuf| crate::input::read_input_text(p, crate::input::MAX_INPUT_BYTES);
     let map_name = map_path.display().to_string();
     let grid = parse_map(&read(&map_path)?, &map_name).map_err(|e| input_error(e.to_string()))?;
     let scen_text = read(&scen_path)?;

@@ -87,6 +87,11 @@ pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliRes
     if prm.samples == 0 || prm.neighbours == 0 {
         return Err(input_error("--samples and --neighbours must be at least 1"));
     }
+    if prm.samples > MAX_PRM_SAMPLES || prm.neighbours > MAX_PRM_NEIGHBOURS {
+        return Err(input_error(format!(
+            "--samples is at most {MAX_PRM_SAMPLES} and --neighbours at most {MAX_PRM_NEIGHBOURS}"
+        )));
+    }
     if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
         return Err(input_error("--refine-rounds applies to --resolve lacam"));
     }
@@ -121,8 +126,27 @@ pub fn method_label(config: &CrewConfig) -> String {
     }
 }
 
+/// The most PRM samples `--samples` accepts.
+pub const MAX_PRM_SAMPLES: usize = 1_000_000;
+/// The most PRM neighbours `--neighbours` accepts.
+pub const MAX_PRM_NEIGHBOURS: usize = 1_000;
+
+/// Refuses an instance over [`mason_crew::limits::MAX_AGENT_CELLS`] (robots × free cells).
+pub fn check_size(inst: &Instance, source: &str) -> CliResult<()> {
+    let size = inst.robot_count() as u64 * inst.grid.free_count() as u64;
+    let limit = mason_crew::limits::MAX_AGENT_CELLS;
+    if size > limit {
+        return Err(input_error(format!(
+            "{source}: {} robots × {} free cells is more than {limit} (mason_crew::limits::MAX_AGENT_CELLS); take fewer robots (--agents N) or a smaller map",
+            inst.robot_count(),
+            inst.grid.free_count()
+        )));
+    }
+    Ok(())
+}
+
 fn read(path: &Path) -> CliResult<Vec<u8>> {
-    std::fs::read(path).map_err(|e| input_error(format!("{}: {e}", path.display())))
+    crate::input::read_input(path, crate::input::MAX_INPUT_BYTES)
 }
 
 fn read_text(path: &Path) -> CliResult<String> {

@@ -61,6 +61,11 @@ pub fn format_ms(ms: f64) -> String {
 
 /// Runs the demo; writes figures and plans under `out`.
 pub fn run(out: &Path, brute_limit: f64, show_progress: bool) -> CliResult<String> {
+    // The demo's own output folder is made if missing (DESIGN §1); its parent must exist.
+    crate::fail::check_output(&out.join("report.html")).or_else(|_| {
+        std::fs::create_dir(out)
+            .map_err(|e| crate::fail::input_error(format!("{}: {e}", out.display())))
+    })?;
     let model = CostModel::default();
     let bar = crate::progress::bar(BUILTIN_WALLS.len() as u64 + 2, "demo", show_progress);
     let mut text = String::from(

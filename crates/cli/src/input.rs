@@ -7,7 +7,60 @@ use mason_wall::{
     builtin, looks_like_cmcp, parse_cmcp, parse_cmcp_strict, parse_layer_text, parse_mbzirc,
     read_png, CmcpSizes, Wall, BUILTIN_WALLS,
 };
+use std::io::Read;
 use std::path::Path;
+
+/// The largest design, map, scenario or image file read, in bytes (64 MiB).
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+/// The largest TOML file read (model, faults, mission), in bytes (1 MiB).
+pub const MAX_TOML_BYTES: u64 = 1 << 20;
+
+/// Reads a whole input file: only a regular file (never a FIFO, device or folder, which could
+/// block or never end) of at most `limit` bytes, checked before anything is allocated and again
+/// while reading. A leading UTF-8 byte-order mark is dropped. Every file the CLI reads comes
+/// through here.
+pub fn read_input(path: &Path, limit: u64) -> CliResult<Vec<u8>> {
+    let shown = path.display();
+    let fail = |e: std::io::Error| input_error(format!("{shown}: {e}"));
+    let too_big = || {
+        input_error(format!(
+            "{shown}: larger than {limit} bytes, the limit for this input (mason_cli::input::MAX_*_BYTES)"
+        ))
+    };
+    let meta = std::fs::metadata(path).map_err(fail)?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file (a FIFO, socket or device)"
+        };
+        return Err(input_error(format!("{shown}: {kind}; give a file")));
+    }
+    if meta.len() > limit {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(fail)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(limit + 1).read_to_end(&mut bytes).map_err(fail)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big());
+    }
+    if bytes.starts_with(b"\xEF\xBB\xBF") {
+        bytes.drain(..3);
+    }
+    Ok(bytes)
+}
+
+/// [`read_input`] as UTF-8 text.
+pub fn read_input_text(path: &Path, limit: u64) -> CliResult<String> {
+    String::from_utf8(read_input(path, limit)?).map_err(|e| {
+        input_error(format!(
+            "{}: not UTF-8 text (byte {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
 
 /// How to read a design file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -46,7 +99,7 @@ pub fn load_wall(design: &str, format: Format, sizes: Sizes, strict: bool) -> Cl
         });
     }
     let path = Path::new(design);
-    let bytes = std::fs::read(path).map_err(|e| input_error(format!("{design}: {e}")))?;
+    let bytes = read_input(path, MAX_INPUT_BYTES)?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -120,7 +173,7 @@ pub fn load_model(path: Option<&Path>) -> CliResult<CostModel> {
 /// Reads a TOML file into `T`; errors name the file and the line (exit 2).
 pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> CliResult<T> {
     let shown = path.display();
-    let text = std::fs::read_to_string(path).map_err(|e| input_error(format!("{shown}: {e}")))?;
+    let text = read_input_text(path, MAX_TOML_BYTES)?;
     toml::from_str(&text).map_err(|e| {
         let line = e
             .span()

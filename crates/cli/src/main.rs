@@ -20,7 +20,7 @@ mod sim_cmd;
 mod wall_cmd;
 
 use clap::{Parser, Subcommand};
-use fail::{input_error, write_file, CliResult};
+use fail::{check_outputs, input_error, write_all, write_file, CliResult};
 use input::{load_model, load_wall, Format, Sizes};
 use mason_order::team::Objective;
 use mason_order::{BuildProblem, PlannerSpec};
@@ -92,7 +92,7 @@ enum Command {
         #[arg(long)]
         objective: Option<String>,
         /// Team size for --objective
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
         uavs: usize,
         /// Time budget T in seconds for --objective reward|expected (bricks count if placed by T)
         #[arg(long, allow_negative_numbers = true)]
@@ -101,7 +101,7 @@ enum Command {
         #[arg(long, allow_negative_numbers = true)]
         uav_hazard: Option<f64>,
         /// Seed of the schedule search (same seed, same schedule unless --time-limit stops it)
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
         seed: u64,
         /// Search budget in seconds (brute, improved, schedules); the best so far is reported
         #[arg(long, allow_negative_numbers = true)]
@@ -134,7 +134,7 @@ enum Command {
         /// Repetitions: per wall (planning), instances per row (paper), Monte Carlo runs
         /// (thesis-mission, at least 100), thousands of missions per row (missions), fifties of
         /// missions per policy (replan: 20 → 1000)
-        #[arg(long, default_value_t = 20)]
+        #[arg(long, default_value_t = 20, allow_negative_numbers = true)]
         runs: usize,
         /// cmcp: the benchmark directory holding config/ and GRASP-RESULTS.md (default
         /// ../shared/benchmarks/walls-cmcp); mapf: the directory holding maps/ and scen/
@@ -152,7 +152,7 @@ struct SimArgs {
     #[command(flatten)]
     design: DesignArgs,
     /// Team size
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
     uavs: usize,
     /// Coordination: comm (messages), windows (fixed time slots) or auto (comm, windows
     /// while heartbeats are lost)
@@ -178,28 +178,28 @@ struct SimArgs {
     #[arg(long)]
     model: Option<PathBuf>,
     /// Windows slot length in seconds (default 20, raised to the longest zone time)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     slot: Option<f64>,
     /// Probability that one grasp attempt fails
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     grasp_fail: Option<f64>,
     /// Probability that one detection attempt fails
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     detect_fail: Option<f64>,
     /// UAV U (0-based) fails at T seconds, as U@T; repeatable
     #[arg(long)]
     uav_fail: Vec<String>,
     /// UAV failures per hour (each UAV)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     uav_hazard: Option<f64>,
     /// No message gets through from A to B seconds, as A-B; repeatable
     #[arg(long)]
     blackout: Vec<String>,
     /// Probability that one message is lost
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     msg_loss: Option<f64>,
     /// Message latency in seconds
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     latency: Option<f64>,
     /// Faults from a TOML file (keys as the flags, with underscores); flags add to it
     #[arg(long)]
@@ -209,10 +209,10 @@ struct SimArgs {
     #[arg(long)]
     mission: Option<PathBuf>,
     /// Monte Carlo runs (seeds S, S+1, …), spread over the cores
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     runs: usize,
     /// Seed of the first run
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     seed: u64,
     /// Print JSON instead of a table
     #[arg(long)]
@@ -233,7 +233,7 @@ struct CrewArgs {
     #[arg(long)]
     scen: Option<PathBuf>,
     /// Take the first N agents of the scenario (default: all)
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     agents: Option<usize>,
     /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
     #[arg(long)]
@@ -255,17 +255,17 @@ struct CrewArgs {
     connectivity: String,
     /// Seed of the roadmap sampler and of lacam (same seed, same plan, unless --time-limit
     /// stops the refinement)
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     seed: u64,
     /// lacam: refinement rounds at most (0: the first plan as it is; default: until
     /// --time-limit, or 1000 rounds in a row without improvement)
     #[arg(long)]
     refine_rounds: Option<u64>,
     /// PRM samples
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
     samples: usize,
     /// PRM neighbours per node
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
     neighbours: usize,
     /// Time budget in seconds (lacam: 60 when not given; it refines until then)
     #[arg(long, allow_negative_numbers = true)]
@@ -334,6 +334,8 @@ fn run(cli: Cli) -> CliResult<()> {
             svg,
             html,
         } => {
+            let started = std::time::Instant::now();
+            check_outputs(&[&svg, &html])?;
             if let Some(objective) = objective {
                 let req = ScheduleArgs {
                     objective,
@@ -360,8 +362,9 @@ fn run(cli: Cli) -> CliResult<()> {
                 BuildProblem::new(&wall, model).map_err(|e| input_error(e.to_string()))?;
             let checked = plan::solve(&problem, spec, limit)?;
             let figure = mason_report::wall_svg(&wall, checked.outcome.order.as_deref());
+            let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
             if let Some(path) = svg {
-                write_file(&path, figure.as_bytes())?;
+                files.push((path, figure.clone().into_bytes()));
             }
             if let Some(path) = html {
                 let page = mason_report::report_page(
@@ -375,8 +378,9 @@ fn run(cli: Cli) -> CliResult<()> {
                         },
                     ],
                 );
-                write_file(&path, page.as_bytes())?;
+                files.push((path, page.into_bytes()));
             }
+            write_all(&files)?;
             if json {
                 println!(
                     "{}",
@@ -386,6 +390,7 @@ fn run(cli: Cli) -> CliResult<()> {
             } else {
                 print!("{}", plan::plan_table(&problem, &checked));
             }
+            plan::report_overrun(limit, started, &checked);
             plan::exit_for(&checked)
         }
         Command::Simulate(args) => simulate(args, cli.quiet),
@@ -399,6 +404,9 @@ fn run(cli: Cli) -> CliResult<()> {
         } => {
             if long && suite != "mapf" {
                 return Err(input_error("--long applies to bench mapf"));
+            }
+            if runs == 0 {
+                return Err(input_error("--runs must be at least 1"));
             }
             let limit = plan::time_limit(Some(time_limit))?.unwrap_or(60.0);
             let text = match suite.as_str() {
@@ -480,8 +488,9 @@ fn plan_schedule(
         problem.model().name
     );
     let figure = mason_report::schedule_svg(&title, &problem, &schedule);
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(path) = svg {
-        write_file(&path, figure.as_bytes())?;
+        files.push((path, figure.clone().into_bytes()));
     }
     if let Some(path) = html {
         let page = mason_report::report_page(
@@ -498,8 +507,9 @@ fn plan_schedule(
                 },
             ],
         );
-        write_file(&path, page.as_bytes())?;
+        files.push((path, page.into_bytes()));
     }
+    write_all(&files)?;
     if json {
         let v = schedule_cmd::schedule_json(&problem, &checked, req.seed);
         println!("{}", serde_json::to_string_pretty(&v).expect("json"));
@@ -510,6 +520,7 @@ fn plan_schedule(
 }
 
 fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
+    check_outputs(&[&a.svg, &a.html])?;
     let coord: mason_mission::Coord = a
         .coord
         .parse()
@@ -521,6 +532,14 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
     if a.runs == 0 {
         return Err(input_error("--runs must be at least 1"));
     }
+    if a.seed.checked_add(a.runs as u64 - 1).is_none() {
+        return Err(input_error(format!(
+            "--seed {} --runs {}: the seeds would run past {}",
+            a.seed,
+            a.runs,
+            u64::MAX
+        )));
+    }
     let cli_faults = sim_cmd::FaultSpec {
         grasp_fail: a.grasp_fail,
         detect_fail: a.detect_fail,
@@ -531,7 +550,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         latency: a.latency,
     };
     let file_faults = match &a.faults {
-        Some(p) => sim_cmd::FaultSpec::read(p)?,
+        Some(p) => sim_cmd::FaultSpec::read_checked(p, a.uavs)?,
         None => sim_cmd::FaultSpec::default(),
     };
     let any_fault_option = a.faults.is_some()
@@ -588,7 +607,7 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         ));
     }
     let mut config: mason_mission::MissionConfig = match &a.mission {
-        Some(p) => input::read_toml(p)?,
+        Some(p) => sim_cmd::read_mission(p, a.uavs)?,
         None => mason_mission::MissionConfig::default(),
     };
     config.uavs = a.uavs;
@@ -624,9 +643,10 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
             a.coord,
             a.seed
         );
+        let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
         if let Some(path) = &a.svg {
             let svg = mason_report::gantt_svg(&title, &wall, a.uavs, &trace, r.metrics.end_s);
-            write_file(path, svg.as_bytes())?;
+            files.push((path.clone(), svg.into_bytes()));
         }
         if let Some(path) = &a.html {
             let page = mason_report::mission_replay_html(
@@ -637,8 +657,9 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
                 &trace,
                 r.metrics.end_s,
             );
-            write_file(path, page.as_bytes())?;
+            files.push((path.clone(), page.into_bytes()));
         }
+        write_all(&files)?;
         if a.json {
             let events: Vec<_> = trace
                 .iter()
@@ -669,9 +690,19 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         return sim_cmd::check_replans(replanner.as_ref());
     }
     let pb = progress::bar(a.runs as u64, "simulating", !quiet && !a.json);
-    let results = sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?;
+    let mut lines = progress::Lines::new("simulating", a.runs as u64, !quiet);
+    let summary = sim_cmd::fly_summary(
+        input,
+        coord,
+        slot,
+        a.seed,
+        a.runs,
+        None,
+        &|| pb.inc(1),
+        &mut lines,
+    )?
+    .summary();
     pb.finish_and_clear();
-    let summary = mason_mission::summarise(&results);
     if a.json {
         let v = serde_json::json!({
             "wall": wall.name(), "uavs": a.uavs, "coord": coord, "planner": spec.to_string(),
@@ -707,21 +738,22 @@ fn compare_replanning(
         replanner: None,
         ..input
     };
-    let runs = [
-        (
-            "static",
-            sim_cmd::fly_many(fixed, coord, slot, a.seed, a.runs, &|| pb.inc(1))?,
-        ),
-        (
-            "replanned",
-            sim_cmd::fly_many(input, coord, slot, a.seed, a.runs, &|| pb.inc(1))?,
-        ),
-    ];
+    let mut lines = progress::Lines::new("simulating", 2 * a.runs as u64, !quiet);
+    let mut rows = Vec::new();
+    for (name, flown) in [("static", fixed), ("replanned", input)] {
+        let s = sim_cmd::fly_summary(
+            flown,
+            coord,
+            slot,
+            a.seed,
+            a.runs,
+            a.budget,
+            &|| pb.inc(1),
+            &mut lines,
+        )?;
+        rows.push(sim_cmd::PolicyRow::of_summary(name, &s));
+    }
     pb.finish_and_clear();
-    let rows: Vec<sim_cmd::PolicyRow> = runs
-        .iter()
-        .map(|(name, results)| sim_cmd::PolicyRow::of(name, results, a.budget))
-        .collect();
     if a.json {
         let v = serde_json::json!({
             "wall": input.wall.name(), "uavs": a.uavs, "coord": coord,
@@ -745,6 +777,7 @@ fn compare_replanning(
 }
 
 fn crew(a: CrewArgs) -> CliResult<()> {
+    check_outputs(&[&a.svg, &a.html])?;
     let limit = plan::time_limit(a.time_limit)?;
     let prm = mason_crew::PrmConfig {
         samples: a.samples,
@@ -778,7 +811,9 @@ fn crew(a: CrewArgs) -> CliResult<()> {
         image: a.image.as_deref(),
     };
     let (inst, source) = crew_cmd::load_instance(&input, choices.connectivity)?;
+    crew_cmd::check_size(&inst, &source)?;
     let result = crew_cmd::run_solve(&inst, &choices.config, limit)?;
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(path) = &a.svg {
         let title = format!(
             "{source} — {} robots, {} ({})",
@@ -794,7 +829,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             &result.outcome.goals,
             &paths,
         );
-        write_file(path, svg.as_bytes())?;
+        files.push((path.clone(), svg.into_bytes()));
     }
     if let (Some(path), Some(paths)) = (&a.html, &result.outcome.paths) {
         let title = format!(
@@ -803,8 +838,9 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             crew_cmd::method_label(&choices.config)
         );
         let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
-        write_file(path, page.as_bytes())?;
+        files.push((path.clone(), page.into_bytes()));
     }
+    write_all(&files)?;
     if a.json {
         let v = crew_cmd::crew_json(&inst, &source, &choices.config, a.seed, &result);
         println!("{}", serde_json::to_string_pretty(&v).expect("json"));

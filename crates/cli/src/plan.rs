@@ -42,13 +42,35 @@ pub fn solve(
     })
 }
 
-/// Parses `--time-limit`.
+/// The largest `--time-limit` accepted, in seconds (about 31 years): a larger one is refused,
+/// never turned into a `Duration` that overflows. Omit the flag for no limit.
+pub const MAX_TIME_LIMIT_S: f64 = 1e9;
+
+/// Parses `--time-limit`: a positive number of seconds up to [`MAX_TIME_LIMIT_S`].
 pub fn time_limit(s: Option<f64>) -> CliResult<Option<f64>> {
     match s {
         Some(v) if !(v.is_finite() && v > 0.0) => Err(input_error(format!(
             "--time-limit {v}: expected a positive number of seconds"
         ))),
+        Some(v) if v > MAX_TIME_LIMIT_S => Err(input_error(format!(
+            "--time-limit {v:e}: at most {MAX_TIME_LIMIT_S:e} s (omit --time-limit for no limit)"
+        ))),
         other => Ok(other),
+    }
+}
+
+/// With `--time-limit L`, says on stderr when the whole command took more than 10 % over L
+/// (the search stops in time; reading, checking and printing a huge wall take the rest).
+pub fn report_overrun(limit: Option<f64>, started: std::time::Instant, checked: &Checked) {
+    let Some(limit) = limit else {
+        return;
+    };
+    let total = started.elapsed().as_secs_f64();
+    if total > 1.1 * limit {
+        eprintln!(
+            "mason: warning: --time-limit {limit} s overrun: the command took {total:.1} s, of which the search {:.1} s (the rest is reading, checking and printing the wall)",
+            checked.outcome.stats.elapsed.as_secs_f64()
+        );
     }
 }
 

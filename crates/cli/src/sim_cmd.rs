@@ -2,9 +2,9 @@
 
 use crate::fail::{input_error, no_solution, CliResult};
 use mason_mission::{
-    check_trace, make_policy, run_many, simulate, slot_length, Coord, Event, EventKind, Faults,
-    MissionConfig, MissionInput, MissionResult, MissionStatus, Spread, Summary, UavFailure,
-    UavState, Window,
+    check_trace, for_each_run, make_policy, run_many, simulate, slot_length, Coord, Event,
+    EventKind, Faults, MissionConfig, MissionInput, MissionResult, MissionStatus, Spread,
+    Summariser, Summary, UavFailure, UavState, Window,
 };
 use mason_order::CostModel;
 use mason_wall::{BrickId, Wall};
@@ -35,9 +35,30 @@ pub struct FaultSpec {
 }
 
 impl FaultSpec {
-    /// Reads a faults TOML file (errors name the file and the line).
-    pub fn read(path: &Path) -> CliResult<FaultSpec> {
-        crate::input::read_toml(path)
+    /// Reads a faults TOML file and checks its values on their own, for a team of `uavs`
+    /// (errors name the file, and the line or the key).
+    pub fn read_checked(path: &Path, uavs: usize) -> CliResult<FaultSpec> {
+        let spec: FaultSpec = crate::input::read_toml(path)?;
+        let in_file = |e: crate::fail::Failure| {
+            let msg = e.message.replace("--uav-fail", "uav_fail");
+            input_error(format!(
+                "{}: {}",
+                path.display(),
+                msg.replace("--blackout", "blackout")
+            ))
+        };
+        let faults = spec.resolve().map_err(in_file)?;
+        let config = MissionConfig {
+            uavs,
+            faults,
+            ..MissionConfig::default()
+        };
+        if uavs >= 1 && uavs <= config.arena.uav_starts.len() {
+            config
+                .validate()
+                .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+        }
+        Ok(spec)
     }
 
     /// The file's settings with the command line's on top (lists are joined).
@@ -95,6 +116,21 @@ impl FaultSpec {
     }
 }
 
+/// Reads a mission TOML file and checks it for a team of `uavs` (errors name the file, and the
+/// line or the key).
+pub fn read_mission(path: &Path, uavs: usize) -> CliResult<MissionConfig> {
+    let mut config: MissionConfig = crate::input::read_toml(path)?;
+    let file_uavs = config.uavs;
+    config.uavs = uavs;
+    if uavs >= 1 && uavs <= config.arena.uav_starts.len() {
+        config
+            .validate()
+            .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+    }
+    config.uavs = file_uavs;
+    Ok(config)
+}
+
 /// Validates a configuration and computes the windows slot for a wall.
 pub fn prepare(wall: &Wall, model: &CostModel, config: &MissionConfig) -> CliResult<f64> {
     config
@@ -134,6 +170,35 @@ pub fn fly_many(
             "internal error: mission seed {s} failed check_trace: {e}"
         ))
     })
+}
+
+/// A Monte Carlo batch streamed into a [`Summariser`] (memory flat in `runs`), every trace
+/// checked; `reward_by_t` also summarises the reward placed by that time. Off a terminal,
+/// `lines` reports progress on stderr.
+#[allow(clippy::too_many_arguments)]
+pub fn fly_summary(
+    input: MissionInput,
+    coord: Coord,
+    slot: f64,
+    seed: u64,
+    runs: usize,
+    reward_by_t: Option<f64>,
+    progress: &(dyn Fn() + Sync),
+    lines: &mut crate::progress::Lines,
+) -> CliResult<Summariser> {
+    let mut summary = Summariser::new(reward_by_t);
+    let mut done = 0u64;
+    for_each_run(input, coord, slot, seed, runs, progress, &mut |r| {
+        summary.push(r);
+        done += 1;
+        lines.at(done);
+    })
+    .map_err(|(s, e)| {
+        input_error(format!(
+            "internal error: mission seed {s} failed check_trace: {e}"
+        ))
+    })?;
+    Ok(summary)
 }
 
 /// `m:ss.s`.
@@ -315,6 +380,16 @@ pub struct PolicyRow {
 }
 
 impl PolicyRow {
+    /// The figures of a streamed batch (see [`fly_summary`]).
+    pub fn of_summary(policy: &str, s: &Summariser) -> Self {
+        PolicyRow {
+            policy: policy.to_string(),
+            summary: s.summary(),
+            reward_by_budget: s.reward_by(),
+            replans_mean: s.replans_mean(),
+        }
+    }
+
     /// The figures of `results`.
     pub fn of(policy: &str, results: &[MissionResult], budget: Option<f64>) -> Self {
         PolicyRow {

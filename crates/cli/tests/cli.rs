@@ -334,6 +334,7 @@ fn crew_json_has_the_documented_fields_and_valid_paths() {
 #[test]
 fn crew_table_and_svg() {
     let dir = std::env::temp_dir().join(format!("mason-crew-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap(); // outputs never create folders (#15)
     let svg = dir.join("paths.svg");
     for (paths, resolve) in [("astar", "paper"), ("prm", "paper"), ("astar", "st")] {
         let o = mason(&[
@@ -826,6 +827,7 @@ fn schedule_json_has_the_documented_fields_and_checks_out() {
 #[test]
 fn schedule_table_svg_and_team_model_file() {
     let dir = std::env::temp_dir().join(format!("mason-sched-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap(); // outputs never create folders (#15)
     let svg = dir.join("s.svg");
     let o = mason(&[
         "plan",

@@ -22,6 +22,28 @@ pub struct BirdsEye {
 }
 
 fn decode(bytes: &[u8], source_name: &str) -> Result<RgbImage, CrewError> {
+    let cannot = |e: image::ImageError| {
+        CrewError::new(
+            source_name,
+            Location::Whole,
+            format!("cannot decode the image: {e}"),
+        )
+    };
+    let (w, h) = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| cannot(e.into()))?
+        .into_dimensions()
+        .map_err(cannot)?;
+    if u64::from(w) * u64::from(h) > crate::limits::MAX_CELLS {
+        return Err(CrewError::new(
+            source_name,
+            Location::Whole,
+            format!(
+                "{w}×{h} is more than the {} cells a map may have (mason_crew::limits::MAX_CELLS)",
+                crate::limits::MAX_CELLS
+            ),
+        ));
+    }
     let img = image::load_from_memory(bytes).map_err(|e| {
         CrewError::new(
             source_name,
@@ -76,6 +98,17 @@ pub fn read_birdseye(bytes: &[u8], source_name: &str) -> Result<BirdsEye, CrewEr
             source_name,
             Location::Whole,
             "no robots in the image (robots are red: r > 2g and r > 1.5b)",
+        ));
+    }
+    if robots.len() > crate::limits::MAX_AGENTS {
+        return Err(CrewError::new(
+            source_name,
+            Location::Whole,
+            format!(
+                "{} robots (red blobs), more than the {} an instance may have (mason_crew::limits::MAX_AGENTS)",
+                robots.len(),
+                crate::limits::MAX_AGENTS
+            ),
         ));
     }
     if robots.len() > goals.len() {

@@ -49,6 +49,7 @@ pub mod hungarian;
 pub mod image;
 pub mod instance;
 pub mod lacam;
+pub mod limits;
 pub mod line;
 pub mod moves;
 pub mod movingai;

@@ -8,6 +8,14 @@
 use crate::error::{CrewError, Location};
 use crate::grid::{Cell, Grid};
 
+/// `s` cut to 80 characters for a message.
+fn shown(s: &str) -> String {
+    match s.char_indices().nth(80) {
+        Some((i, _)) => format!("{}… ({} characters)", &s[..i], s.chars().count()),
+        None => s.to_string(),
+    }
+}
+
 /// Reads a MovingAI `.map` file.
 pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
     let err =
@@ -39,7 +47,10 @@ pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
                     .ok_or_else(|| {
                         err(
                             no,
-                            format!("{key} `{value}` is not a whole number in 1..=32768"),
+                            format!(
+                                "{key} `{}` is not a whole number in 1..=32768",
+                                shown(value)
+                            ),
                         )
                     })?;
                 if key == "height" {
@@ -55,7 +66,10 @@ pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
             _ => {
                 return Err(err(
                     no,
-                    format!("unexpected `{key}` in the header (expected type, height, width, map)"),
+                    format!(
+                        "unexpected `{}` in the header (expected type, height, width, map)",
+                        shown(key)
+                    ),
                 ))
             }
         }
@@ -74,6 +88,16 @@ pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
             "the header needs both `height` and `width`",
         ));
     };
+    if u64::from(width) * u64::from(height) > crate::limits::MAX_CELLS {
+        return Err(CrewError::new(
+            source_name,
+            Location::Whole,
+            format!(
+                "{width}×{height} is more than the {} cells a map may have (mason_crew::limits::MAX_CELLS)",
+                crate::limits::MAX_CELLS
+            ),
+        ));
+    }
     let mut blocked = Vec::with_capacity(width as usize * height as usize);
     let mut rows = 0u32;
     let mut last_line = 0;
@@ -88,16 +112,14 @@ pub fn parse_map(text: &str, source_name: &str) -> Result<Grid, CrewError> {
                 format!("more than the {height} rows the header declares"),
             ));
         }
-        let chars: Vec<char> = line.chars().collect();
-        if chars.len() != width as usize {
+        let cells = line.chars().count();
+        if cells != width as usize {
             return Err(err(
                 no,
-                format!(
-                    "row has {} cells, the header says width {width}",
-                    chars.len()
-                ),
+                format!("row has {cells} cells, the header says width {width}"),
             ));
         }
+        let chars: Vec<char> = line.chars().collect();
         for (col, ch) in chars.into_iter().enumerate() {
             blocked.push(match ch {
                 '.' | 'G' | 'S' => false,
@@ -156,30 +178,43 @@ pub fn parse_scen(
         if line.is_empty() {
             continue;
         }
+        if agents.len() == crate::limits::MAX_AGENTS {
+            return Err(err(
+                no,
+                format!(
+                    "more than {} agents (mason_crew::limits::MAX_AGENTS); take fewer with --agents N",
+                    crate::limits::MAX_AGENTS
+                ),
+            ));
+        }
         if line.starts_with("version") {
             if i != 0 {
                 return Err(err(no, "`version` must be the first line".into()));
             }
             continue;
         }
+        // At most 10 fields are kept: a huge line is refused without splitting all of it.
         let fields: Vec<&str> = if line.contains('\t') {
-            line.split('\t').map(str::trim).collect()
+            line.split('\t').map(str::trim).take(10).collect()
         } else {
-            line.split_whitespace().collect()
+            line.split_whitespace().take(10).collect()
         };
         if fields.len() != 9 {
             return Err(err(
                 no,
                 format!(
                     "a scenario line needs 9 fields `bucket map W H start_x start_y goal_x goal_y length`, found {}",
-                    fields.len()
+                    if fields.len() == 10 { "more".to_string() } else { fields.len().to_string() }
                 ),
             ));
         }
         let int = |k: usize, name: &str| -> Result<i64, CrewError> {
-            fields[k]
-                .parse::<i64>()
-                .map_err(|_| err(no, format!("{name} `{}` is not a whole number", fields[k])))
+            fields[k].parse::<i64>().map_err(|_| {
+                err(
+                    no,
+                    format!("{name} `{}` is not a whole number", shown(fields[k])),
+                )
+            })
         };
         let (w, h) = (int(2, "map width")?, int(3, "map height")?);
         if w != grid.width() as i64 || h != grid.height() as i64 {
@@ -214,7 +249,7 @@ pub fn parse_scen(
             .ok_or_else(|| {
                 err(
                     no,
-                    format!("optimal length `{}` is not a number ≥ 0", fields[8]),
+                    format!("optimal length `{}` is not a number ≥ 0", shown(fields[8])),
                 )
             })?;
         agents.push(ScenAgent {

@@ -123,12 +123,24 @@ pub struct ConfigError {
 }
 
 fn err(field: &str, value: impl ToString, reason: &str) -> ConfigError {
+    let mut value = value.to_string();
+    if value.len() > 16 {
+        if let Ok(v) = value.parse::<f64>() {
+            value = format!("{v:e}");
+        }
+    }
     ConfigError {
         field: field.into(),
-        value: value.to_string(),
+        value,
         reason: reason.into(),
     }
 }
+
+/// The shortest heartbeat period or timeout accepted (s).
+pub const MIN_HEARTBEAT_S: f64 = 0.1;
+
+/// The longest mission time accepted (s): a mission stops by then, whatever happens.
+pub const MAX_MISSION_TIME_S: f64 = 1e6;
 
 /// Everything a mission needs besides the wall, the order and the seed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -209,8 +221,12 @@ impl MissionConfig {
             ("coord.heartbeat_s", c.heartbeat_s),
             ("coord.heartbeat_timeout_s", c.heartbeat_timeout_s),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(err(name, v, "must be positive"));
+            if !(MIN_HEARTBEAT_S..=MAX_MISSION_TIME_S).contains(&v) {
+                return Err(err(
+                    name,
+                    v,
+                    "must be between 0.1 s and 1e6 s (a shorter heartbeat floods the simulation)",
+                ));
             }
         }
         if let Some(s) = c.slot_s {
@@ -260,8 +276,12 @@ impl MissionConfig {
                 ));
             }
         }
-        if !(self.max_time_s.is_finite() && self.max_time_s > 0.0) {
-            return Err(err("max_time_s", self.max_time_s, "must be positive"));
+        if !(self.max_time_s > 0.0 && self.max_time_s <= MAX_MISSION_TIME_S) {
+            return Err(err(
+                "max_time_s",
+                self.max_time_s,
+                "must be positive and at most 1e6 s (MAX_MISSION_TIME_S, about 11.6 days)",
+            ));
         }
         Ok(())
     }

@@ -57,7 +57,9 @@ pub fn slot_length(
     match config.coord.slot_s {
         Some(s) if s + 1e-9 < longest => Err(ConfigError {
             field: "slot".into(),
-            value: format!("{s}"),
+            value: Some(format!("{s}"))
+                .filter(|v| v.len() <= 16)
+                .unwrap_or_else(|| format!("{s:e}")),
             reason: format!("a brick of this wall may need {longest:.1} s in the zone, so it could never enter; use at least that"),
         }),
         Some(s) => Ok(s),

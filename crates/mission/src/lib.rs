@@ -42,10 +42,15 @@ pub mod windows;
 
 pub use arena::{Arena, Point};
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
-pub use config::{ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window};
+pub use config::{
+    ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,
+    MIN_HEARTBEAT_S,
+};
 pub use coord::{make_policy, slot_length, Coord};
 pub use metrics::Metrics;
-pub use montecarlo::{reward_by, run_many, summarise, Spread, Summary};
+pub use montecarlo::{
+    for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,
+};
 pub use policy::{Coordination, EntryQuery};
 pub use replan::{Replan, Replanner, ScheduleReplanner};
 pub use sim::{simulate, MissionInput, MissionResult, MissionStatus};

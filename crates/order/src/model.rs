@@ -19,9 +19,10 @@ pub struct TypeTimes {
     pub drop: f64,
 }
 
-/// Every parameter of the thesis cost model. Loadable from TOML; missing keys keep defaults.
+/// Every parameter of the thesis cost model. Loadable from TOML; missing keys keep defaults,
+/// also inside a colour's table (`[red]` with only `grasp = 10` keeps red's other times).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(from = "ModelFile")]
 pub struct CostModel {
     /// α, the level discount rate.
     pub alpha: f64,
@@ -38,6 +39,60 @@ pub struct CostModel {
     /// Orange brick times (our default; the thesis has no orange).
     pub orange: TypeTimes,
 }
+
+/// A colour's table as written in TOML: any key may be left out.
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TimesFile {
+    grasp: Option<f64>,
+    fly: Option<f64>,
+    drop: Option<f64>,
+}
+
+impl TimesFile {
+    fn over(self, d: TypeTimes) -> TypeTimes {
+        TypeTimes {
+            grasp: self.grasp.unwrap_or(d.grasp),
+            fly: self.fly.unwrap_or(d.fly),
+            drop: self.drop.unwrap_or(d.drop),
+        }
+    }
+}
+
+/// The cost model as written in TOML: every key optional, defaults for the rest.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFile {
+    alpha: Option<f64>,
+    grasp_attempts: Option<f64>,
+    kappa: Option<[f64; 3]>,
+    #[serde(default)]
+    red: TimesFile,
+    #[serde(default)]
+    green: TimesFile,
+    #[serde(default)]
+    blue: TimesFile,
+    #[serde(default)]
+    orange: TimesFile,
+}
+
+impl From<ModelFile> for CostModel {
+    fn from(f: ModelFile) -> Self {
+        let d = CostModel::default();
+        CostModel {
+            alpha: f.alpha.unwrap_or(d.alpha),
+            grasp_attempts: f.grasp_attempts.unwrap_or(d.grasp_attempts),
+            kappa: f.kappa.unwrap_or(d.kappa),
+            red: f.red.over(d.red),
+            green: f.green.over(d.green),
+            blue: f.blue.over(d.blue),
+            orange: f.orange.over(d.orange),
+        }
+    }
+}
+
+/// The largest time (s) and factor the model accepts, so that every cost stays finite.
+pub const MAX_MODEL_VALUE: f64 = 1e6;
 
 impl Default for CostModel {
     fn default() -> Self {
@@ -56,7 +111,7 @@ impl Default for CostModel {
 
 /// A parameter out of range.
 #[derive(Clone, Debug, PartialEq, Error)]
-#[error("cost model: `{field}` = {value} is invalid: {reason}")]
+#[error("cost model: `{field}` = {} is invalid: {reason}", short(*.value))]
 pub struct ModelError {
     /// The parameter.
     pub field: String,
@@ -64,6 +119,16 @@ pub struct ModelError {
     pub value: f64,
     /// The rule it breaks.
     pub reason: &'static str,
+}
+
+/// `v` as written, or in scientific notation when that is long.
+fn short(v: f64) -> String {
+    let plain = v.to_string();
+    if plain.len() > 16 {
+        format!("{v:e}")
+    } else {
+        plain
+    }
 }
 
 impl CostModel {
@@ -82,7 +147,8 @@ impl CostModel {
         1.0 + (-self.alpha * f64::from(level)).exp()
     }
 
-    /// Checks every parameter: all finite, times and κ non-negative, `n_g ≥ 1`, `α ≥ 0`.
+    /// Checks every parameter: all finite and at most [`MAX_MODEL_VALUE`], times and κ
+    /// non-negative, `n_g ≥ 1`, `α ≥ 0`.
     pub fn validate(&self) -> Result<(), ModelError> {
         let err = |field: &str, value: f64, reason| {
             Err(ModelError {
@@ -91,29 +157,30 @@ impl CostModel {
                 reason,
             })
         };
-        if !self.alpha.is_finite() || self.alpha < 0.0 {
-            return err("alpha", self.alpha, "must be a finite number ≥ 0");
+        let within = |v: f64, low: f64| (low..=MAX_MODEL_VALUE).contains(&v);
+        if !within(self.alpha, 0.0) {
+            return err("alpha", self.alpha, "must be a number in [0, 1e6]");
         }
-        if !self.grasp_attempts.is_finite() || self.grasp_attempts < 1.0 {
+        if !within(self.grasp_attempts, 1.0) {
             return err(
                 "grasp_attempts",
                 self.grasp_attempts,
-                "must be a finite number ≥ 1",
+                "must be a number in [1, 1e6]",
             );
         }
         for (i, &k) in self.kappa.iter().enumerate() {
-            if !k.is_finite() || k < 0.0 {
-                return err(&format!("kappa[{i}]"), k, "must be a finite number ≥ 0");
+            if !within(k, 0.0) {
+                return err(&format!("kappa[{i}]"), k, "must be a number in [0, 1e6]");
             }
         }
         for kind in BrickType::ALL {
             let t = self.times(kind);
             for (name, v) in [("grasp", t.grasp), ("fly", t.fly), ("drop", t.drop)] {
-                if !v.is_finite() || v < 0.0 {
+                if !within(v, 0.0) {
                     return err(
                         &format!("{}.{name}", kind.name()),
                         v,
-                        "must be a finite number of seconds ≥ 0",
+                        "must be a number of seconds in [0, 1e6]",
                     );
                 }
             }

@@ -7,6 +7,8 @@
 
 use crate::brick::{Brick, BrickType, Footprint, Origin, BRICK_DEPTH, BRICK_HEIGHT};
 use crate::error::{Location, WallError, WallErrorKind};
+use crate::limits::{shown, MAX_BRICKS, MAX_COORD_M};
+use crate::text::{check_line, too_large, without_bom};
 use crate::wall::Wall;
 use std::collections::HashMap;
 
@@ -41,20 +43,20 @@ fn field<T: std::str::FromStr>(
 ) -> Result<T, WallErrorKind> {
     raw.parse::<T>().map_err(|_| WallErrorKind::BadField {
         field,
-        value: raw.to_string(),
+        value: shown(raw),
         expected,
     })
 }
 
 fn finite(raw: &str, name: &'static str) -> Result<f64, WallErrorKind> {
     let v: f64 = field(raw, name, "a number")?;
-    if v.is_finite() {
+    if v.is_finite() && v.abs() <= MAX_COORD_M {
         Ok(v)
     } else {
         Err(WallErrorKind::BadField {
             field: name,
-            value: raw.to_string(),
-            expected: "a finite number",
+            value: shown(raw),
+            expected: "a number of metres within ±100000 (mason_wall::limits::MAX_COORD_M)",
         })
     }
 }
@@ -80,7 +82,7 @@ fn parse_line(fields: &[&str], sizes: CmcpSizes) -> Result<(u32, Brick), WallErr
         other => {
             return Err(WallErrorKind::BadField {
                 field: "yaw_rotated",
-                value: other.to_string(),
+                value: shown(other),
                 expected: "0 or 1",
             })
         }
@@ -134,10 +136,14 @@ pub fn parse_cmcp_strict(src: &str, name: &str, sizes: CmcpSizes) -> Result<Wall
 fn read_bricks(src: &str, name: &str, sizes: CmcpSizes) -> Result<Vec<Brick>, WallError> {
     let mut bricks = Vec::new();
     let mut seen: HashMap<u32, usize> = HashMap::new();
-    for (i, raw) in src.lines().enumerate() {
+    for (i, raw) in without_bom(src).lines().enumerate() {
+        check_line(name, i + 1, raw)?;
         let line = raw.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
+        }
+        if bricks.len() == MAX_BRICKS {
+            return Err(too_large(name, i + 1, "bricks", MAX_BRICKS, "MAX_BRICKS"));
         }
         let fields: Vec<&str> = line.split_whitespace().collect();
         let at = |kind| WallError::new(name, Location::Line(i + 1), kind);
@@ -154,7 +160,8 @@ fn read_bricks(src: &str, name: &str, sizes: CmcpSizes) -> Result<Vec<Brick>, Wa
 
 /// True when `src` looks like a CMCP file: its first data line has six numeric fields.
 pub fn looks_like_cmcp(src: &str) -> bool {
-    src.lines()
+    without_bom(src)
+        .lines()
         .map(str::trim)
         .find(|l| !l.is_empty() && !l.starts_with('#'))
         .map(|l| {
@@ -244,7 +251,7 @@ mod tests {
                 WallErrorKind::BadField {
                     field: "x",
                     value: "NaN".into(),
-                    expected: "a finite number",
+                    expected: "a number of metres within ±100000 (mason_wall::limits::MAX_COORD_M)",
                 },
             ),
         ];

@@ -85,6 +85,16 @@ pub enum WallErrorKind {
         /// The z value.
         z: f64,
     },
+    /// An input over one of the [`limits`](crate::limits).
+    #[error("more than {limit} {what} (the limit of mason_wall::limits::{name})")]
+    TooLarge {
+        /// What is counted, e.g. `bricks`.
+        what: &'static str,
+        /// The limit.
+        limit: u64,
+        /// The constant's name in [`limits`](crate::limits).
+        name: &'static str,
+    },
     /// The image could not be decoded.
     #[error("cannot decode the image: {reason}")]
     ImageDecode {

@@ -23,6 +23,7 @@ mod builtin;
 mod cmcp;
 mod error;
 pub mod generate;
+pub mod limits;
 mod png;
 mod raster;
 mod text;

@@ -7,6 +7,7 @@
 
 use crate::brick::{Brick, BrickType, Footprint, Origin, BRICK_DEPTH, UNIT_LENGTH};
 use crate::error::{Location, WallError, WallErrorKind};
+use crate::limits::{shown, MAX_BRICKS, MAX_LAYERS, MAX_LINE_CHARS};
 use crate::wall::Wall;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,7 +39,7 @@ fn tokens_of(line: &str) -> Result<Vec<Token>, String> {
             .collect();
         match chars {
             Some(ts) => out.extend(ts),
-            None => return Err(word.to_string()),
+            None => return Err(shown(&word.escape_debug().to_string())),
         }
     }
     Ok(out)
@@ -54,12 +55,55 @@ fn strip_comment(line: &str) -> &str {
     line.split('#').next().unwrap_or("").trim()
 }
 
+/// A too-large input at line `line`.
+pub(crate) fn too_large(
+    name: &str,
+    line: usize,
+    what: &'static str,
+    limit: usize,
+    limit_name: &'static str,
+) -> WallError {
+    WallError::new(
+        name,
+        Location::Line(line),
+        WallErrorKind::TooLarge {
+            what,
+            limit: limit as u64,
+            name: limit_name,
+        },
+    )
+}
+
+/// `src` without a leading byte-order mark.
+pub(crate) fn without_bom(src: &str) -> &str {
+    src.strip_prefix('\u{feff}').unwrap_or(src)
+}
+
+/// Refuses a line over [`MAX_LINE_CHARS`] characters.
+pub(crate) fn check_line(name: &str, line: usize, raw: &str) -> Result<(), WallError> {
+    if raw.len() > MAX_LINE_CHARS && raw.chars().count() > MAX_LINE_CHARS {
+        return Err(too_large(
+            name,
+            line,
+            "characters on a line",
+            MAX_LINE_CHARS,
+            "MAX_LINE_CHARS",
+        ));
+    }
+    Ok(())
+}
+
 fn read_layers(src: &str, name: &str) -> Result<Vec<Layer>, WallError> {
     let mut layers = Vec::new();
-    for (i, raw) in src.lines().enumerate() {
+    let mut bricks = 0usize;
+    for (i, raw) in without_bom(src).lines().enumerate() {
+        check_line(name, i + 1, raw)?;
         let body = strip_comment(raw);
         if body.is_empty() {
             continue;
+        }
+        if layers.len() == MAX_LAYERS {
+            return Err(too_large(name, i + 1, "layers", MAX_LAYERS, "MAX_LAYERS"));
         }
         let tokens = tokens_of(body).map_err(|token| {
             WallError::new(
@@ -68,6 +112,13 @@ fn read_layers(src: &str, name: &str) -> Result<Vec<Layer>, WallError> {
                 WallErrorKind::UnknownToken { token },
             )
         })?;
+        bricks += tokens
+            .iter()
+            .filter(|t| matches!(t, Token::Brick(_)))
+            .count();
+        if bricks > MAX_BRICKS {
+            return Err(too_large(name, i + 1, "bricks", MAX_BRICKS, "MAX_BRICKS"));
+        }
         let segments = tokens
             .split(|t| *t == Token::Segment)
             .map(|s| s.to_vec())

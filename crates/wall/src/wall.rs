@@ -100,6 +100,17 @@ impl Wall {
                 WallErrorKind::Empty,
             ));
         }
+        if bricks.len() > crate::limits::MAX_BRICKS {
+            return Err(WallError::new(
+                source_name,
+                Location::Whole,
+                WallErrorKind::TooLarge {
+                    what: "bricks",
+                    limit: crate::limits::MAX_BRICKS as u64,
+                    name: "MAX_BRICKS",
+                },
+            ));
+        }
         let levels = bricks.iter().map(|b| b.level).max().unwrap_or(0);
         let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels as usize + 1];
         for (i, b) in bricks.iter().enumerate() {

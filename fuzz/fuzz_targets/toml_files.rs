@@ -1,0 +1,25 @@
+//! The TOML files: cost model (`--model`), mission (`--mission`, with its `[faults]` table) and
+//! team model (`plan --objective --model`), each parsed and then validated.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Ok(model) = toml::from_str::<mason_order::CostModel>(text) {
+        if model.validate().is_ok() {
+            let wall = mason_wall::builtin("thesis-2x5").expect("built-in").wall();
+            let problem = mason_order::BuildProblem::new(&wall, model).expect("validated");
+            let out = mason_order::PlannerSpec::Greedy
+                .plan(&problem, &mason_order::Budget::unlimited());
+            assert!(out.total_cost.is_some_and(f64::is_finite));
+        }
+    }
+    if let Ok(config) = toml::from_str::<mason_mission::MissionConfig>(text) {
+        let _ = config.validate();
+    }
+    if let Ok(patch) = toml::from_str::<mason_order::team::TeamModelPatch>(text) {
+        let _ = mason_order::team::TeamModel::from_patch(&patch, "fuzz");
+    }
+});
