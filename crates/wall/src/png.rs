@@ -695,15 +695,14 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         }
         // Where one colour sits on the same colour, no blend of two colours blurs the gap.
         let all = inside_runs(px, runs, &[pair, pair + 1]);
-        let kind_at = |l: usize, x: usize| {
-            runs.iter()
-                .find(|r| r.layer == l && r.left <= x as f64 && x as f64 <= r.right)
-                .map(|r| r.kind)
-        };
+        let (above, below) = (
+            colour_inside(px, runs, pair),
+            colour_inside(px, runs, pair + 1),
+        );
         let alike: Vec<usize> = all
             .iter()
             .copied()
-            .filter(|&x| kind_at(pair, x) == kind_at(pair + 1, x))
+            .filter(|&x| above[x] == below[x])
             .collect();
         // Over two colours blending into each other, faint shares count (they add up to the
         // whole); over a border, a faint tint is the paper's.
@@ -821,14 +820,25 @@ fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64
 
 /// The columns well inside the runs of every listed layer.
 fn inside_runs(px: &Pixels, runs: &[Run], layers: &[usize]) -> Vec<usize> {
+    let maps: Vec<Vec<Option<BrickType>>> =
+        layers.iter().map(|&l| colour_inside(px, runs, l)).collect();
     (0..px.width)
-        .filter(|&x| {
-            layers.iter().all(|&l| {
-                runs.iter()
-                    .any(|r| r.layer == l && r.left <= x as f64 && (x as f64) + 1.0 <= r.right)
-            })
-        })
+        .filter(|&x| maps.iter().all(|m| m[x].is_some()))
         .collect()
+}
+
+/// Per column, the colour of the layer's run that covers the whole pixel, if any: one pass
+/// over the layer's runs.
+fn colour_inside(px: &Pixels, runs: &[Run], layer: usize) -> Vec<Option<BrickType>> {
+    let mut map = vec![None; px.width];
+    for r in runs.iter().filter(|r| r.layer == layer) {
+        let first = r.left.max(0.0).ceil() as usize;
+        let end = (r.right.max(0.0).floor() as usize).min(px.width);
+        for slot in map.iter_mut().take(end).skip(first) {
+            *slot = Some(r.kind);
+        }
+    }
+    map
 }
 
 /// A fitted grid: pixels per unit, border width and every run's place on it.
