@@ -2,41 +2,10 @@
 
 use serde_json::Value;
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn data(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/data")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
-
-fn mason(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mason"))
-        .args(args)
-        .output()
-        .expect("mason runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// Exit 2, one line on stderr that contains every `needle`, and no panic.
-fn assert_input_error(o: &Output, needles: &[&str]) {
-    let err = stderr(o);
-    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "`{n}` missing in: {err}");
-    }
-}
+mod common;
+use common::{assert_input_error, data, mason, stderr, stdout};
 
 #[test]
 fn plan_json_has_the_documented_fields_and_a_consistent_total() {
