@@ -179,34 +179,45 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
     assemble(name, cut_bricks(&runs, &reading))
 }
 
-/// Step 1: every pixel's class, and the image's colours as floats.
-struct Pixels {
+/// Step 1: every pixel's class, beside the image itself.
+struct Pixels<'a> {
     width: usize,
     height: usize,
     class: Vec<Option<BrickType>>,
-    rgb: Vec<[f32; 3]>,
+    img: &'a RgbImage,
 }
 
-fn classify(img: &RgbImage) -> Pixels {
+impl Pixels<'_> {
+    /// The colour of pixel `i` (row-major) as floats.
+    fn rgb(&self, i: usize) -> [f32; 3] {
+        let raw = &self.img.as_raw()[3 * i..3 * i + 3];
+        [raw[0], raw[1], raw[2]].map(f32::from)
+    }
+}
+
+fn classify(img: &RgbImage) -> Pixels<'_> {
     let (width, height) = (img.width() as usize, img.height() as usize);
-    let rgb: Vec<[f32; 3]> = img.pixels().map(|p| p.0.map(f32::from)).collect();
     // Each pixel is classified by the mean of itself and its left and right neighbours, which
     // keeps noise from flipping its class where a blurred edge leaves little colour.
     let mut class = Vec::with_capacity(width * height);
     for y in 0..height {
-        let row = &rgb[y * width..(y + 1) * width];
         for x in 0..width {
-            let near = &row[x.saturating_sub(1)..(x + 2).min(width)];
-            let mean: [f32; 3] =
-                std::array::from_fn(|c| near.iter().map(|p| p[c]).sum::<f32>() / near.len() as f32);
-            class.push(classify_pixel(mean.map(|v| v.round() as u8)).map(|(k, _)| k));
+            let near = x.saturating_sub(1)..(x + 2).min(width);
+            let n = near.len() as u32;
+            let mut sum = [0u32; 3];
+            for xx in near {
+                let p = img.get_pixel(xx as u32, y as u32).0;
+                (0..3).for_each(|c| sum[c] += u32::from(p[c]));
+            }
+            let mean = sum.map(|v| ((v + n / 2) / n) as u8);
+            class.push(classify_pixel(mean).map(|(k, _)| k));
         }
     }
     Pixels {
         width,
         height,
         class,
-        rgb,
+        img,
     }
 }
 
@@ -366,7 +377,7 @@ fn row_strength(px: &Pixels, band: Layer) -> Vec<f32> {
             columns
                 .iter()
                 .map(|&x| {
-                    colour_part(px.rgb[y * px.width + x])
+                    colour_part(px.rgb(y * px.width + x))
                         .into_iter()
                         .fold(0f32, f32::max)
                 })
@@ -466,7 +477,7 @@ fn column_means(px: &Pixels, layer: Layer) -> Vec<[f32; 3]> {
         .map(|x| {
             let mut sum = [0f32; 3];
             for y in layer.top..layer.bottom {
-                let p = px.rgb[y * px.width + x];
+                let p = px.rgb(y * px.width + x);
                 for c in 0..3 {
                     sum[c] += p[c];
                 }
@@ -720,7 +731,7 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         let share = |y: usize, colours: &[[f32; 3]]| -> f64 {
             columns
                 .iter()
-                .map(|&x| share_of(px.rgb[y * px.width + x], colours[x]))
+                .map(|&x| share_of(px.rgb(y * px.width + x), colours[x]))
                 .sum::<f64>()
                 / columns.len() as f64
         };
@@ -784,12 +795,12 @@ fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64
             sum.map(|v| v / n)
         };
         let colour = mean_of(&|x| colours[x]);
-        let paper = mean_of(&|x| px.rgb[outward[outward.len() - 1] * px.width + x]);
+        let paper = mean_of(&|x| px.rgb(outward[outward.len() - 1] * px.width + x));
         // Each row: its share of colour, and what is left once the colour is taken out.
         let rows: Vec<(f64, f32)> = outward
             .iter()
             .map(|&y| {
-                let p = mean_of(&|x| px.rgb[y * px.width + x]);
+                let p = mean_of(&|x| px.rgb(y * px.width + x));
                 let c = colour_share(p, colour);
                 let rest: [f32; 3] = std::array::from_fn(|k| {
                     (p[k] - c as f32 * colour[k]) / (1.0 - c as f32).max(0.05)
