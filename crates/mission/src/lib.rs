@@ -32,6 +32,7 @@ pub mod check;
 pub mod comm;
 pub mod config;
 pub mod coord;
+pub mod core;
 pub mod metrics;
 pub mod montecarlo;
 pub mod policy;

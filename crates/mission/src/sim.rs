@@ -11,6 +11,7 @@
 use crate::arena::Point;
 use crate::channel::Channel;
 use crate::config::MissionConfig;
+use crate::core::{after, heard_mode, put_down, After, Board, Brick, Pick, Seen};
 use crate::metrics::{Metrics, MetricsObserver};
 use crate::policy::{Coordination, EntryQuery};
 use crate::state::{CommMode, Event, EventKind, Observer, UavState};
@@ -62,13 +63,6 @@ pub struct MissionResult {
     pub metrics: Metrics,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Brick {
-    Untaken,
-    Taken,
-    Placed,
-}
-
 #[derive(Clone, Debug)]
 struct Uav {
     state: UavState,
@@ -79,7 +73,6 @@ struct Uav {
     waiting_partner: bool,
     joined: bool,
     failures: u32,
-    alive: bool,
     /// When the current timed state ends.
     until: f64,
     token: u64,
@@ -133,14 +126,8 @@ struct Sim<'a, 'o> {
     policy: &'a mut dyn Coordination,
     channel: Channel,
     rng: ChaCha8Rng,
-    rank: Vec<usize>,
-    /// The shared order (replaced by a replan).
-    order: Vec<BrickId>,
-    /// Each UAV's own bricks under a schedule (replaced by a replan).
-    lists: Option<Vec<Vec<BrickId>>>,
-    bricks: Vec<Brick>,
-    carriers: Vec<Vec<usize>>,
-    placed: usize,
+    /// What the team knows: with a perfect view, one board for all.
+    board: Board,
     uavs: Vec<Uav>,
     queue: BinaryHeap<Reverse<Pending>>,
     seq: u64,
@@ -164,10 +151,6 @@ pub fn simulate(
 ) -> MissionResult {
     let cfg = input.config;
     let n = cfg.uavs;
-    let mut rank = vec![usize::MAX; input.wall.len()];
-    for (i, b) in input.order.iter().enumerate() {
-        rank[b.index()] = i;
-    }
     let rewards = input
         .wall
         .bricks()
@@ -178,12 +161,7 @@ pub fn simulate(
     let mut sim = Sim {
         channel: Channel::new(&cfg.faults, &cfg.coord),
         rng: ChaCha8Rng::seed_from_u64(seed),
-        rank,
-        order: input.order.to_vec(),
-        lists: input.assignment.map(<[Vec<BrickId>]>::to_vec),
-        bricks: vec![Brick::Untaken; input.wall.len()],
-        carriers: vec![Vec::new(); input.wall.len()],
-        placed: 0,
+        board: Board::new(input.wall, input.order, input.assignment, n),
         uavs: (0..n)
             .map(|i| Uav {
                 state: UavState::Check,
@@ -194,7 +172,6 @@ pub fn simulate(
                 waiting_partner: false,
                 joined: false,
                 failures: 0,
-                alive: true,
                 until: 0.0,
                 token: 0,
             })
@@ -246,10 +223,6 @@ impl Sim<'_, '_> {
         self.input.config.uav.speed
     }
 
-    fn live(&self) -> usize {
-        self.uavs.iter().filter(|u| u.alive).count()
-    }
-
     /// `u` and, when they act together, its partner. Owns its items, so `self` stays free.
     fn team(
         &self,
@@ -288,7 +261,7 @@ impl Sim<'_, '_> {
     fn together(&self, u: usize) -> Option<usize> {
         let p = self.uavs[u].partner?;
         let joined = self.uavs[u].joined && self.uavs[p].joined;
-        (joined && self.uavs[p].alive && self.uavs[p].brick == self.uavs[u].brick).then_some(p)
+        (joined && self.board.alive(p) && self.uavs[p].brick == self.uavs[u].brick).then_some(p)
     }
 
     fn run(&mut self, heartbeats: bool) -> MissionResult {
@@ -334,7 +307,7 @@ impl Sim<'_, '_> {
             }
             self.now = p.t;
             match p.what {
-                What::Timer if p.token == self.uavs[p.uav].token && self.uavs[p.uav].alive => {
+                What::Timer if p.token == self.uavs[p.uav].token && self.board.alive(p.uav) => {
                     self.timer(p.uav)
                 }
                 What::Timer
@@ -356,7 +329,7 @@ impl Sim<'_, '_> {
                 break;
             }
         }
-        if status == MissionStatus::Complete && self.placed < self.bricks.len() {
+        if status == MissionStatus::Complete && !self.board.finished() {
             status = MissionStatus::Incomplete;
         }
         let metrics = std::mem::replace(&mut self.metrics, MetricsObserver::new(0, Vec::new()))
@@ -367,23 +340,27 @@ impl Sim<'_, '_> {
     fn timer(&mut self, u: usize) {
         let cfg = self.input.config;
         let model = self.input.model;
-        match self.uavs[u].state {
-            UavState::Check => self.go(u, UavState::TakeOff, "ok", Some(cfg.uav.takeoff_s)),
-            UavState::TakeOff => self.choose(u, "airborne"),
-            UavState::FlyToPile => self.at_pile(u),
-            UavState::Detect => {
+        match after(self.uavs[u].state, cfg.uav.takeoff_s) {
+            After::Go {
+                state,
+                outcome,
+                duration,
+            } => self.go(u, state, outcome, Some(duration)),
+            After::Choose => self.choose(u, "airborne"),
+            After::AtPile => self.at_pile(u),
+            After::Detected => {
                 if self.rng.gen::<f64>() < cfg.faults.detect_fail {
                     self.attempt_failed(u);
                 } else {
                     self.go(u, UavState::FlyAbove, "found", Some(cfg.uav.above_s));
                 }
             }
-            UavState::FlyAbove => {
+            After::Above => {
                 let b = self.uavs[u].brick.expect("carrying");
                 let t_g = model.times(self.kind_of(b)).grasp;
                 self.go(u, UavState::Grasp, "above", Some(t_g));
             }
-            UavState::Grasp => {
+            After::Grasped => {
                 if self.rng.gen::<f64>() < cfg.faults.grasp_fail {
                     self.attempt_failed(u);
                 } else {
@@ -397,7 +374,7 @@ impl Sim<'_, '_> {
                     self.go(u, UavState::FlyToWallWait, "grasped", Some(d));
                 }
             }
-            UavState::FlyToWallWait => {
+            After::AtWall => {
                 let wait = cfg.arena.wall_wait(u);
                 for w in self.team(u) {
                     self.uavs[w].pos = wait;
@@ -405,13 +382,13 @@ impl Sim<'_, '_> {
                 self.go(u, UavState::WaitForZone, "arrived", None);
                 self.review();
             }
-            UavState::EnterAndPlace => self.place(u),
-            UavState::Land => {
+            After::Placed => self.place(u),
+            After::Landed => {
                 let start = cfg.arena.uav_starts[u];
                 self.uavs[u].pos = start;
                 self.go(u, UavState::Landed, "landed", None);
             }
-            _ => {}
+            After::Nothing => {}
         }
     }
 
@@ -424,88 +401,25 @@ impl Sim<'_, '_> {
         self.uavs[u].waiting_partner = false;
         self.uavs[u].joined = false;
         self.uavs[u].failures = 0;
-        if self.placed == self.bricks.len() {
-            return self.go_land(u, outcome);
-        }
-        // A scheduled UAV takes its own next brick (joining its pair for an orange).
-        let own = self.lists.as_ref().and_then(|a| a.get(u)).and_then(|list| {
-            list.iter()
-                .copied()
-                .find(|&b| match self.bricks[b.index()] {
-                    Brick::Untaken => true,
-                    Brick::Taken => {
-                        self.kind_of(b).uavs_needed() == 2
-                            && self.carriers[b.index()].len() == 1
-                            && self.carriers[b.index()][0] != u
-                    }
-                    Brick::Placed => false,
-                })
-        });
-        // Not a brick whose support nobody has taken (a failed teammate's): the shared order
-        // comes first then.
-        let own = own.filter(|&b| {
-            (self.kind_of(b).uavs_needed() == 1 || self.live() >= 2)
-                && self
-                    .input
-                    .wall
-                    .supports(b)
-                    .iter()
-                    .all(|s| self.bricks[s.index()] != Brick::Untaken)
-        });
-        // Join an open orange pair first: it was taken earlier in the order.
-        let open = self.order.iter().copied().find(|&b| {
-            self.bricks[b.index()] == Brick::Taken
-                && self.kind_of(b).uavs_needed() == 2
-                && self.carriers[b.index()].len() == 1
-        });
-        // Under a schedule, an open pair whose scheduled partner is gone goes before one's own.
-        let orphan = open.filter(|&b| {
-            self.lists.as_ref().is_some_and(|a| {
-                !a.iter().enumerate().any(|(w, list)| {
-                    w != self.carriers[b.index()][0] && self.uavs[w].alive && list.contains(&b)
-                })
-            })
-        });
-        let pick = if let Some(b) = orphan {
-            Some(b)
-        } else if let Some(b) = own {
-            Some(b)
-        } else if let Some(b) = open {
-            Some(b)
-        } else {
-            let alone = self.live() < 2;
-            self.order.iter().copied().find(|&b| {
-                self.bricks[b.index()] == Brick::Untaken
-                    && (!alone
-                        || (self.kind_of(b).uavs_needed() == 1
-                            && self
-                                .input
-                                .wall
-                                .supports(b)
-                                .iter()
-                                .all(|s| self.bricks[s.index()] != Brick::Untaken)))
-            })
-        };
-        let Some(b) = pick else {
-            let untaken_left = self.bricks.contains(&Brick::Untaken);
-            if untaken_left && self.live() < 2 {
-                // What is left needs a pair that no longer exists.
-                return self.go_land(u, "cannot_finish");
+        let b = match self.board.pick(self.input.wall, u) {
+            Pick::Brick(b) => b,
+            Pick::Land => return self.go_land(u, outcome),
+            // What is left needs a pair that no longer exists.
+            Pick::CannotFinish => return self.go_land(u, "cannot_finish"),
+            Pick::Idle => {
+                if self.uavs[u].state != UavState::ChooseBrick {
+                    self.go(u, UavState::ChooseBrick, "none_free", None);
+                }
+                return self.review();
             }
-            if self.uavs[u].state != UavState::ChooseBrick {
-                self.go(u, UavState::ChooseBrick, "none_free", None);
-            }
-            return self.review();
         };
         if self.uavs[u].state != UavState::ChooseBrick {
             self.go(u, UavState::ChooseBrick, outcome, None);
         }
-        if let Some(&first) = self.carriers[b.index()].first() {
+        if let Some(first) = self.board.take(b, u) {
             self.uavs[first].partner = Some(u);
             self.uavs[u].partner = Some(first);
         }
-        self.bricks[b.index()] = Brick::Taken;
-        self.carriers[b.index()].push(u);
         self.uavs[u].brick = Some(b);
         let pile = cfg.arena.pile(self.kind_of(b));
         let d = self.uavs[u].pos.distance(pile) / self.speed();
@@ -571,32 +485,14 @@ impl Sim<'_, '_> {
     }
 
     fn release(&mut self, b: BrickId) {
-        self.bricks[b.index()] = Brick::Untaken;
-        self.carriers[b.index()].clear();
+        self.board.release(b);
     }
 
     /// The expected time in the zone for brick `b` now.
     fn zone_time(&self, b: BrickId) -> f64 {
-        let wall = self.input.wall;
-        let placed = wall
-            .neighbours(b)
-            .iter()
-            .filter(|n| self.bricks[n.index()] == Brick::Placed)
-            .count()
-            .min(2);
-        let model = self.input.model;
-        self.input.config.uav.zone_transit_s
-            + model.kappa[placed] * model.times(self.kind_of(b)).drop
-    }
-
-    /// The brick next needed: the earliest taken, unplaced brick of the order.
-    fn needed(&self) -> Option<BrickId> {
-        self.bricks
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| **s == Brick::Taken)
-            .min_by_key(|(i, _)| self.rank[*i])
-            .map(|(i, _)| BrickId(i as u32))
+        let transit = self.input.config.uav.zone_transit_s;
+        self.board
+            .zone_time(self.input.wall, self.input.model, transit, b)
     }
 
     /// Re-decides who may enter next, and breaks deadlocks.
@@ -604,22 +500,17 @@ impl Sim<'_, '_> {
         if !self.zone.is_empty() {
             return;
         }
-        let Some(b) = self.needed() else {
+        let Some(b) = self.board.needed() else {
             self.entry = None;
             return;
         };
-        let carriers = &self.carriers[b.index()];
+        let carriers = self.board.carriers(b);
         let ready = carriers.len() == self.kind_of(b).uavs_needed() as usize
             && carriers.iter().all(|&c| {
                 let u = &self.uavs[c];
-                u.alive && u.grasped && u.state == UavState::WaitForZone
+                self.board.alive(c) && u.grasped && u.state == UavState::WaitForZone
             })
-            && self
-                .input
-                .wall
-                .supports(b)
-                .iter()
-                .all(|s| self.bricks[s.index()] == Brick::Placed);
+            && self.board.supported(self.input.wall, b);
         if !ready {
             self.entry = None;
             self.entry_token += 1;
@@ -660,20 +551,19 @@ impl Sim<'_, '_> {
     /// When every live UAV waits and nobody may enter, the holder of the latest brick puts it
     /// down and goes to fetch what is missing.
     fn break_deadlock(&mut self) {
-        let stuck = self.uavs.iter().filter(|u| u.alive).all(|u| {
-            u.state == UavState::WaitForZone || (u.state == UavState::Detect && u.waiting_partner)
-        });
-        if !stuck || self.live() == 0 {
-            return;
-        }
-        let holder = (0..self.uavs.len())
-            .filter(|&i| self.uavs[i].alive && self.uavs[i].state == UavState::WaitForZone)
-            .max_by_key(|&i| self.rank[self.uavs[i].brick.expect("carrying").index()]);
-        let Some(h) = holder else {
+        let team: Vec<Seen> = (0..self.uavs.len())
+            .map(|i| Seen {
+                alive: self.board.alive(i),
+                state: self.uavs[i].state,
+                waiting_partner: self.uavs[i].waiting_partner,
+                brick: self.uavs[i].brick,
+            })
+            .collect();
+        let Some(h) = put_down(&self.board, &team) else {
             return;
         };
         let b = self.uavs[h].brick.expect("carrying");
-        let who = self.carriers[b.index()].clone();
+        let who = self.board.carriers(b).to_vec();
         self.emit(h, EventKind::Lost { brick: b });
         self.release(b);
         for &w in &who {
@@ -690,7 +580,7 @@ impl Sim<'_, '_> {
         };
         let b = self.uavs[plan.leader].brick.expect("carrying");
         let zone_time = self.zone_time(b);
-        let who = self.carriers[b.index()].clone();
+        let who = self.board.carriers(b).to_vec();
         for &w in &who {
             self.zone.push(w);
             self.emit(w, EventKind::ZoneEnter);
@@ -705,10 +595,8 @@ impl Sim<'_, '_> {
 
     fn place(&mut self, u: usize) {
         let b = self.uavs[u].brick.expect("carrying");
-        self.bricks[b.index()] = Brick::Placed;
-        self.placed += 1;
+        let who = self.board.place(b);
         self.emit(u, EventKind::Place { brick: b });
-        let who = std::mem::take(&mut self.carriers[b.index()]);
         for &w in &who {
             self.zone.retain(|&z| z != w);
             self.emit(w, EventKind::ZoneLeave);
@@ -724,7 +612,7 @@ impl Sim<'_, '_> {
     /// Idle UAVs look for work again.
     fn wake_idle(&mut self) {
         for i in 0..self.uavs.len() {
-            if self.uavs[i].alive
+            if self.board.alive(i)
                 && self.uavs[i].state == UavState::ChooseBrick
                 && self.uavs[i].brick.is_none()
             {
@@ -734,18 +622,18 @@ impl Sim<'_, '_> {
     }
 
     fn fail(&mut self, u: usize) {
-        if !self.uavs[u].alive || matches!(self.uavs[u].state, UavState::Landed | UavState::Land) {
+        if !self.board.alive(u) || matches!(self.uavs[u].state, UavState::Landed | UavState::Land) {
             return;
         }
         let cfg = self.input.config;
         let partner = self.together(u).or(self.uavs[u].partner);
-        self.uavs[u].alive = false;
+        self.board.set_alive(u, false);
         self.emit(u, EventKind::Fail);
         if let Some(b) = self.uavs[u].brick {
             if self.uavs[u].grasped {
                 self.emit(u, EventKind::Lost { brick: b });
                 self.release(b);
-                if let Some(p) = partner.filter(|&p| self.uavs[p].alive) {
+                if let Some(p) = partner.filter(|&p| self.board.alive(p)) {
                     if self.zone.contains(&p) {
                         self.zone.retain(|&z| z != p);
                         self.emit(p, EventKind::ZoneLeave);
@@ -755,8 +643,8 @@ impl Sim<'_, '_> {
                     self.choose(p, "partner_failed");
                 }
             } else {
-                self.carriers[b.index()].retain(|&c| c != u);
-                match partner.filter(|&p| self.uavs[p].alive) {
+                self.board.drop_carrier(b, u);
+                match partner.filter(|&p| self.board.alive(p)) {
                     Some(p) => {
                         // The partner keeps the orange brick and waits for a new partner.
                         self.uavs[p].partner = None;
@@ -822,27 +710,29 @@ impl Sim<'_, '_> {
         let wall = self.input.wall;
         let placed: Vec<BrickId> = wall
             .ids()
-            .filter(|b| self.bricks[b.index()] == Brick::Placed)
+            .filter(|&b| self.board.brick(b) == Brick::Placed)
             .collect();
         // Bricks on their way, supports first; one whose support is neither placed nor on
         // its way is left to its carrier and out of the plan.
         let mut on_way = vec![false; wall.len()];
         let mut taken: Vec<BrickId> = wall
             .ids()
-            .filter(|b| self.bricks[b.index()] == Brick::Taken)
+            .filter(|&b| self.board.brick(b) == Brick::Taken)
             .collect();
         taken.sort_by_key(|b| (wall.brick(*b).level, b.index()));
         let mut committed = Vec::new();
         for b in taken {
-            let crew: Vec<usize> = self.carriers[b.index()]
+            let crew: Vec<usize> = self
+                .board
+                .carriers(b)
                 .iter()
                 .copied()
-                .filter(|&c| self.uavs[c].alive)
+                .filter(|&c| self.board.alive(c))
                 .collect();
             let supported = wall
                 .supports(b)
                 .iter()
-                .all(|s| self.bricks[s.index()] == Brick::Placed || on_way[s.index()]);
+                .all(|&s| self.board.brick(s) == Brick::Placed || on_way[s.index()]);
             let Some(&first) = crew.first().filter(|_| supported) else {
                 continue;
             };
@@ -867,7 +757,8 @@ impl Sim<'_, '_> {
             .iter()
             .enumerate()
             .map(|(u, v)| {
-                let gone = !v.alive || matches!(v.state, UavState::Land | UavState::Landed);
+                let gone =
+                    !self.board.alive(u) || matches!(v.state, UavState::Land | UavState::Landed);
                 match (gone, carrying[u]) {
                     (true, _) => f64::INFINITY,
                     (false, true) => 0.0,
@@ -886,24 +777,21 @@ impl Sim<'_, '_> {
         // The new order of need: bricks on their way first (as they were), then the plan.
         let mut order: Vec<BrickId> = wall
             .ids()
-            .filter(|b| self.bricks[b.index()] == Brick::Taken)
+            .filter(|&b| self.board.brick(b) == Brick::Taken)
             .collect();
-        order.sort_by_key(|b| self.rank[b.index()]);
+        order.sort_by_key(|&b| self.board.rank(b));
         let mut listed = vec![false; wall.len()];
         for &b in &order {
             listed[b.index()] = true;
         }
-        for &b in plan.order.iter().chain(&self.order) {
+        for &b in plan.order.iter().chain(self.board.order()) {
             if !std::mem::replace(&mut listed[b.index()], true) {
                 order.push(b);
             }
         }
-        for (i, b) in order.iter().enumerate() {
-            self.rank[b.index()] = i;
-        }
-        self.order = order;
+        self.board.set_order(order);
         let reporter = (0..self.uavs.len())
-            .find(|&u| self.uavs[u].alive)
+            .find(|&u| self.board.alive(u))
             .unwrap_or(0);
         self.emit(
             reporter,
@@ -911,7 +799,7 @@ impl Sim<'_, '_> {
                 bricks: plan.order.len() as u32,
             },
         );
-        self.lists = Some(plan.lists);
+        self.board.lists = Some(plan.lists);
     }
 
     fn safe_landed(&mut self, u: usize) {
@@ -939,27 +827,19 @@ impl Sim<'_, '_> {
     }
 
     fn heartbeat(&mut self, u: usize) {
-        if !self.uavs[u].alive || matches!(self.uavs[u].state, UavState::Landed | UavState::Down) {
+        if !self.board.alive(u) || matches!(self.uavs[u].state, UavState::Landed | UavState::Down) {
             return;
         }
         let cfg = self.input.config;
         let n = self.uavs.len();
         for v in 0..n {
-            if v != u && self.uavs[v].alive && self.channel.delivers(self.now, &mut self.rng) {
+            if v != u && self.board.alive(v) && self.channel.delivers(self.now, &mut self.rng) {
                 self.last_heard[u][v] = self.now;
             }
         }
-        let lost = (0..n).any(|v| {
-            v != u
-                && self.uavs[v].alive
-                && !matches!(self.uavs[v].state, UavState::Landed)
-                && self.now - self.last_heard[u][v] > cfg.coord.heartbeat_timeout_s
-        });
-        let mode = if lost {
-            CommMode::Windows
-        } else {
-            CommMode::Comm
-        };
+        let flying = |v: usize| self.board.alive(v) && self.uavs[v].state != UavState::Landed;
+        let timeout = cfg.coord.heartbeat_timeout_s;
+        let mode = heard_mode(self.now, u, &self.last_heard[u], flying, timeout);
         if mode != self.modes[u] {
             self.modes[u] = mode;
             self.emit(u, EventKind::Comm { mode });
