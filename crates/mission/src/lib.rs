@@ -25,6 +25,7 @@
 
 #![deny(missing_docs)]
 
+pub mod agent;
 pub mod arena;
 pub mod auto;
 pub mod channel;
@@ -39,6 +40,7 @@ pub mod policy;
 pub mod replan;
 pub mod sim;
 pub mod state;
+pub mod team;
 pub mod windows;
 
 pub use arena::{Arena, Point};

@@ -1,10 +1,10 @@
 //! The per-UAV state machine's states (thesis Fig. 4.3) and the events of a trace.
 
 use mason_wall::BrickId;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A UAV's state.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum UavState {
     /// Pre-flight check.
     Check,
@@ -82,7 +82,7 @@ impl UavState {
 }
 
 /// How the team coordinates at a given moment.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CommMode {
     /// By messages.
@@ -164,5 +164,119 @@ impl Observer for () {
 impl Observer for Vec<Event> {
     fn event(&mut self, e: &Event) {
         self.push(*e);
+    }
+}
+
+/// Every outcome a state transition may carry (the simulator's and the agents').
+pub const OUTCOMES: [&str; 26] = [
+    "start",
+    "ok",
+    "airborne",
+    "found",
+    "above",
+    "grasped",
+    "arrived",
+    "landed",
+    "cannot_finish",
+    "none_free",
+    "chosen",
+    "partner_arrived",
+    "waiting_partner",
+    "gave_up",
+    "failed",
+    "put_down",
+    "granted",
+    "placed",
+    "woken",
+    "partner_failed",
+    "fault",
+    "down",
+    "claim_lost",
+    "declared_out",
+    "rejoined",
+    "killed",
+];
+
+/// The outcome named `s`, if it is one of [`OUTCOMES`].
+pub fn outcome(s: &str) -> Option<&'static str> {
+    OUTCOMES.iter().copied().find(|o| *o == s)
+}
+
+/// One trace line as read back from JSON (an agent's trace file): [`Event`] with an owned
+/// outcome, so that it can be checked before it becomes an [`Event`].
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+pub struct EventRecord {
+    /// Time (s).
+    pub t: f64,
+    /// The UAV.
+    pub uav: u32,
+    /// What happened.
+    #[serde(flatten)]
+    pub kind: KindRecord,
+}
+
+/// [`EventKind`] as read back from JSON.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+#[allow(missing_docs)]
+pub enum KindRecord {
+    State {
+        state: UavState,
+        outcome: String,
+        x: f64,
+        y: f64,
+    },
+    Grasp {
+        brick: BrickId,
+    },
+    Place {
+        brick: BrickId,
+    },
+    Lost {
+        brick: BrickId,
+    },
+    ZoneEnter,
+    ZoneLeave,
+    Fail,
+    Replan {
+        bricks: u32,
+    },
+    Comm {
+        mode: CommMode,
+    },
+}
+
+impl EventRecord {
+    /// The event, or why it is not one (an unknown outcome, a time that is not finite).
+    pub fn into_event(self) -> Result<Event, String> {
+        if !self.t.is_finite() {
+            return Err(format!("time {} is not finite", self.t));
+        }
+        let kind = match self.kind {
+            KindRecord::State {
+                state,
+                outcome: o,
+                x,
+                y,
+            } => EventKind::State {
+                state,
+                outcome: outcome(&o).ok_or_else(|| format!("unknown outcome `{o}`"))?,
+                x,
+                y,
+            },
+            KindRecord::Grasp { brick } => EventKind::Grasp { brick },
+            KindRecord::Place { brick } => EventKind::Place { brick },
+            KindRecord::Lost { brick } => EventKind::Lost { brick },
+            KindRecord::ZoneEnter => EventKind::ZoneEnter,
+            KindRecord::ZoneLeave => EventKind::ZoneLeave,
+            KindRecord::Fail => EventKind::Fail,
+            KindRecord::Replan { bricks } => EventKind::Replan { bricks },
+            KindRecord::Comm { mode } => EventKind::Comm { mode },
+        };
+        Ok(Event {
+            t: self.t,
+            uav: self.uav,
+            kind,
+        })
     }
 }

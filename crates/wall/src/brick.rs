@@ -1,6 +1,6 @@
 //! Brick types, ids and footprints.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// Height of every brick (m).
@@ -129,7 +129,7 @@ impl fmt::Display for BrickType {
 }
 
 /// Dense index of a brick inside one [`crate::Wall`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct BrickId(pub u32);
 
 impl BrickId {

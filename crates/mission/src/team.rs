@@ -1,0 +1,222 @@
+//! A team of [`Agent`]s on one virtual clock and a simulated bus that loses, duplicates,
+//! delays, reorders and cuts messages, and kills and restarts agents: the agents' protocol
+//! tested fast and deterministically, with the same code `mason agent` runs over Zenoh.
+
+use crate::agent::{Agent, AgentSetup, Message, SimulatedVehicle};
+use crate::config::Window;
+use crate::state::{Event, EventKind, UavState};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::cmp::{Ordering, Reverse};
+use std::collections::BinaryHeap;
+
+/// What the bus and the launcher do to the team.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BusFaults {
+    /// Probability that a message is lost.
+    pub loss: f64,
+    /// Probability that a message is delivered twice.
+    pub duplicate: f64,
+    /// Fixed latency (s).
+    pub latency: f64,
+    /// Extra random delay up to this (s): messages overtake each other.
+    pub jitter: f64,
+    /// Nothing gets through in these windows.
+    pub cuts: Vec<Window>,
+    /// `(uav, t)`: the agent is killed at t (as `kill -9`: no last word).
+    pub kills: Vec<(usize, f64)>,
+    /// `(uav, t)`: the killed agent starts again at t, as a new incarnation.
+    pub restarts: Vec<(usize, f64)>,
+}
+
+/// The events that record an agent killed at `t`, from its own trace so far: it fails, leaves
+/// the zone if it was inside, loses what it held, and is down. `mason launch` adds the same
+/// events for the agents it kills.
+pub fn killed_events(trace: &[Event], uav: u32, t: f64) -> Vec<Event> {
+    let mut holding = None;
+    let mut in_zone = false;
+    let mut state = UavState::Check;
+    for e in trace.iter().filter(|e| e.uav == uav) {
+        match e.kind {
+            EventKind::Grasp { brick } => holding = Some(brick),
+            EventKind::Place { .. } | EventKind::Lost { .. } => holding = None,
+            EventKind::ZoneEnter => in_zone = true,
+            EventKind::ZoneLeave => in_zone = false,
+            EventKind::State { state: s, .. } => state = s,
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    if matches!(state, UavState::Landed | UavState::Down) {
+        return out;
+    }
+    let at = |kind| Event { t, uav, kind };
+    out.push(at(EventKind::Fail));
+    if in_zone {
+        out.push(at(EventKind::ZoneLeave));
+    }
+    if let Some(brick) = holding {
+        out.push(at(EventKind::Lost { brick }));
+    }
+    out.push(at(EventKind::State {
+        state: UavState::Down,
+        outcome: "killed",
+        x: 0.0,
+        y: 0.0,
+    }));
+    out
+}
+
+/// A team run on the virtual bus.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TeamRun {
+    /// Every agent's events (and the killed agents' last ones), by time.
+    pub events: Vec<Event>,
+    /// Whether every agent still running finished (landed or down) in time.
+    pub finished: bool,
+    /// Messages sent.
+    pub sent: usize,
+    /// Messages delivered (duplicates included).
+    pub delivered: usize,
+}
+
+struct Delivery {
+    t: f64,
+    seq: u64,
+    to: usize,
+    msg: Message,
+}
+
+impl PartialEq for Delivery {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Delivery {}
+impl PartialOrd for Delivery {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Delivery {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.t.total_cmp(&o.t).then(self.seq.cmp(&o.seq))
+    }
+}
+
+/// Flies `setup`'s team (`setup.uav` is ignored: one agent per UAV) on the virtual bus until
+/// every agent has finished or `setup.config.max_time_s` has passed.
+pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun {
+    let n = setup.config.uavs;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let make = |u: usize, incarnation: u64| {
+        let vehicle = SimulatedVehicle::new(
+            setup.config,
+            seed ^ (u as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ incarnation,
+        );
+        Agent::new(
+            AgentSetup {
+                uav: u,
+                incarnation,
+                ..setup
+            },
+            Box::new(vehicle),
+        )
+    };
+    let mut agents: Vec<Option<Agent<'_>>> = (0..n).map(|u| Some(make(u, 1))).collect();
+    let mut wake = vec![0.0_f64; n];
+    let mut kills = faults.kills.clone();
+    kills.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let mut restarts = faults.restarts.clone();
+    restarts.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let (mut ki, mut ri) = (0, 0);
+    let mut queue: BinaryHeap<Reverse<Delivery>> = BinaryHeap::new();
+    let mut seq = 0u64;
+    let mut events: Vec<Event> = Vec::new();
+    let (mut sent, mut delivered) = (0, 0);
+    let max_t = setup.config.max_time_s;
+    let cut = |t: f64| faults.cuts.iter().any(|w| w.contains(t));
+    loop {
+        // The next thing to happen: a kill, a restart, a delivery or an agent's wake-up.
+        let next_wake = (0..n)
+            .filter(|&u| agents[u].is_some())
+            .map(|u| (wake[u], u))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let next_msg = queue.peek().map(|Reverse(d)| d.t);
+        let next_kill = kills.get(ki).map(|k| k.1);
+        let next_restart = restarts.get(ri).map(|r| r.1);
+        let t = [next_wake.map(|w| w.0), next_msg, next_kill, next_restart]
+            .into_iter()
+            .flatten()
+            .fold(f64::INFINITY, f64::min);
+        let running = agents.iter().flatten().any(|a| !a.finished());
+        if !running && next_restart.is_none() {
+            break;
+        }
+        if !t.is_finite() || t > max_t {
+            break;
+        }
+        let target = if next_kill == Some(t) {
+            let (u, at) = kills[ki];
+            ki += 1;
+            if agents[u].take().is_some() {
+                let tail = killed_events(&events, u as u32, at);
+                events.extend(tail);
+            }
+            continue;
+        } else if next_restart == Some(t) {
+            let (u, _) = restarts[ri];
+            ri += 1;
+            if agents[u].is_none() {
+                let inc = 1 + restarts[..ri].iter().filter(|r| r.0 == u).count() as u64;
+                agents[u] = Some(make(u, inc));
+                wake[u] = t;
+            }
+            continue;
+        } else if next_msg == Some(t) {
+            let Reverse(d) = queue.pop().expect("peeked");
+            delivered += 1;
+            match agents[d.to].as_mut() {
+                Some(a) => a.receive(t, d.msg),
+                None => continue,
+            }
+            d.to
+        } else {
+            next_wake.expect("a wake-up").1
+        };
+        let tick = agents[target].as_mut().expect("running").tick(t);
+        wake[target] = tick.wake;
+        events.extend(tick.events);
+        for m in tick.messages {
+            sent += 1;
+            for to in (0..n).filter(|&v| v != target) {
+                if cut(t) || rng.gen::<f64>() < faults.loss {
+                    continue;
+                }
+                let copies = if rng.gen::<f64>() < faults.duplicate {
+                    2
+                } else {
+                    1
+                };
+                for _ in 0..copies {
+                    seq += 1;
+                    let delay = faults.latency + faults.jitter * rng.gen::<f64>();
+                    queue.push(Reverse(Delivery {
+                        t: t + delay,
+                        seq,
+                        to,
+                        msg: m.clone(),
+                    }));
+                }
+            }
+        }
+    }
+    events.sort_by(|a, b| a.t.total_cmp(&b.t));
+    let finished = agents.iter().flatten().all(|a| a.finished());
+    TeamRun {
+        events,
+        finished,
+        sent,
+        delivered,
+    }
+}
