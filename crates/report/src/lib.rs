@@ -1,4 +1,5 @@
-//! Mason reports: figures drawn from plain data, returned as strings. No I/O.
+//! Mason reports: figures drawn from plain data, returned as strings, and MCAP logs written into
+//! a sink the caller gives. No file access.
 //!
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
 //! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
