@@ -144,19 +144,26 @@ fn stamp(t: f64) -> Value {
     json!({"sec": ns / 1_000_000_000, "nsec": ns % 1_000_000_000})
 }
 
+/// `v` rounded to `1 / scale` (positions to the micrometre: no float noise in the JSON).
+fn round(v: f64, scale: f64) -> f64 {
+    (v * scale).round() / scale
+}
+
 fn vec3(x: f64, y: f64, z: f64) -> Value {
-    json!({"x": x, "y": y, "z": z})
+    let r = |v| round(v, 1e6);
+    json!({"x": r(x), "y": r(y), "z": r(z)})
 }
 
 fn pose_json(x: f64, y: f64, z: f64, yaw: f64) -> Value {
+    let (s, c) = (round((yaw / 2.0).sin(), 1e9), round((yaw / 2.0).cos(), 1e9));
     json!({
         "position": vec3(x, y, z),
-        "orientation": {"x": 0.0, "y": 0.0, "z": (yaw / 2.0).sin(), "w": (yaw / 2.0).cos()},
+        "orientation": {"x": 0.0, "y": 0.0, "z": s, "w": c},
     })
 }
 
 fn colour(rgb: [u8; 3], a: f64) -> Value {
-    let c = |v: u8| f64::from(v) / 255.0;
+    let c = |v: u8| round(f64::from(v) / 255.0, 1e4);
     json!({"r": c(rgb[0]), "g": c(rgb[1]), "b": c(rgb[2]), "a": a})
 }
 
