@@ -541,6 +541,8 @@ fn altitude(uav: u32, state: UavState) -> f64 {
 /// POSE_RATE_HZ`) along every leg between two of them, where it flies straight, plus its last
 /// pose at `end_s`. The trace's state events give the positions (x, y); z is
 /// [`cruise_altitude`] in the air and 0 on the ground; the heading follows the last leg flown.
+/// The trace is taken in time order, as the simulator emits it; poses and events are merged
+/// in time order (at one instant, the poses first).
 pub fn write_trace<W: Write + Seek>(
     log: &mut McapLog<'_, W>,
     trace: &[Event],
