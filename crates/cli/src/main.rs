@@ -223,6 +223,12 @@ struct SimArgs {
     /// Write the self-contained HTML replay (single run)
     #[arg(long)]
     html: Option<PathBuf>,
+    /// Write the run as an MCAP log that Foxglove opens as it is (single run): UAV poses
+    /// (foxglove.PoseInFrame, 2 Hz along each leg), states, the wall zone, bricks grasped, placed
+    /// and lost, the wall as a 3-D scene (foxglove.SceneUpdate), every event as a log line
+    /// (foxglove.Log); JSON messages, mission time in ns (see README)
+    #[arg(long)]
+    mcap: Option<PathBuf>,
 }
 
 #[derive(clap::Args)]
@@ -520,7 +526,7 @@ fn plan_schedule(
 }
 
 fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
-    check_outputs(&[&a.svg, &a.html])?;
+    check_outputs(&[&a.svg, &a.html, &a.mcap])?;
     let coord: mason_mission::Coord = a
         .coord
         .parse()
@@ -618,9 +624,9 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
         config.coord.slot_s = a.slot;
     }
     let slot = sim_cmd::prepare(&wall, &model, &config)?;
-    if a.runs > 1 && (a.svg.is_some() || a.html.is_some()) {
+    if a.runs > 1 && (a.svg.is_some() || a.html.is_some() || a.mcap.is_some()) {
         return Err(input_error(
-            "--svg and --html show one mission; drop --runs (or use --runs 1 --seed S)",
+            "--svg, --html and --mcap show one mission; drop --runs (or use --runs 1 --seed S)",
         ));
     }
     let input = mason_mission::MissionInput {
@@ -658,6 +664,18 @@ fn simulate(a: SimArgs, quiet: bool) -> CliResult<()> {
                 r.metrics.end_s,
             );
             files.push((path.clone(), page.into_bytes()));
+        }
+        if let Some(path) = &a.mcap {
+            let mission_id = format!("simulate/{}/seed-{}", wall.name(), a.seed);
+            let meta = mason_report::LogMeta {
+                mission_id: &mission_id,
+                uavs: a.uavs,
+                arena: &config.arena,
+                wall: &wall,
+            };
+            let bytes = mason_report::mission_mcap(&meta, &trace, r.metrics.end_s)
+                .map_err(|e| input_error(format!("internal error: {}: {e}", path.display())))?;
+            files.push((path.clone(), bytes));
         }
         write_all(&files)?;
         if a.json {

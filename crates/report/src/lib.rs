@@ -1,8 +1,10 @@
-//! Mason reports: figures drawn from plain data, returned as strings. No I/O.
+//! Mason reports: figures drawn from plain data, returned as strings, and MCAP logs written into
+//! a sink the caller gives. No file access.
 //!
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
 //! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
+//! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink.
 //!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
@@ -13,6 +15,7 @@
 
 mod crew_svg;
 mod gantt;
+mod mcap;
 mod page;
 mod replay;
 mod reward;
@@ -20,6 +23,10 @@ mod schedule_svg;
 mod svg;
 mod wall_svg;
 
+pub use self::mcap::{
+    brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError, UavPose,
+    POSE_RATE_HZ,
+};
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
 pub use page::{pre, report_page, Section};
