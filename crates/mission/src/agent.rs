@@ -289,6 +289,11 @@ pub struct Agent<'a> {
     grasped: bool,
     failures: u32,
     in_zone: bool,
+    /// A pair's follower that left the zone with its leader's time and waits to hear the
+    /// brick placed.
+    pair_left: bool,
+    /// A pair's follower: the leader it carries the brick with.
+    pair_leader: Option<(usize, u64)>,
     request: Option<Request>,
     next_request: u64,
     mode: CommMode,
@@ -329,6 +334,8 @@ impl<'a> Agent<'a> {
             grasped: false,
             failures: 0,
             in_zone: false,
+            pair_left: false,
+            pair_leader: None,
             request: None,
             next_request: 1,
             mode: CommMode::Comm,
@@ -742,7 +749,18 @@ impl<'a> Agent<'a> {
                 self.arrive(cfg.arena.wall_wait(self.me));
                 self.go(UavState::WaitForZone, "arrived", None);
             }
-            After::Placed => self.place(),
+            After::Placed => match self.brick {
+                Some(b) if !self.leader(b) => {
+                    // A pair's follower: the leader's zone time is over, so the pair has left;
+                    // the brick counts as placed once the leader says so.
+                    self.in_zone = false;
+                    self.pair_left = true;
+                    self.emit(EventKind::ZoneLeave);
+                    self.go(UavState::WaitForZone, "pair_left", None);
+                    self.mark(MessageKind::ZoneRelease);
+                }
+                _ => self.place(),
+            },
             After::Landed => {
                 self.arrive(cfg.arena.uav_starts[self.me]);
                 self.go(UavState::Landed, "landed", None);
@@ -794,6 +812,8 @@ impl<'a> Agent<'a> {
         let board = self.board();
         let wall = self.setup.wall;
         self.failures = 0;
+        self.pair_left = false;
+        self.pair_leader = None;
         match board.pick(wall, self.me) {
             Pick::Brick(b) => {
                 if self.state != UavState::ChooseBrick {
@@ -869,6 +889,31 @@ impl<'a> Agent<'a> {
                 return self.choose("claim_lost");
             }
         }
+        // A pair's follower lets go when its leader does (the leader's `lost` covers both).
+        if let (Some(b), Some((l, inc))) = (self.brick, self.pair_leader) {
+            let restarted = self.peers[l].as_ref().is_some_and(|p| p.incarnation != inc);
+            let let_go = self.grasped
+                && self.flying(l)
+                && self
+                    .peer_status(l)
+                    .is_some_and(|st| st.brick != Some(b.0) || !st.grasped);
+            if let_go {
+                if restarted {
+                    // The leader was killed and is back: nobody said the brick fell.
+                    self.emit(EventKind::Lost { brick: b });
+                }
+                if self.in_zone {
+                    self.in_zone = false;
+                    self.emit(EventKind::ZoneLeave);
+                }
+                self.brick = None;
+                self.grasped = false;
+                self.request = None;
+                self.mark(MessageKind::Claim);
+                self.go(UavState::ChooseBrick, "put_down", None);
+                return self.choose("put_down");
+            }
+        }
         if self.state == UavState::ChooseBrick && self.brick.is_none() {
             return self.choose("woken");
         }
@@ -922,7 +967,7 @@ impl<'a> Agent<'a> {
                 }
             }
             // A partner lost after the grasp: the brick is lost with it.
-            if self.grasped && partner.is_none() && !self.in_zone {
+            if self.grasped && partner.is_none() {
                 self.drop_brick("partner_failed");
                 self.choose("partner_failed");
             }
@@ -944,16 +989,28 @@ impl<'a> Agent<'a> {
                 if at_pile && lead.grasped =>
             {
                 self.grasped = true;
+                self.pair_leader = partner.map(|l| {
+                    let inc = self.peers[l].as_ref().map_or(0, |p| p.incarnation);
+                    (l, inc)
+                });
                 self.emit(EventKind::Grasp { brick: b });
                 let wait = cfg.arena.wall_wait(self.me);
                 self.fly(UavState::FlyToWallWait, "grasped", wait, 0.0);
             }
             UavState::EnterAndPlace
-                if lead.in_zone && self.state == UavState::WaitForZone && !self.in_zone =>
+                if lead.in_zone
+                    && self.state == UavState::WaitForZone
+                    && !self.in_zone
+                    && !self.pair_left =>
             {
+                // Enter with the leader, and leave by the end of its zone time at the latest.
+                let s = self.setup;
+                let board = self.board();
+                let zt = board.zone_time(s.wall, s.model, s.config.uav.zone_transit_s, b);
+                let hb = s.config.coord.heartbeat_s;
                 self.in_zone = true;
                 self.emit(EventKind::ZoneEnter);
-                self.go(UavState::EnterAndPlace, "granted", None);
+                self.go(UavState::EnterAndPlace, "granted", Some(zt + 2.0 * hb));
                 self.mark(MessageKind::ZoneEnter);
             }
             _ => {}
@@ -1021,7 +1078,7 @@ impl<'a> Agent<'a> {
             if heard_me < self.claimed_at {
                 return false;
             }
-            if self.now + zone_time + hb >= heard_me + self.setup.dead_after_s {
+            if self.now + zone_time + 3.0 * hb >= heard_me + self.setup.dead_after_s {
                 return false;
             }
         }

@@ -55,8 +55,29 @@ pub fn killed_events(trace: &[Event], uav: u32, t: f64) -> Vec<Event> {
     if in_zone {
         out.push(at(EventKind::ZoneLeave));
     }
+    // What it held falls, unless its pair's partner still holds the brick and carries on
+    // (the partner learns of the loss only when it declares the agent out).
     if let Some(brick) = holding {
-        out.push(at(EventKind::Lost { brick }));
+        let partner_holds = trace
+            .iter()
+            .filter(|e| e.uav != uav)
+            .fold(std::collections::BTreeMap::new(), |mut h, e| {
+                match e.kind {
+                    EventKind::Grasp { brick } => {
+                        h.insert(e.uav, Some(brick));
+                    }
+                    EventKind::Place { brick: b } | EventKind::Lost { brick: b } => {
+                        h.retain(|_, held| *held != Some(b));
+                    }
+                    _ => {}
+                }
+                h
+            })
+            .values()
+            .any(|held| *held == Some(brick));
+        if !partner_holds {
+            out.push(at(EventKind::Lost { brick }));
+        }
     }
     out.push(at(EventKind::State {
         state: UavState::Down,
