@@ -183,24 +183,44 @@ pub trait Autopilot: Send {
     fn detect(&mut self) -> bool;
     /// Whether grasping succeeds.
     fn grasp(&mut self) -> bool;
+    /// At the wall, its camera sees whether `brick` is on it (`None`: no camera). Used when
+    /// a teammate went silent holding a brick, and before every placement.
+    fn sees_on_wall(&mut self, brick: BrickId) -> Option<bool> {
+        let _ = brick;
+        None
+    }
+}
+
+/// What a simulated camera sees of the wall: the bricks placed so far, by anyone.
+pub trait WallView: Send + Sync {
+    /// Whether `brick` is on the wall.
+    fn placed(&self, brick: BrickId) -> bool;
 }
 
 /// A vehicle simulated in-process: detection and grasps fail with the configured
-/// probabilities, from its own seeded generator.
+/// probabilities, from its own seeded generator; its camera sees a [`WallView`], if given.
 pub struct SimulatedVehicle {
     rng: ChaCha8Rng,
     detect_fail: f64,
     grasp_fail: f64,
+    world: Option<std::sync::Arc<dyn WallView>>,
 }
 
 impl SimulatedVehicle {
-    /// A vehicle with `config`'s fault probabilities.
+    /// A vehicle with `config`'s fault probabilities and no camera.
     pub fn new(config: &MissionConfig, seed: u64) -> Self {
         SimulatedVehicle {
             rng: ChaCha8Rng::seed_from_u64(seed),
             detect_fail: config.faults.detect_fail,
             grasp_fail: config.faults.grasp_fail,
+            world: None,
         }
+    }
+
+    /// The same, with a camera on `world`.
+    pub fn with_world(mut self, world: std::sync::Arc<dyn WallView>) -> Self {
+        self.world = Some(world);
+        self
     }
 }
 
@@ -210,6 +230,9 @@ impl Autopilot for SimulatedVehicle {
     }
     fn grasp(&mut self) -> bool {
         self.rng.gen::<f64>() >= self.grasp_fail
+    }
+    fn sees_on_wall(&mut self, brick: BrickId) -> Option<bool> {
+        self.world.as_ref().map(|w| w.placed(brick))
     }
 }
 
@@ -304,6 +327,9 @@ pub struct Agent<'a> {
     placed: Vec<bool>,
     out: Vec<Option<u64>>,
     honored: Vec<Option<(u64, u64, f64, (u32, u32))>>,
+    /// Bricks whose fate is unknown: the UAV (and incarnation) declared out while holding
+    /// them may have placed them. Settled when that UAV is heard again.
+    unknown: Vec<Option<(usize, u64)>>,
     /// The longest zone time of any brick (s).
     zone_max: f64,
     // Output of the current tick.
@@ -345,12 +371,23 @@ impl<'a> Agent<'a> {
             placed: vec![false; setup.wall.len()],
             out: vec![None; n],
             honored: vec![None; n],
+            unknown: vec![None; setup.wall.len()],
             zone_max: crate::coord::longest_zone_time(setup.wall, setup.model, setup.config),
             pending: None,
             tick: Tick::default(),
             now: 0.0,
             setup,
             autopilot,
+        }
+    }
+
+    /// Bricks this UAV placed in earlier incarnations (read back from its own log), so that
+    /// a restarted agent never forgets its own work.
+    pub fn remember(&mut self, placed: &[BrickId]) {
+        for b in placed {
+            if let Some(p) = self.placed.get_mut(b.index()) {
+                *p = true;
+            }
         }
     }
 
@@ -426,11 +463,19 @@ impl<'a> Agent<'a> {
                 let known = self.peers[v].as_ref().map_or(0, |p| p.incarnation);
                 if known <= o.incarnation {
                     self.out[v] = Some(o.incarnation);
+                    self.mark_unknown(v, o.incarnation);
                 }
             }
         }
         if self.out[u].is_some_and(|i| m.incarnation > i) {
             self.out[u] = None; // back under a new incarnation
+        }
+        // A UAV heard again settles the bricks it held when it went silent: its placed set
+        // says whether it placed them.
+        for k in &mut self.unknown {
+            if k.is_some_and(|(v, inc)| v == u && m.incarnation > inc) {
+                *k = None;
+            }
         }
         self.peers[u] = Some(Peer {
             incarnation: m.incarnation,
@@ -590,9 +635,18 @@ impl<'a> Agent<'a> {
                 board.place(BrickId(i as u32));
             }
         }
+        for (i, k) in self.unknown.iter().enumerate() {
+            if k.is_some() && !self.placed[i] {
+                board.hold_unknown(BrickId(i as u32));
+            }
+        }
         for (b, _, v) in self.claims() {
             let needed = kind(s.wall, b).uavs_needed() as usize;
-            if board.brick(b) != crate::core::Brick::Placed && board.carriers(b).len() < needed {
+            let unknown = self.unknown[b.index()].is_some();
+            if !unknown
+                && board.brick(b) != crate::core::Brick::Placed
+                && board.carriers(b).len() < needed
+            {
                 board.take(b, v);
             }
         }
@@ -647,7 +701,39 @@ impl<'a> Agent<'a> {
                 let inc = self.peers[v].as_ref().map_or(0, |p| p.incarnation);
                 self.out[v] = Some(inc);
                 self.honored[v] = None;
+                self.mark_unknown(v, inc);
                 self.mark(MessageKind::State);
+            }
+        }
+    }
+
+    /// At the wall: look at the bricks whose fate is unknown, and at its own.
+    fn inspect(&mut self) {
+        let mut look: Vec<usize> = (0..self.unknown.len())
+            .filter(|&i| self.unknown[i].is_some())
+            .collect();
+        look.extend(self.brick.map(BrickId::index));
+        for i in look {
+            match self.autopilot.sees_on_wall(BrickId(i as u32)) {
+                Some(true) => {
+                    self.placed[i] = true;
+                    self.unknown[i] = None;
+                }
+                Some(false) => self.unknown[i] = None,
+                None => {}
+            }
+        }
+    }
+
+    /// `v` (incarnation `inc`) is out: the brick it held, grasped, may be on the wall.
+    fn mark_unknown(&mut self, v: usize, inc: u64) {
+        let Some(p) = self.peers[v].as_ref().filter(|p| p.incarnation == inc) else {
+            return;
+        };
+        if let Some(b) = p.status.brick.filter(|_| p.status.grasped) {
+            let b = b as usize;
+            if b < self.placed.len() && !self.placed[b] {
+                self.unknown[b] = Some((v, inc));
             }
         }
     }
@@ -864,6 +950,9 @@ impl<'a> Agent<'a> {
             return;
         }
         let wall = self.setup.wall;
+        if self.state == UavState::WaitForZone {
+            self.inspect();
+        }
         // Its brick placed by somebody else, or its claim lost to an earlier one.
         if let Some(b) = self.brick {
             if self.placed[b.index()] {

@@ -125,16 +125,31 @@ impl Ord for Delivery {
     }
 }
 
+/// The wall as the simulated cameras see it: every placement so far.
+struct World(std::sync::Mutex<Vec<bool>>);
+
+impl crate::agent::WallView for World {
+    fn placed(&self, brick: mason_wall::BrickId) -> bool {
+        let w = self
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        w.get(brick.index()).copied().unwrap_or(false)
+    }
+}
+
 /// Flies `setup`'s team (`setup.uav` is ignored: one agent per UAV) on the virtual bus until
 /// every agent has finished or `setup.config.max_time_s` has passed.
 pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun {
     let n = setup.config.uavs;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let world = std::sync::Arc::new(World(std::sync::Mutex::new(vec![false; setup.wall.len()])));
     let make = |u: usize, incarnation: u64| {
         let vehicle = SimulatedVehicle::new(
             setup.config,
             seed ^ (u as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ incarnation,
-        );
+        )
+        .with_world(world.clone());
         Agent::new(
             AgentSetup {
                 uav: u,
@@ -190,7 +205,17 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
             ri += 1;
             if agents[u].is_none() {
                 let inc = 1 + restarts[..ri].iter().filter(|r| r.0 == u).count() as u64;
-                agents[u] = Some(make(u, inc));
+                let mut agent = make(u, inc);
+                // It reads back what it placed from its own log.
+                let mine: Vec<_> = events
+                    .iter()
+                    .filter_map(|e| match e.kind {
+                        EventKind::Place { brick } if e.uav == u as u32 => Some(brick),
+                        _ => None,
+                    })
+                    .collect();
+                agent.remember(&mine);
+                agents[u] = Some(agent);
                 wake[u] = t;
             }
             continue;
@@ -207,6 +232,15 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
         };
         let tick = agents[target].as_mut().expect("running").tick(t);
         wake[target] = tick.wake;
+        for e in &tick.events {
+            if let EventKind::Place { brick } = e.kind {
+                let mut w = world
+                    .0
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner);
+                w[brick.index()] = true;
+            }
+        }
         events.extend(tick.events);
         for m in tick.messages {
             sent += 1;
