@@ -112,6 +112,17 @@ pub struct Ack {
     pub id: u64,
 }
 
+/// The partner a pair's leader carries an orange brick with: that UAV under that claim.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairRef {
+    /// The partner.
+    pub uav: u32,
+    /// Its incarnation.
+    pub incarnation: u64,
+    /// When it claimed the brick (s).
+    pub claimed_at: f64,
+}
+
 /// A teammate declared out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Out {
@@ -142,6 +153,8 @@ pub struct Status {
     pub claimed_at: f64,
     /// Whether it holds the brick.
     pub grasped: bool,
+    /// Leading an orange brick's pair: the partner it carries it with.
+    pub pair: Option<PairRef>,
     /// Whether it is inside the wall zone.
     pub in_zone: bool,
     /// Its zone request, if any.
@@ -317,6 +330,8 @@ pub struct Agent<'a> {
     pair_left: bool,
     /// A pair's follower: the leader it carries the brick with.
     pair_leader: Option<(usize, u64)>,
+    /// A pair's leader: the partner it started detecting with.
+    pair_follower: Option<PairRef>,
     request: Option<Request>,
     next_request: u64,
     mode: CommMode,
@@ -362,6 +377,7 @@ impl<'a> Agent<'a> {
             in_zone: false,
             pair_left: false,
             pair_leader: None,
+            pair_follower: None,
             request: None,
             next_request: 1,
             mode: CommMode::Comm,
@@ -876,8 +892,12 @@ impl<'a> Agent<'a> {
 
     /// Lets go of its brick (lost if grasped) and of its request.
     fn drop_brick(&mut self, outcome: &'static str) {
+        let follower = self
+            .brick
+            .is_some_and(|b| kind(self.setup.wall, b).uavs_needed() == 2 && !self.leader(b));
         if let Some(b) = self.brick.take() {
-            if self.grasped {
+            // A pair's follower lets go silently: its leader reports the brick lost.
+            if self.grasped && !follower {
                 self.emit(EventKind::Lost { brick: b });
             }
             if self.in_zone {
@@ -900,6 +920,7 @@ impl<'a> Agent<'a> {
         self.failures = 0;
         self.pair_left = false;
         self.pair_leader = None;
+        self.pair_follower = None;
         match board.pick(wall, self.me) {
             Pick::Brick(b) => {
                 if self.state != UavState::ChooseBrick {
@@ -983,9 +1004,11 @@ impl<'a> Agent<'a> {
             let restarted = self.peers[l].as_ref().is_some_and(|p| p.incarnation != inc);
             let let_go = self.grasped
                 && self.flying(l)
-                && self
-                    .peer_status(l)
-                    .is_some_and(|st| st.brick != Some(b.0) || !st.grasped);
+                && self.peer_status(l).is_some_and(|st| {
+                    st.brick != Some(b.0)
+                        || !st.grasped
+                        || st.pair.is_none_or(|r| r.uav != self.me as u32)
+                });
             if let_go {
                 if restarted {
                     // The leader was killed and is back: nobody said the brick fell.
@@ -1043,6 +1066,24 @@ impl<'a> Agent<'a> {
                 // It followed a leader that is gone: it leads now, from the start.
                 self.go(UavState::Detect, "partner_failed", None);
             }
+            // The partner it started with let go, restarted, or is gone.
+            if let Some(r) = self.pair_follower {
+                let v = r.uav as usize;
+                let still = self.flying(v)
+                    && self.peers[v].as_ref().is_some_and(|p| {
+                        p.incarnation == r.incarnation
+                            && p.status.brick == Some(b.0)
+                            && p.status.claimed_at == r.claimed_at
+                    });
+                if !still {
+                    self.pair_follower = None;
+                    if self.grasped {
+                        self.drop_brick("partner_failed");
+                        return self.choose("partner_failed");
+                    }
+                    self.go(UavState::Detect, "partner_failed", None);
+                }
+            }
             if self.state == UavState::Detect && self.until.is_infinite() {
                 let ready = partner_status.as_ref().is_some_and(|s| {
                     same(s)
@@ -1051,7 +1092,13 @@ impl<'a> Agent<'a> {
                             UavState::Detect | UavState::FlyAbove | UavState::Grasp
                         )
                 });
-                if ready {
+                if let (true, Some(p)) = (ready, partner) {
+                    let peer = self.peers[p].as_ref().expect("heard");
+                    self.pair_follower = Some(PairRef {
+                        uav: p as u32,
+                        incarnation: peer.incarnation,
+                        claimed_at: peer.status.claimed_at,
+                    });
                     self.go(UavState::Detect, "partner_arrived", Some(cfg.uav.detect_s));
                 }
             }
@@ -1062,8 +1109,13 @@ impl<'a> Agent<'a> {
             }
             return;
         }
-        // The follower.
-        let Some(lead) = partner_status.filter(same) else {
+        // The follower follows a leader that carries the brick with this very claim.
+        let me = PairRef {
+            uav: self.me as u32,
+            incarnation: self.incarnation,
+            claimed_at: self.claimed_at,
+        };
+        let Some(lead) = partner_status.filter(|s| same(s) && s.pair == Some(me)) else {
             return;
         };
         let at_pile = matches!(
@@ -1341,6 +1393,7 @@ impl<'a> Agent<'a> {
             brick: self.brick.map(|b| b.0),
             claimed_at: self.claimed_at,
             grasped: self.grasped,
+            pair: self.pair_follower,
             in_zone: self.in_zone,
             request: self.request,
             acks,
