@@ -522,8 +522,8 @@ impl<'a> Agent<'a> {
             self.pending = Some(MessageKind::State);
         }
         if !self.finished() {
-            self.liveness();
             self.expelled();
+            self.liveness();
             self.update_mode();
             // A few rounds: a decision may enable another at the same instant.
             for _ in 0..3 {
@@ -705,7 +705,7 @@ impl<'a> Agent<'a> {
 
     /// Declares out the teammates unheard for `dead_after_s`, when it hears a majority.
     fn liveness(&mut self) {
-        if !self.majority() {
+        if !self.majority() || self.held_out() {
             return;
         }
         for v in 0..self.n {
@@ -755,16 +755,19 @@ impl<'a> Agent<'a> {
     }
 
     /// A teammate holds it out: it puts its brick down and rejoins as a new incarnation.
-    fn expelled(&mut self) {
+    fn held_out(&self) -> bool {
         let me = self.me as u32;
-        let held_out = (0..self.n).any(|v| {
+        (0..self.n).any(|v| {
             self.peer_status(v).is_some_and(|s| {
                 s.out
                     .iter()
                     .any(|o| o.uav == me && o.incarnation >= self.incarnation)
             })
-        });
-        if !held_out || GROUND.contains(&self.state) {
+        })
+    }
+
+    fn expelled(&mut self) {
+        if !self.held_out() || GROUND.contains(&self.state) {
             return;
         }
         self.incarnation += 1;
@@ -1206,7 +1209,7 @@ impl<'a> Agent<'a> {
         let hb = self.setup.config.coord.heartbeat_s;
         let me = self.me;
         for v in 0..self.n {
-            if !self.flying(v) {
+            if !self.counts(v) {
                 continue;
             }
             let Some(st) = self.peer_status(v) else {
@@ -1216,7 +1219,7 @@ impl<'a> Agent<'a> {
                 return false;
             }
             let heard_me = st.heard.get(me).copied().unwrap_or(-1.0);
-            if heard_me < self.claimed_at {
+            if !self.is_out(v) && heard_me < self.claimed_at {
                 return false;
             }
             if self.now + zone_time + 3.0 * hb >= heard_me + self.setup.dead_after_s {
@@ -1225,6 +1228,38 @@ impl<'a> Agent<'a> {
         }
         self.refresh_honored();
         !self.honored.iter().flatten().any(|&(_, _, _, p)| p < prio)
+    }
+
+    /// Whether teammate `v` may still be in the game: not on the ground for good, and not
+    /// held out by a fresh majority. A teammate only this UAV holds out may still be flying,
+    /// cut off, and could come back and hold this UAV out: its lease, its zone and its
+    /// acknowledgement still count.
+    fn counts(&self, v: usize) -> bool {
+        v != self.me
+            && self
+                .peer_status(v)
+                .is_none_or(|s| !matches!(s.state, UavState::Landed | UavState::Down))
+            && !(self.is_out(v) && self.out_confirmed(v))
+    }
+
+    /// Whether a strict majority of the team, heard lately, holds `v` out: `v` then cannot
+    /// form a majority of its own without hearing that it is out.
+    fn out_confirmed(&self, v: usize) -> bool {
+        let timeout = self.setup.config.coord.heartbeat_timeout_s;
+        let inc = self.out[v].unwrap_or(0);
+        let holders = (0..self.n)
+            .filter(|&w| w != v && w != self.me)
+            .filter(|&w| {
+                self.peers[w].as_ref().is_some_and(|p| {
+                    self.now - p.heard_at <= timeout
+                        && p.status
+                            .out
+                            .iter()
+                            .any(|o| o.uav as usize == v && o.incarnation >= inc)
+                })
+            })
+            .count();
+        2 * (holders + 1) > self.n
     }
 
     /// With `comm`: its request, renewed when its lease runs out, acknowledged by every
@@ -1246,7 +1281,7 @@ impl<'a> Agent<'a> {
         }
         let r = self.request.expect("requested");
         let me = self.me as u32;
-        (0..self.n).filter(|&v| self.flying(v)).all(|v| {
+        (0..self.n).filter(|&v| self.counts(v)).all(|v| {
             self.peer_status(v).is_some_and(|st| {
                 !st.in_zone
                     && st
