@@ -202,12 +202,21 @@ pub trait Autopilot: Send {
         let _ = brick;
         None
     }
+    /// Carrying an orange brick with a partner: whether the brick has fallen since `since`
+    /// (s), because the partner let go (`None`: no such sensor). The pair is one rigid load:
+    /// when one side lets go, the other feels it at once.
+    fn pair_dropped(&mut self, brick: BrickId, since: f64) -> Option<bool> {
+        let _ = (brick, since);
+        None
+    }
 }
 
-/// What a simulated camera sees of the wall: the bricks placed so far, by anyone.
+/// The simulated world the vehicles share: the bricks on the wall, and the bricks that fell.
 pub trait WallView: Send + Sync {
     /// Whether `brick` is on the wall.
     fn placed(&self, brick: BrickId) -> bool;
+    /// Whether `brick` was reported lost after `since` (s).
+    fn lost_since(&self, brick: BrickId, since: f64) -> bool;
 }
 
 /// A vehicle simulated in-process: detection and grasps fail with the configured
@@ -246,6 +255,9 @@ impl Autopilot for SimulatedVehicle {
     }
     fn sees_on_wall(&mut self, brick: BrickId) -> Option<bool> {
         self.world.as_ref().map(|w| w.placed(brick))
+    }
+    fn pair_dropped(&mut self, brick: BrickId, since: f64) -> Option<bool> {
+        self.world.as_ref().map(|w| w.lost_since(brick, since))
     }
 }
 
@@ -306,6 +318,10 @@ struct Peer {
     status: Status,
 }
 
+/// A teammate's request this UAV acknowledged: (incarnation, request id, lease end,
+/// priority). It keeps out of the zone for it until it is released or runs out.
+type Honored = (u64, u64, f64, (u32, u32));
+
 /// One UAV: its own state machine and its view of the team.
 pub struct Agent<'a> {
     setup: AgentSetup<'a>,
@@ -332,6 +348,8 @@ pub struct Agent<'a> {
     pair_leader: Option<(usize, u64)>,
     /// A pair's leader: the partner it started detecting with.
     pair_follower: Option<PairRef>,
+    /// When its pair formed (both had claimed the brick; `NaN`: no pair).
+    pair_since: f64,
     request: Option<Request>,
     next_request: u64,
     mode: CommMode,
@@ -341,7 +359,7 @@ pub struct Agent<'a> {
     peers: Vec<Option<Peer>>,
     placed: Vec<bool>,
     out: Vec<Option<u64>>,
-    honored: Vec<Option<(u64, u64, f64, (u32, u32))>>,
+    honored: Vec<Option<Honored>>,
     /// Bricks whose fate is unknown: the UAV (and incarnation) declared out while holding
     /// them may have placed them. Settled when that UAV is heard again.
     unknown: Vec<Option<(usize, u64)>>,
@@ -378,6 +396,7 @@ impl<'a> Agent<'a> {
             pair_left: false,
             pair_leader: None,
             pair_follower: None,
+            pair_since: f64::NAN,
             request: None,
             next_request: 1,
             mode: CommMode::Comm,
@@ -723,6 +742,13 @@ impl<'a> Agent<'a> {
         }
     }
 
+    /// Whether its orange brick fell since it claimed it (its partner let go).
+    fn pair_fell(&mut self, b: BrickId) -> bool {
+        kind(self.setup.wall, b).uavs_needed() == 2
+            && !self.pair_since.is_nan()
+            && self.autopilot.pair_dropped(b, self.pair_since) == Some(true)
+    }
+
     /// At the wall: look at the bricks whose fate is unknown, and at its own.
     fn inspect(&mut self) {
         let mut look: Vec<usize> = (0..self.unknown.len())
@@ -895,12 +921,10 @@ impl<'a> Agent<'a> {
 
     /// Lets go of its brick (lost if grasped) and of its request.
     fn drop_brick(&mut self, outcome: &'static str) {
-        let follower = self
-            .brick
-            .is_some_and(|b| kind(self.setup.wall, b).uavs_needed() == 2 && !self.leader(b));
+        let covered = self.brick.is_some_and(|b| self.pair_fell(b));
         if let Some(b) = self.brick.take() {
-            // A pair's follower lets go silently: its leader reports the brick lost.
-            if self.grasped && !follower {
+            // An orange brick its partner already let fall was reported lost by the partner.
+            if self.grasped && !covered {
                 self.emit(EventKind::Lost { brick: b });
             }
             if self.in_zone {
@@ -924,6 +948,7 @@ impl<'a> Agent<'a> {
         self.pair_left = false;
         self.pair_leader = None;
         self.pair_follower = None;
+        self.pair_since = f64::NAN;
         match board.pick(wall, self.me) {
             Pick::Brick(b) => {
                 if self.state != UavState::ChooseBrick {
@@ -1000,6 +1025,13 @@ impl<'a> Agent<'a> {
             if !self.in_zone && !mine {
                 self.drop_brick("claim_lost");
                 return self.choose("claim_lost");
+            }
+        }
+        // The partner let an orange brick fall: it is gone for both.
+        if let Some(b) = self.brick {
+            if self.grasped && !self.placed[b.index()] && self.pair_fell(b) {
+                self.drop_brick("partner_failed");
+                return self.choose("partner_failed");
             }
         }
         // A pair's follower lets go when its leader does (the leader's `lost` covers both).
@@ -1097,6 +1129,7 @@ impl<'a> Agent<'a> {
                 });
                 if let (true, Some(p)) = (ready, partner) {
                     let peer = self.peers[p].as_ref().expect("heard");
+                    self.pair_since = self.claimed_at.max(peer.status.claimed_at);
                     self.pair_follower = Some(PairRef {
                         uav: p as u32,
                         incarnation: peer.incarnation,
@@ -1127,11 +1160,18 @@ impl<'a> Agent<'a> {
         );
         match lead.state {
             UavState::FlyAbove | UavState::Grasp if at_pile && lead.state != self.state => {
+                self.pair_since = self.claimed_at.max(lead.claimed_at);
                 self.go(lead.state, outcome(&lead.outcome).unwrap_or("ok"), None);
             }
             UavState::FlyToWallWait | UavState::WaitForZone | UavState::EnterAndPlace
                 if at_pile && lead.grasped =>
             {
+                self.pair_since = self.claimed_at.max(lead.claimed_at);
+                if self.pair_fell(b) {
+                    // The leader's status is old news: the brick already fell.
+                    self.drop_brick("partner_failed");
+                    return self.choose("partner_failed");
+                }
                 self.grasped = true;
                 self.pair_leader = partner.map(|l| {
                     let inc = self.peers[l].as_ref().map_or(0, |p| p.incarnation);

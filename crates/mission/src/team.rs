@@ -126,15 +126,24 @@ impl Ord for Delivery {
 }
 
 /// The wall as the simulated cameras see it: every placement so far.
-struct World(std::sync::Mutex<Vec<bool>>);
+struct World(std::sync::Mutex<WorldState>);
+
+type WorldState = (Vec<bool>, Vec<(mason_wall::BrickId, f64)>);
+
+impl World {
+    fn lock(&self) -> std::sync::MutexGuard<'_, WorldState> {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
 
 impl crate::agent::WallView for World {
     fn placed(&self, brick: mason_wall::BrickId) -> bool {
-        let w = self
-            .0
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        w.get(brick.index()).copied().unwrap_or(false)
+        self.lock().0.get(brick.index()).copied().unwrap_or(false)
+    }
+    fn lost_since(&self, brick: mason_wall::BrickId, since: f64) -> bool {
+        self.lock().1.iter().any(|&(b, t)| b == brick && t > since)
     }
 }
 
@@ -143,7 +152,10 @@ impl crate::agent::WallView for World {
 pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun {
     let n = setup.config.uavs;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let world = std::sync::Arc::new(World(std::sync::Mutex::new(vec![false; setup.wall.len()])));
+    let world = std::sync::Arc::new(World(std::sync::Mutex::new((
+        vec![false; setup.wall.len()],
+        Vec::new(),
+    ))));
     let make = |u: usize, incarnation: u64| {
         let vehicle = SimulatedVehicle::new(
             setup.config,
@@ -197,6 +209,11 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
             ki += 1;
             if agents[u].take().is_some() {
                 let tail = killed_events(&events, u as u32, at);
+                for e in &tail {
+                    if let EventKind::Lost { brick } = e.kind {
+                        world.lock().1.push((brick, e.t));
+                    }
+                }
                 events.extend(tail);
             }
             continue;
@@ -233,12 +250,10 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
         let tick = agents[target].as_mut().expect("running").tick(t);
         wake[target] = tick.wake;
         for e in &tick.events {
-            if let EventKind::Place { brick } = e.kind {
-                let mut w = world
-                    .0
-                    .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner);
-                w[brick.index()] = true;
+            match e.kind {
+                EventKind::Place { brick } => world.lock().0[brick.index()] = true,
+                EventKind::Lost { brick } => world.lock().1.push((brick, e.t)),
+                _ => {}
             }
         }
         events.extend(tick.events);
