@@ -31,6 +31,23 @@ fn fly_with(
     seed: u64,
     tune: impl Fn(&mut MissionConfig),
 ) -> (TeamRun, usize) {
+    let (run, bricks, summary) = try_fly(name, uavs, coord, faults, seed, tune);
+    assert!(summary.is_ok(), "{name} {coord:?} seed {seed}: {summary:?}");
+    (run, bricks)
+}
+
+fn try_fly(
+    name: &str,
+    uavs: usize,
+    coord: Coord,
+    faults: &BusFaults,
+    seed: u64,
+    tune: impl Fn(&mut MissionConfig),
+) -> (
+    TeamRun,
+    usize,
+    Result<mason_mission::TraceSummary, mason_mission::TraceError>,
+) {
     let w = wall(name);
     let model = CostModel::default();
     let order = order(&w, &model);
@@ -53,8 +70,7 @@ fn fly_with(
     };
     let run = fly_team(setup, faults, seed);
     let summary = check_trace(&w, uavs, &run.events);
-    assert!(summary.is_ok(), "{name} {coord:?} seed {seed}: {summary:?}");
-    (run, w.len())
+    (run, w.len(), summary)
 }
 
 fn placed(run: &TeamRun) -> usize {
@@ -198,17 +214,28 @@ fn random_cases() -> usize {
 #[test]
 fn random_faults_never_break_the_safety_rules() {
     let mut finished = 0;
+    let mut broken = Vec::new();
     for case in 0..random_cases() {
         let (faults, coord, grasp) = random_case(case);
-        let (run, bricks) = fly_with("mbzirc", 3, coord, &faults, case as u64, |c| {
+        let (run, bricks, summary) = try_fly("mbzirc", 3, coord, &faults, case as u64, |c| {
             c.faults.grasp_fail = grasp;
         });
-        // check_trace ran in fly_with: no shared zone, no brick before its supports, none
-        // placed twice, every grasped brick accounted for.
+        // check_trace: no shared zone, no brick before its supports, none placed twice,
+        // every grasped brick accounted for.
+        if let Err(e) = summary {
+            broken.push(format!("case {case} {coord:?}: {e:?}"));
+        }
         if run.finished && placed(&run) == bricks {
             finished += 1;
         }
     }
+    assert!(
+        broken.is_empty(),
+        "{} of {} cases broke a rule:\n{}",
+        broken.len(),
+        random_cases(),
+        broken.join("\n")
+    );
     // Faults may leave a wall unfinished (a lone survivor cannot carry orange bricks), but
     // most runs finish.
     assert!(finished * 10 >= random_cases() * 8, "{finished} finished");
