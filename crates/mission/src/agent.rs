@@ -121,6 +121,8 @@ pub struct PairRef {
     pub incarnation: u64,
     /// When it claimed the brick (s).
     pub claimed_at: f64,
+    /// When the pair formed (s): a fall reported since then is this pair's.
+    pub since: f64,
 }
 
 /// A teammate declared out.
@@ -1129,11 +1131,12 @@ impl<'a> Agent<'a> {
                 });
                 if let (true, Some(p)) = (ready, partner) {
                     let peer = self.peers[p].as_ref().expect("heard");
-                    self.pair_since = self.claimed_at.max(peer.status.claimed_at);
+                    self.pair_since = self.now;
                     self.pair_follower = Some(PairRef {
                         uav: p as u32,
                         incarnation: peer.incarnation,
                         claimed_at: peer.status.claimed_at,
+                        since: self.now,
                     });
                     self.go(UavState::Detect, "partner_arrived", Some(cfg.uav.detect_s));
                 }
@@ -1146,27 +1149,26 @@ impl<'a> Agent<'a> {
             return;
         }
         // The follower follows a leader that carries the brick with this very claim.
-        let me = PairRef {
-            uav: self.me as u32,
-            incarnation: self.incarnation,
-            claimed_at: self.claimed_at,
-        };
-        let Some(lead) = partner_status.filter(|s| same(s) && s.pair == Some(me)) else {
+        let (me, inc, at) = (self.me as u32, self.incarnation, self.claimed_at);
+        let mine = |r: &PairRef| r.uav == me && r.incarnation == inc && r.claimed_at == at;
+        let Some(lead) = partner_status.filter(|s| same(s) && s.pair.as_ref().is_some_and(mine))
+        else {
             return;
         };
+        let since = lead.pair.map_or(f64::NAN, |r| r.since);
         let at_pile = matches!(
             self.state,
             UavState::Detect | UavState::FlyAbove | UavState::Grasp
         );
         match lead.state {
             UavState::FlyAbove | UavState::Grasp if at_pile && lead.state != self.state => {
-                self.pair_since = self.claimed_at.max(lead.claimed_at);
+                self.pair_since = since;
                 self.go(lead.state, outcome(&lead.outcome).unwrap_or("ok"), None);
             }
             UavState::FlyToWallWait | UavState::WaitForZone | UavState::EnterAndPlace
                 if at_pile && lead.grasped =>
             {
-                self.pair_since = self.claimed_at.max(lead.claimed_at);
+                self.pair_since = since;
                 if self.pair_fell(b) {
                     // The leader's status is old news: the brick already fell.
                     self.drop_brick("partner_failed");
