@@ -1038,6 +1038,11 @@ impl<'a> Agent<'a> {
         }
         // A pair's follower lets go when its leader does (the leader's `lost` covers both).
         if let (Some(b), Some((l, inc))) = (self.brick, self.pair_leader) {
+            if self.grasped && !self.flying(l) {
+                // Its leader is out: the brick fell with it.
+                self.drop_brick("partner_failed");
+                return self.choose("partner_failed");
+            }
             let restarted = self.peers[l].as_ref().is_some_and(|p| p.incarnation != inc);
             let let_go = self.grasped
                 && self.flying(l)
