@@ -1422,7 +1422,7 @@ impl<'a> Agent<'a> {
                 }
             })
             .collect();
-        if put_down(board, &team) == Some(self.me) {
+        if put_down(board, self.n, |i| team[i]) == Some(self.me) {
             if let Some(b) = self.brick {
                 if self.grasped {
                     self.emit(EventKind::Lost { brick: b });

@@ -28,6 +28,12 @@ impl Channel {
         }
     }
 
+    /// Whether every message gets through: no loss and no blackout. Heartbeats then carry
+    /// no news, and the simulator need not fly them.
+    pub fn perfect(&self) -> bool {
+        self.loss == 0.0 && self.blackouts.is_empty()
+    }
+
     /// Whether a message sent at `t` falls in a blackout.
     pub fn blacked_out(&self, t: f64) -> bool {
         self.blackouts.iter().any(|w| w.contains(t))

@@ -20,6 +20,9 @@ pub enum Brick {
     Taken,
     /// On the wall.
     Placed,
+    /// Out of its pile, but nobody is known to carry it: a UAV declared out held it, and
+    /// whether it was placed is not known yet (agents only).
+    Unknown,
 }
 
 /// What a UAV knows of the team's work: the order, the schedule's lists, every brick's state
@@ -71,6 +74,7 @@ impl Board {
     }
 
     /// Replaces the shared order (a replan).
+    #[inline]
     pub fn set_order(&mut self, order: Vec<BrickId>) {
         for (i, b) in order.iter().enumerate() {
             self.rank[b.index()] = i;
@@ -79,56 +83,67 @@ impl Board {
     }
 
     /// The shared order.
+    #[inline]
     pub fn order(&self) -> &[BrickId] {
         &self.order
     }
 
     /// Where `b` is in the order (`usize::MAX` when it is not).
+    #[inline]
     pub fn rank(&self, b: BrickId) -> usize {
         self.rank[b.index()]
     }
 
     /// What is known of `b`.
+    #[inline]
     pub fn brick(&self, b: BrickId) -> Brick {
         self.bricks[b.index()]
     }
 
     /// Who carries `b`, the first taker first.
+    #[inline]
     pub fn carriers(&self, b: BrickId) -> &[usize] {
         &self.carriers[b.index()]
     }
 
     /// How many bricks are placed.
+    #[inline]
     pub fn placed(&self) -> usize {
         self.placed
     }
 
     /// Whether every brick is placed.
+    #[inline]
     pub fn finished(&self) -> bool {
         self.placed == self.bricks.len()
     }
 
     /// Whether some brick is still in its pile.
+    #[inline]
     pub fn untaken_left(&self) -> bool {
         self.bricks.contains(&Brick::Untaken)
     }
 
     /// Whether UAV `u` is still flying.
+    #[inline]
     pub fn alive(&self, u: usize) -> bool {
         self.alive[u]
     }
 
     /// Marks UAV `u` out (failed) or back.
+    #[inline]
     pub fn set_alive(&mut self, u: usize, alive: bool) {
         self.alive[u] = alive;
     }
 
     /// How many UAVs are still flying.
+    #[inline]
     pub fn live(&self) -> usize {
         self.alive.iter().filter(|a| **a).count()
     }
 
     /// `u` takes `b` (or joins its pair); returns the first taker when `u` joins a pair.
+    #[inline]
     pub fn take(&mut self, b: BrickId, u: usize) -> Option<usize> {
         let first = self.carriers[b.index()].first().copied();
         self.bricks[b.index()] = Brick::Taken;
@@ -137,17 +152,20 @@ impl Board {
     }
 
     /// `u` no longer carries `b`; the brick stays taken by the others.
+    #[inline]
     pub fn drop_carrier(&mut self, b: BrickId, u: usize) {
         self.carriers[b.index()].retain(|&c| c != u);
     }
 
     /// `b` goes back to its pile.
+    #[inline]
     pub fn release(&mut self, b: BrickId) {
         self.bricks[b.index()] = Brick::Untaken;
         self.carriers[b.index()].clear();
     }
 
     /// `b` is on the wall; returns who carried it.
+    #[inline]
     pub fn place(&mut self, b: BrickId) -> Vec<usize> {
         if self.bricks[b.index()] != Brick::Placed {
             self.bricks[b.index()] = Brick::Placed;
@@ -157,6 +175,7 @@ impl Board {
     }
 
     /// Whether every support of `b` is placed.
+    #[inline]
     pub fn supported(&self, wall: &Wall, b: BrickId) -> bool {
         wall.supports(b)
             .iter()
@@ -164,6 +183,7 @@ impl Board {
     }
 
     /// Whether every support of `b` is at least taken by somebody.
+    #[inline]
     fn supports_taken(&self, wall: &Wall, b: BrickId) -> bool {
         wall.supports(b)
             .iter()
@@ -172,24 +192,26 @@ impl Board {
 
     /// `b` is out of the piles but nobody is known to carry it: a UAV declared out was
     /// holding it, and whether it was placed is not known (agents only).
+    #[inline]
     pub fn hold_unknown(&mut self, b: BrickId) {
-        self.bricks[b.index()] = Brick::Taken;
+        self.bricks[b.index()] = Brick::Unknown;
         self.carriers[b.index()].clear();
     }
 
-    /// The brick next needed: the earliest taken, unplaced brick of the order that somebody
-    /// carries.
+    /// The brick next needed: the earliest taken, unplaced brick of the order.
+    #[inline]
     pub fn needed(&self) -> Option<BrickId> {
         self.bricks
             .iter()
             .enumerate()
-            .filter(|(i, s)| **s == Brick::Taken && !self.carriers[*i].is_empty())
+            .filter(|(_, s)| **s == Brick::Taken)
             .min_by_key(|(i, _)| self.rank[*i])
             .map(|(i, _)| BrickId(i as u32))
     }
 
     /// The expected time in the zone for `b` now: the transit plus the drop time scaled by
     /// κ of its placed neighbours (DESIGN §4).
+    #[inline]
     pub fn zone_time(&self, wall: &Wall, model: &CostModel, transit_s: f64, b: BrickId) -> f64 {
         let placed = wall
             .neighbours(b)
@@ -220,7 +242,7 @@ impl Board {
                             && self.carriers[b.index()].len() == 1
                             && self.carriers[b.index()][0] != u
                     }
-                    Brick::Placed => false,
+                    Brick::Placed | Brick::Unknown => false,
                 })
         });
         // Not a brick whose support nobody has taken (a failed teammate's): the shared order
@@ -289,6 +311,7 @@ pub enum After {
 }
 
 /// What follows the end of timed state `state`; `takeoff_s` is the take-off time.
+#[inline]
 pub fn after(state: UavState, takeoff_s: f64) -> After {
     match state {
         UavState::Check => After::Go {
@@ -311,6 +334,7 @@ pub fn after(state: UavState, takeoff_s: f64) -> After {
 /// The `auto` rule: a UAV falls back to `windows` when it has not heard some teammate that is
 /// still flying for longer than `timeout_s`. `last_heard[v]` is when it last heard `v`;
 /// `flying(v)` says whether `v` should still be heard.
+#[inline]
 pub fn heard_mode(
     now: f64,
     me: usize,
@@ -343,18 +367,28 @@ pub struct Seen {
 /// The deadlock rule: when every live UAV waits and nobody may enter (a brick they need was
 /// lost), the holder of the latest brick of the order puts it down and fetches what is
 /// missing. Returns that holder, or `None` when somebody can still move.
-pub fn put_down(board: &Board, team: &[Seen]) -> Option<usize> {
-    let stuck = team.iter().filter(|u| u.alive).all(|u| {
-        u.state == UavState::WaitForZone || (u.state == UavState::Detect && u.waiting_partner)
-    });
-    if !stuck || !team.iter().any(|u| u.alive) {
-        return None;
+/// `team(i)` says what UAV `i` of `n` is doing.
+pub fn put_down(board: &Board, n: usize, team: impl Fn(usize) -> Seen) -> Option<usize> {
+    let mut any = false;
+    let mut holder: Option<(usize, usize)> = None;
+    for i in 0..n {
+        let u = team(i);
+        if !u.alive {
+            continue;
+        }
+        any = true;
+        let waiting = u.state == UavState::WaitForZone;
+        if !waiting && !(u.state == UavState::Detect && u.waiting_partner) {
+            return None;
+        }
+        if let Some(b) = u.brick.filter(|_| waiting) {
+            let r = board.rank(b);
+            if holder.is_none_or(|(_, best)| r >= best) {
+                holder = Some((i, r));
+            }
+        }
     }
-    (0..team.len())
-        .filter(|&i| team[i].alive && team[i].state == UavState::WaitForZone)
-        .filter_map(|i| team[i].brick.map(|b| (i, board.rank(b))))
-        .max_by_key(|&(_, r)| r)
-        .map(|(i, _)| i)
+    holder.filter(|_| any).map(|(i, _)| i)
 }
 
 /// The brick type of `b`.
@@ -434,7 +468,7 @@ mod tests {
             brick: Some(b),
         };
         let team = [waiting(order[3]), waiting(order[6])];
-        assert_eq!(put_down(&board, &team), Some(1));
+        assert_eq!(put_down(&board, 2, |i| team[i]), Some(1));
         let moving = [
             waiting(order[3]),
             Seen {
@@ -442,6 +476,6 @@ mod tests {
                 ..waiting(order[6])
             },
         ];
-        assert_eq!(put_down(&board, &moving), None);
+        assert_eq!(put_down(&board, 2, |i| moving[i]), None);
     }
 }
