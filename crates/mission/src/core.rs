@@ -378,7 +378,7 @@ pub fn put_down(board: &Board, n: usize, team: impl Fn(usize) -> Seen) -> Option
         }
         any = true;
         let waiting = u.state == UavState::WaitForZone;
-        if !waiting && !(u.state == UavState::Detect && u.waiting_partner) {
+        if !(waiting || (u.state == UavState::Detect && u.waiting_partner)) {
             return None;
         }
         if let Some(b) = u.brick.filter(|_| waiting) {
