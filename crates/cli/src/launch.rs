@@ -54,6 +54,7 @@ struct Run {
     incarnation: u64,
     child: Option<Child>,
     trace: PathBuf,
+    log: PathBuf,
     exit: Option<String>,
     killed_at: Option<f64>,
 }
@@ -172,6 +173,7 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             incarnation,
             child: Some(child),
             trace,
+            log: log_path,
             exit: None,
             killed_at: None,
         })
@@ -255,6 +257,16 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             break;
         }
         std::thread::sleep(Duration::from_millis(5));
+    }
+    // An agent that refused its input (which launch checked already) is a bad launch.
+    if let Some(r) = runs.iter().find(|r| r.exit.as_deref() == Some("2")) {
+        let text = std::fs::read_to_string(&r.log).unwrap_or_default();
+        let why = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+        return Err(input_error(format!(
+            "agent of UAV {} refused its input ({}): {why}",
+            r.uav,
+            r.log.display()
+        )));
     }
     let merged = merge(&runs)?;
     let verdict = check_trace(&team.wall, n, &merged);
