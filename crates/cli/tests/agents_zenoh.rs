@@ -361,3 +361,96 @@ fn bad_toml_files_are_refused_with_file_and_line() {
         &["mission.toml", "--cut"],
     );
 }
+
+// ----- a real cut: the loopback of a network namespace goes down ------------------------------
+
+fn ip(args: &[&str]) -> bool {
+    Command::new("ip")
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// A fresh network namespace with its loopback up, or None (after checking
+/// MASON_REQUIRE_NETNS) where namespaces cannot be made (no `ip`, not root).
+fn namespace(name: &str) -> Option<String> {
+    let _ = ip(&["netns", "del", name]);
+    if ip(&["netns", "add", name]) && ip(&["netns", "exec", name, "ip", "link", "set", "lo", "up"])
+    {
+        return Some(name.to_string());
+    }
+    let _ = ip(&["netns", "del", name]);
+    assert!(
+        std::env::var_os("MASON_REQUIRE_NETNS").is_none(),
+        "MASON_REQUIRE_NETNS is set but no network namespace could be made (`ip netns add` needs iproute2 and root; scripts/install-iproute2.sh installs it)"
+    );
+    eprintln!("skipped: no network namespaces here (`ip netns add` needs iproute2 and root)");
+    None
+}
+
+/// The whole team runs inside one namespace, where 127.0.0.1 is its own loopback; the test
+/// takes that loopback down for 0.6 s of wall time (60 mission s at --speed 100, from about
+/// mission time 400): the kernel, not Mason's fault layer, cuts every agent off. `auto` must
+/// fall back to windows and come back, and the merged trace must pass `check_trace`.
+#[test]
+fn a_real_cut_of_the_network_sends_auto_to_windows_and_back_safely() {
+    let Some(ns) = namespace(&format!("mason-cut-{}", std::process::id())) else {
+        return;
+    };
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = out_dir("netns");
+    let started = std::time::Instant::now();
+    let team = Command::new("ip")
+        .args(["netns", "exec", &ns, env!("CARGO_BIN_EXE_mason")])
+        .args([
+            "--quiet",
+            "launch",
+            "builtin:mbzirc",
+            "--uavs",
+            "3",
+            "--speed",
+            "100",
+            "--coord",
+            "auto",
+            "--lead",
+            "2",
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("ip netns exec mason launch");
+    // Mission time 400 is about 2 s (lead) + 4 s after the start.
+    std::thread::sleep(std::time::Duration::from_secs(6).saturating_sub(started.elapsed()));
+    let cut_at = started.elapsed().as_secs_f64();
+    assert!(ip(&["netns", "exec", &ns, "ip", "link", "set", "lo", "down"]));
+    std::thread::sleep(std::time::Duration::from_millis(600));
+    assert!(ip(&["netns", "exec", &ns, "ip", "link", "set", "lo", "up"]));
+    let out = team.wait_with_output().expect("launch ends");
+    let _ = ip(&["netns", "del", &ns]);
+    let text = std::fs::read_to_string(dir.join("trace.json")).expect("trace.json");
+    let l = Launch {
+        out,
+        doc: serde_json::from_str(&text).unwrap(),
+    };
+    assert_finished(&l);
+    // Mission time of the cut, roughly: (wall − lead) × speed.
+    let t_cut = (cut_at - 2.0) * 100.0;
+    let modes: Vec<(f64, String)> = l
+        .of_kind("comm")
+        .map(|e| (e["t"].as_f64().unwrap(), e["mode"].as_str().unwrap().to_string()))
+        .collect();
+    assert!(
+        modes
+            .iter()
+            .any(|(t, m)| (t_cut - 20.0..=t_cut + 40.0).contains(t) && m == "windows"),
+        "cut near {t_cut:.0} s: {modes:?}"
+    );
+    assert!(
+        modes.iter().any(|(t, m)| *t >= t_cut + 50.0 && m == "comm"),
+        "cut near {t_cut:.0} s: {modes:?}"
+    );
+}
