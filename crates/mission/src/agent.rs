@@ -112,6 +112,19 @@ pub struct Ack {
     pub id: u64,
 }
 
+/// The partner a pair's leader carries an orange brick with: that UAV under that claim.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairRef {
+    /// The partner.
+    pub uav: u32,
+    /// Its incarnation.
+    pub incarnation: u64,
+    /// When it claimed the brick (s).
+    pub claimed_at: f64,
+    /// When the pair formed (s): a fall reported since then is this pair's.
+    pub since: f64,
+}
+
 /// A teammate declared out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Out {
@@ -142,6 +155,8 @@ pub struct Status {
     pub claimed_at: f64,
     /// Whether it holds the brick.
     pub grasped: bool,
+    /// Leading an orange brick's pair: the partner it carries it with.
+    pub pair: Option<PairRef>,
     /// Whether it is inside the wall zone.
     pub in_zone: bool,
     /// Its zone request, if any.
@@ -183,24 +198,53 @@ pub trait Autopilot: Send {
     fn detect(&mut self) -> bool;
     /// Whether grasping succeeds.
     fn grasp(&mut self) -> bool;
+    /// At the wall, its camera sees whether `brick` is on it (`None`: no camera). Used when
+    /// a teammate went silent holding a brick, and before every placement.
+    fn sees_on_wall(&mut self, brick: BrickId) -> Option<bool> {
+        let _ = brick;
+        None
+    }
+    /// Carrying an orange brick with a partner: whether the brick has fallen since `since`
+    /// (s), because the partner let go (`None`: no such sensor). The pair is one rigid load:
+    /// when one side lets go, the other feels it at once.
+    fn pair_dropped(&mut self, brick: BrickId, since: f64) -> Option<bool> {
+        let _ = (brick, since);
+        None
+    }
+}
+
+/// The simulated world the vehicles share: the bricks on the wall, and the bricks that fell.
+pub trait WallView: Send + Sync {
+    /// Whether `brick` is on the wall.
+    fn placed(&self, brick: BrickId) -> bool;
+    /// Whether `brick` was reported lost after `since` (s).
+    fn lost_since(&self, brick: BrickId, since: f64) -> bool;
 }
 
 /// A vehicle simulated in-process: detection and grasps fail with the configured
-/// probabilities, from its own seeded generator.
+/// probabilities, from its own seeded generator; its camera sees a [`WallView`], if given.
 pub struct SimulatedVehicle {
     rng: ChaCha8Rng,
     detect_fail: f64,
     grasp_fail: f64,
+    world: Option<std::sync::Arc<dyn WallView>>,
 }
 
 impl SimulatedVehicle {
-    /// A vehicle with `config`'s fault probabilities.
+    /// A vehicle with `config`'s fault probabilities and no camera.
     pub fn new(config: &MissionConfig, seed: u64) -> Self {
         SimulatedVehicle {
             rng: ChaCha8Rng::seed_from_u64(seed),
             detect_fail: config.faults.detect_fail,
             grasp_fail: config.faults.grasp_fail,
+            world: None,
         }
+    }
+
+    /// The same, with a camera on `world`.
+    pub fn with_world(mut self, world: std::sync::Arc<dyn WallView>) -> Self {
+        self.world = Some(world);
+        self
     }
 }
 
@@ -210,6 +254,12 @@ impl Autopilot for SimulatedVehicle {
     }
     fn grasp(&mut self) -> bool {
         self.rng.gen::<f64>() >= self.grasp_fail
+    }
+    fn sees_on_wall(&mut self, brick: BrickId) -> Option<bool> {
+        self.world.as_ref().map(|w| w.placed(brick))
+    }
+    fn pair_dropped(&mut self, brick: BrickId, since: f64) -> Option<bool> {
+        self.world.as_ref().map(|w| w.lost_since(brick, since))
     }
 }
 
@@ -270,6 +320,10 @@ struct Peer {
     status: Status,
 }
 
+/// A teammate's request this UAV acknowledged: (incarnation, request id, lease end,
+/// priority). It keeps out of the zone for it until it is released or runs out.
+type Honored = (u64, u64, f64, (u32, u32));
+
 /// One UAV: its own state machine and its view of the team.
 pub struct Agent<'a> {
     setup: AgentSetup<'a>,
@@ -289,6 +343,15 @@ pub struct Agent<'a> {
     grasped: bool,
     failures: u32,
     in_zone: bool,
+    /// A pair's follower that left the zone with its leader's time and waits to hear the
+    /// brick placed.
+    pair_left: bool,
+    /// A pair's follower: the leader it carries the brick with.
+    pair_leader: Option<(usize, u64)>,
+    /// A pair's leader: the partner it started detecting with.
+    pair_follower: Option<PairRef>,
+    /// When its pair formed (both had claimed the brick; `NaN`: no pair).
+    pair_since: f64,
     request: Option<Request>,
     next_request: u64,
     mode: CommMode,
@@ -298,7 +361,10 @@ pub struct Agent<'a> {
     peers: Vec<Option<Peer>>,
     placed: Vec<bool>,
     out: Vec<Option<u64>>,
-    honored: Vec<Option<(u64, u64, f64, (u32, u32))>>,
+    honored: Vec<Option<Honored>>,
+    /// Bricks whose fate is unknown: the UAV (and incarnation) declared out while holding
+    /// them may have placed them. Settled when that UAV is heard again.
+    unknown: Vec<Option<(usize, u64)>>,
     /// The longest zone time of any brick (s).
     zone_max: f64,
     // Output of the current tick.
@@ -329,6 +395,10 @@ impl<'a> Agent<'a> {
             grasped: false,
             failures: 0,
             in_zone: false,
+            pair_left: false,
+            pair_leader: None,
+            pair_follower: None,
+            pair_since: f64::NAN,
             request: None,
             next_request: 1,
             mode: CommMode::Comm,
@@ -338,12 +408,23 @@ impl<'a> Agent<'a> {
             placed: vec![false; setup.wall.len()],
             out: vec![None; n],
             honored: vec![None; n],
+            unknown: vec![None; setup.wall.len()],
             zone_max: crate::coord::longest_zone_time(setup.wall, setup.model, setup.config),
             pending: None,
             tick: Tick::default(),
             now: 0.0,
             setup,
             autopilot,
+        }
+    }
+
+    /// Bricks this UAV placed in earlier incarnations (read back from its own log), so that
+    /// a restarted agent never forgets its own work.
+    pub fn remember(&mut self, placed: &[BrickId]) {
+        for b in placed {
+            if let Some(p) = self.placed.get_mut(b.index()) {
+                *p = true;
+            }
         }
     }
 
@@ -419,11 +500,19 @@ impl<'a> Agent<'a> {
                 let known = self.peers[v].as_ref().map_or(0, |p| p.incarnation);
                 if known <= o.incarnation {
                     self.out[v] = Some(o.incarnation);
+                    self.mark_unknown(v, o.incarnation);
                 }
             }
         }
         if self.out[u].is_some_and(|i| m.incarnation > i) {
             self.out[u] = None; // back under a new incarnation
+        }
+        // A UAV heard again settles the bricks it held when it went silent: its placed set
+        // says whether it placed them.
+        for k in &mut self.unknown {
+            if k.is_some_and(|(v, inc)| v == u && m.incarnation > inc) {
+                *k = None;
+            }
         }
         self.peers[u] = Some(Peer {
             incarnation: m.incarnation,
@@ -454,8 +543,8 @@ impl<'a> Agent<'a> {
             self.pending = Some(MessageKind::State);
         }
         if !self.finished() {
-            self.liveness();
             self.expelled();
+            self.liveness();
             self.update_mode();
             // A few rounds: a decision may enable another at the same instant.
             for _ in 0..3 {
@@ -583,9 +672,18 @@ impl<'a> Agent<'a> {
                 board.place(BrickId(i as u32));
             }
         }
+        for (i, k) in self.unknown.iter().enumerate() {
+            if k.is_some() && !self.placed[i] {
+                board.hold_unknown(BrickId(i as u32));
+            }
+        }
         for (b, _, v) in self.claims() {
             let needed = kind(s.wall, b).uavs_needed() as usize;
-            if board.brick(b) != crate::core::Brick::Placed && board.carriers(b).len() < needed {
+            let unknown = self.unknown[b.index()].is_some();
+            if !unknown
+                && board.brick(b) != crate::core::Brick::Placed
+                && board.carriers(b).len() < needed
+            {
                 board.take(b, v);
             }
         }
@@ -628,7 +726,7 @@ impl<'a> Agent<'a> {
 
     /// Declares out the teammates unheard for `dead_after_s`, when it hears a majority.
     fn liveness(&mut self) {
-        if !self.majority() {
+        if !self.majority() || self.held_out() {
             return;
         }
         for v in 0..self.n {
@@ -640,22 +738,64 @@ impl<'a> Agent<'a> {
                 let inc = self.peers[v].as_ref().map_or(0, |p| p.incarnation);
                 self.out[v] = Some(inc);
                 self.honored[v] = None;
+                self.mark_unknown(v, inc);
                 self.mark(MessageKind::State);
             }
         }
     }
 
+    /// Whether its orange brick fell since it claimed it (its partner let go).
+    fn pair_fell(&mut self, b: BrickId) -> bool {
+        kind(self.setup.wall, b).uavs_needed() == 2
+            && !self.pair_since.is_nan()
+            && self.autopilot.pair_dropped(b, self.pair_since) == Some(true)
+    }
+
+    /// At the wall: look at the bricks whose fate is unknown, and at its own.
+    fn inspect(&mut self) {
+        let mut look: Vec<usize> = (0..self.unknown.len())
+            .filter(|&i| self.unknown[i].is_some())
+            .collect();
+        look.extend(self.brick.map(BrickId::index));
+        for i in look {
+            match self.autopilot.sees_on_wall(BrickId(i as u32)) {
+                Some(true) => {
+                    self.placed[i] = true;
+                    self.unknown[i] = None;
+                }
+                Some(false) => self.unknown[i] = None,
+                None => {}
+            }
+        }
+    }
+
+    /// `v` (incarnation `inc`) is out: the brick it held, grasped, may be on the wall.
+    fn mark_unknown(&mut self, v: usize, inc: u64) {
+        let Some(p) = self.peers[v].as_ref().filter(|p| p.incarnation == inc) else {
+            return;
+        };
+        if let Some(b) = p.status.brick.filter(|_| p.status.grasped) {
+            let b = b as usize;
+            if b < self.placed.len() && !self.placed[b] {
+                self.unknown[b] = Some((v, inc));
+            }
+        }
+    }
+
     /// A teammate holds it out: it puts its brick down and rejoins as a new incarnation.
-    fn expelled(&mut self) {
+    fn held_out(&self) -> bool {
         let me = self.me as u32;
-        let held_out = (0..self.n).any(|v| {
+        (0..self.n).any(|v| {
             self.peer_status(v).is_some_and(|s| {
                 s.out
                     .iter()
                     .any(|o| o.uav == me && o.incarnation >= self.incarnation)
             })
-        });
-        if !held_out || GROUND.contains(&self.state) {
+        })
+    }
+
+    fn expelled(&mut self) {
+        if !self.held_out() || GROUND.contains(&self.state) {
             return;
         }
         self.incarnation += 1;
@@ -742,7 +882,18 @@ impl<'a> Agent<'a> {
                 self.arrive(cfg.arena.wall_wait(self.me));
                 self.go(UavState::WaitForZone, "arrived", None);
             }
-            After::Placed => self.place(),
+            After::Placed => match self.brick {
+                Some(b) if !self.leader(b) => {
+                    // A pair's follower: the leader's zone time is over, so the pair has left;
+                    // the brick counts as placed once the leader says so.
+                    self.in_zone = false;
+                    self.pair_left = true;
+                    self.emit(EventKind::ZoneLeave);
+                    self.go(UavState::WaitForZone, "pair_left", None);
+                    self.mark(MessageKind::ZoneRelease);
+                }
+                _ => self.place(),
+            },
             After::Landed => {
                 self.arrive(cfg.arena.uav_starts[self.me]);
                 self.go(UavState::Landed, "landed", None);
@@ -772,8 +923,10 @@ impl<'a> Agent<'a> {
 
     /// Lets go of its brick (lost if grasped) and of its request.
     fn drop_brick(&mut self, outcome: &'static str) {
+        let covered = self.brick.is_some_and(|b| self.pair_fell(b));
         if let Some(b) = self.brick.take() {
-            if self.grasped {
+            // An orange brick its partner already let fall was reported lost by the partner.
+            if self.grasped && !covered {
                 self.emit(EventKind::Lost { brick: b });
             }
             if self.in_zone {
@@ -794,6 +947,10 @@ impl<'a> Agent<'a> {
         let board = self.board();
         let wall = self.setup.wall;
         self.failures = 0;
+        self.pair_left = false;
+        self.pair_leader = None;
+        self.pair_follower = None;
+        self.pair_since = f64::NAN;
         match board.pick(wall, self.me) {
             Pick::Brick(b) => {
                 if self.state != UavState::ChooseBrick {
@@ -844,6 +1001,9 @@ impl<'a> Agent<'a> {
             return;
         }
         let wall = self.setup.wall;
+        if self.state == UavState::WaitForZone {
+            self.inspect();
+        }
         // Its brick placed by somebody else, or its claim lost to an earlier one.
         if let Some(b) = self.brick {
             if self.placed[b.index()] {
@@ -867,6 +1027,45 @@ impl<'a> Agent<'a> {
             if !self.in_zone && !mine {
                 self.drop_brick("claim_lost");
                 return self.choose("claim_lost");
+            }
+        }
+        // The partner let an orange brick fall: it is gone for both.
+        if let Some(b) = self.brick {
+            if self.grasped && !self.placed[b.index()] && self.pair_fell(b) {
+                self.drop_brick("partner_failed");
+                return self.choose("partner_failed");
+            }
+        }
+        // A pair's follower lets go when its leader does (the leader's `lost` covers both).
+        if let (Some(b), Some((l, inc))) = (self.brick, self.pair_leader) {
+            if self.grasped && !self.flying(l) {
+                // Its leader is out: the brick fell with it.
+                self.drop_brick("partner_failed");
+                return self.choose("partner_failed");
+            }
+            let restarted = self.peers[l].as_ref().is_some_and(|p| p.incarnation != inc);
+            let let_go = self.grasped
+                && self.flying(l)
+                && self.peer_status(l).is_some_and(|st| {
+                    st.brick != Some(b.0)
+                        || !st.grasped
+                        || st.pair.is_none_or(|r| r.uav != self.me as u32)
+                });
+            if let_go {
+                if restarted {
+                    // The leader was killed and is back: nobody said the brick fell.
+                    self.emit(EventKind::Lost { brick: b });
+                }
+                if self.in_zone {
+                    self.in_zone = false;
+                    self.emit(EventKind::ZoneLeave);
+                }
+                self.brick = None;
+                self.grasped = false;
+                self.request = None;
+                self.mark(MessageKind::Claim);
+                self.go(UavState::ChooseBrick, "put_down", None);
+                return self.choose("put_down");
             }
         }
         if self.state == UavState::ChooseBrick && self.brick.is_none() {
@@ -909,6 +1108,24 @@ impl<'a> Agent<'a> {
                 // It followed a leader that is gone: it leads now, from the start.
                 self.go(UavState::Detect, "partner_failed", None);
             }
+            // The partner it started with let go, restarted, or is gone.
+            if let Some(r) = self.pair_follower {
+                let v = r.uav as usize;
+                let still = self.flying(v)
+                    && self.peers[v].as_ref().is_some_and(|p| {
+                        p.incarnation == r.incarnation
+                            && p.status.brick == Some(b.0)
+                            && p.status.claimed_at == r.claimed_at
+                    });
+                if !still {
+                    self.pair_follower = None;
+                    if self.grasped {
+                        self.drop_brick("partner_failed");
+                        return self.choose("partner_failed");
+                    }
+                    self.go(UavState::Detect, "partner_failed", None);
+                }
+            }
             if self.state == UavState::Detect && self.until.is_infinite() {
                 let ready = partner_status.as_ref().is_some_and(|s| {
                     same(s)
@@ -917,43 +1134,74 @@ impl<'a> Agent<'a> {
                             UavState::Detect | UavState::FlyAbove | UavState::Grasp
                         )
                 });
-                if ready {
+                if let (true, Some(p)) = (ready, partner) {
+                    let peer = self.peers[p].as_ref().expect("heard");
+                    self.pair_since = self.now;
+                    self.pair_follower = Some(PairRef {
+                        uav: p as u32,
+                        incarnation: peer.incarnation,
+                        claimed_at: peer.status.claimed_at,
+                        since: self.now,
+                    });
                     self.go(UavState::Detect, "partner_arrived", Some(cfg.uav.detect_s));
                 }
             }
             // A partner lost after the grasp: the brick is lost with it.
-            if self.grasped && partner.is_none() && !self.in_zone {
+            if self.grasped && partner.is_none() {
                 self.drop_brick("partner_failed");
                 self.choose("partner_failed");
             }
             return;
         }
-        // The follower.
-        let Some(lead) = partner_status.filter(same) else {
+        // The follower follows a leader that carries the brick with this very claim.
+        let (me, inc, at) = (self.me as u32, self.incarnation, self.claimed_at);
+        let mine = |r: &PairRef| r.uav == me && r.incarnation == inc && r.claimed_at == at;
+        let Some(lead) = partner_status.filter(|s| same(s) && s.pair.as_ref().is_some_and(mine))
+        else {
             return;
         };
+        let since = lead.pair.map_or(f64::NAN, |r| r.since);
         let at_pile = matches!(
             self.state,
             UavState::Detect | UavState::FlyAbove | UavState::Grasp
         );
         match lead.state {
             UavState::FlyAbove | UavState::Grasp if at_pile && lead.state != self.state => {
+                self.pair_since = since;
                 self.go(lead.state, outcome(&lead.outcome).unwrap_or("ok"), None);
             }
             UavState::FlyToWallWait | UavState::WaitForZone | UavState::EnterAndPlace
                 if at_pile && lead.grasped =>
             {
+                self.pair_since = since;
+                if self.pair_fell(b) {
+                    // The leader's status is old news: the brick already fell.
+                    self.drop_brick("partner_failed");
+                    return self.choose("partner_failed");
+                }
                 self.grasped = true;
+                self.pair_leader = partner.map(|l| {
+                    let inc = self.peers[l].as_ref().map_or(0, |p| p.incarnation);
+                    (l, inc)
+                });
                 self.emit(EventKind::Grasp { brick: b });
                 let wait = cfg.arena.wall_wait(self.me);
                 self.fly(UavState::FlyToWallWait, "grasped", wait, 0.0);
             }
             UavState::EnterAndPlace
-                if lead.in_zone && self.state == UavState::WaitForZone && !self.in_zone =>
+                if lead.in_zone
+                    && self.state == UavState::WaitForZone
+                    && !self.in_zone
+                    && !self.pair_left =>
             {
+                // Enter with the leader, and leave by the end of its zone time at the latest.
+                let s = self.setup;
+                let board = self.board();
+                let zt = board.zone_time(s.wall, s.model, s.config.uav.zone_transit_s, b);
+                let hb = s.config.coord.heartbeat_s;
                 self.in_zone = true;
                 self.emit(EventKind::ZoneEnter);
-                self.go(UavState::EnterAndPlace, "granted", None);
+                self.go(UavState::EnterAndPlace, "granted", Some(zt + 2.0 * hb));
                 self.mark(MessageKind::ZoneEnter);
             }
             _ => {}
@@ -1008,7 +1256,7 @@ impl<'a> Agent<'a> {
         let hb = self.setup.config.coord.heartbeat_s;
         let me = self.me;
         for v in 0..self.n {
-            if !self.flying(v) {
+            if !self.counts(v) {
                 continue;
             }
             let Some(st) = self.peer_status(v) else {
@@ -1018,15 +1266,47 @@ impl<'a> Agent<'a> {
                 return false;
             }
             let heard_me = st.heard.get(me).copied().unwrap_or(-1.0);
-            if heard_me < self.claimed_at {
+            if !self.is_out(v) && heard_me < self.claimed_at {
                 return false;
             }
-            if self.now + zone_time + hb >= heard_me + self.setup.dead_after_s {
+            if self.now + zone_time + 3.0 * hb >= heard_me + self.setup.dead_after_s {
                 return false;
             }
         }
         self.refresh_honored();
         !self.honored.iter().flatten().any(|&(_, _, _, p)| p < prio)
+    }
+
+    /// Whether teammate `v` may still be in the game: not on the ground for good, and not
+    /// held out by a fresh majority. A teammate only this UAV holds out may still be flying,
+    /// cut off, and could come back and hold this UAV out: its lease, its zone and its
+    /// acknowledgement still count.
+    fn counts(&self, v: usize) -> bool {
+        v != self.me
+            && self
+                .peer_status(v)
+                .is_none_or(|s| !matches!(s.state, UavState::Landed | UavState::Down))
+            && !(self.is_out(v) && self.out_confirmed(v))
+    }
+
+    /// Whether a strict majority of the team, heard lately, holds `v` out: `v` then cannot
+    /// form a majority of its own without hearing that it is out.
+    fn out_confirmed(&self, v: usize) -> bool {
+        let timeout = self.setup.config.coord.heartbeat_timeout_s;
+        let inc = self.out[v].unwrap_or(0);
+        let holders = (0..self.n)
+            .filter(|&w| w != v && w != self.me)
+            .filter(|&w| {
+                self.peers[w].as_ref().is_some_and(|p| {
+                    self.now - p.heard_at <= timeout
+                        && p.status
+                            .out
+                            .iter()
+                            .any(|o| o.uav as usize == v && o.incarnation >= inc)
+                })
+            })
+            .count();
+        2 * (holders + 1) > self.n
     }
 
     /// With `comm`: its request, renewed when its lease runs out, acknowledged by every
@@ -1048,7 +1328,7 @@ impl<'a> Agent<'a> {
         }
         let r = self.request.expect("requested");
         let me = self.me as u32;
-        (0..self.n).filter(|&v| self.flying(v)).all(|v| {
+        (0..self.n).filter(|&v| self.counts(v)).all(|v| {
             self.peer_status(v).is_some_and(|st| {
                 !st.in_zone
                     && st
@@ -1195,6 +1475,7 @@ impl<'a> Agent<'a> {
             brick: self.brick.map(|b| b.0),
             claimed_at: self.claimed_at,
             grasped: self.grasped,
+            pair: self.pair_follower,
             in_zone: self.in_zone,
             request: self.request,
             acks,

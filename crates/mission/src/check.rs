@@ -215,8 +215,10 @@ impl<'w> TraceChecker<'w> {
             }
             EventKind::Lost { brick } => {
                 self.summary.lost += 1;
-                for h in &mut self.holding {
-                    if *h == Some(brick) {
+                // The UAV lets go of it; an orange brick falls for both of its pair.
+                let pair = self.wall.brick(brick).kind.uavs_needed() == 2;
+                for (w, h) in self.holding.iter_mut().enumerate() {
+                    if *h == Some(brick) && (w == u || pair) {
                         *h = None;
                     }
                 }
@@ -264,4 +266,58 @@ pub fn check_trace(wall: &Wall, uavs: usize, events: &[Event]) -> Result<TraceSu
         c.event(e);
     }
     c.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::state::{Event, EventKind};
+    use mason_wall::BrickId;
+
+    fn at(t: f64, uav: u32, kind: EventKind) -> Event {
+        Event { t, uav, kind }
+    }
+
+    #[test]
+    fn a_brick_lost_by_one_uav_is_not_lost_by_another_holding_a_copy() {
+        // Two UAVs grasped copies of one red brick (a claim settled late); one puts its copy
+        // down: the other still holds its own and may place it.
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let b = BrickId(0);
+        let trace = [
+            at(1.0, 0, EventKind::Grasp { brick: b }),
+            at(1.0, 1, EventKind::Grasp { brick: b }),
+            at(2.0, 1, EventKind::Lost { brick: b }),
+            at(3.0, 0, EventKind::ZoneEnter),
+            at(4.0, 0, EventKind::Place { brick: b }),
+            at(4.0, 0, EventKind::ZoneLeave),
+        ];
+        assert_eq!(check_trace(&wall, 2, &trace).unwrap().placed, 1);
+        // Without its own grasp, the second UAV cannot place it.
+        let bad = [
+            at(1.0, 0, EventKind::Grasp { brick: b }),
+            at(2.0, 0, EventKind::Lost { brick: b }),
+            at(3.0, 0, EventKind::ZoneEnter),
+        ];
+        assert!(check_trace(&wall, 2, &bad).is_err());
+    }
+
+    #[test]
+    fn an_orange_brick_lost_by_one_of_its_pair_is_lost_for_both() {
+        let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+        let b = wall
+            .ids()
+            .find(|&b| wall.brick(b).kind.uavs_needed() == 2)
+            .unwrap();
+        let trace = [
+            at(1.0, 0, EventKind::Grasp { brick: b }),
+            at(1.0, 1, EventKind::Grasp { brick: b }),
+            at(2.0, 1, EventKind::Lost { brick: b }),
+            at(3.0, 0, EventKind::ZoneEnter),
+        ];
+        assert!(matches!(
+            check_trace(&wall, 2, &trace),
+            Err(TraceError::Zone { .. })
+        ));
+    }
 }

@@ -170,12 +170,20 @@ impl Board {
             .all(|s| self.bricks[s.index()] != Brick::Untaken)
     }
 
-    /// The brick next needed: the earliest taken, unplaced brick of the order.
+    /// `b` is out of the piles but nobody is known to carry it: a UAV declared out was
+    /// holding it, and whether it was placed is not known (agents only).
+    pub fn hold_unknown(&mut self, b: BrickId) {
+        self.bricks[b.index()] = Brick::Taken;
+        self.carriers[b.index()].clear();
+    }
+
+    /// The brick next needed: the earliest taken, unplaced brick of the order that somebody
+    /// carries.
     pub fn needed(&self) -> Option<BrickId> {
         self.bricks
             .iter()
             .enumerate()
-            .filter(|(_, s)| **s == Brick::Taken)
+            .filter(|(i, s)| **s == Brick::Taken && !self.carriers[*i].is_empty())
             .min_by_key(|(i, _)| self.rank[*i])
             .map(|(i, _)| BrickId(i as u32))
     }

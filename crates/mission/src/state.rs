@@ -168,7 +168,7 @@ impl Observer for Vec<Event> {
 }
 
 /// Every outcome a state transition may carry (the simulator's and the agents').
-pub const OUTCOMES: [&str; 26] = [
+pub const OUTCOMES: [&str; 27] = [
     "start",
     "ok",
     "airborne",
@@ -195,6 +195,7 @@ pub const OUTCOMES: [&str; 26] = [
     "declared_out",
     "rejoined",
     "killed",
+    "pair_left",
 ];
 
 /// The outcome named `s`, if it is one of [`OUTCOMES`].

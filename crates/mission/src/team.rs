@@ -55,8 +55,29 @@ pub fn killed_events(trace: &[Event], uav: u32, t: f64) -> Vec<Event> {
     if in_zone {
         out.push(at(EventKind::ZoneLeave));
     }
+    // What it held falls, unless its pair's partner still holds the brick and carries on
+    // (the partner learns of the loss only when it declares the agent out).
     if let Some(brick) = holding {
-        out.push(at(EventKind::Lost { brick }));
+        let partner_holds = trace
+            .iter()
+            .filter(|e| e.uav != uav)
+            .fold(std::collections::BTreeMap::new(), |mut h, e| {
+                match e.kind {
+                    EventKind::Grasp { brick } => {
+                        h.insert(e.uav, Some(brick));
+                    }
+                    EventKind::Place { brick: b } | EventKind::Lost { brick: b } => {
+                        h.retain(|_, held| *held != Some(b));
+                    }
+                    _ => {}
+                }
+                h
+            })
+            .values()
+            .any(|held| *held == Some(brick));
+        if !partner_holds {
+            out.push(at(EventKind::Lost { brick }));
+        }
     }
     out.push(at(EventKind::State {
         state: UavState::Down,
@@ -104,16 +125,43 @@ impl Ord for Delivery {
     }
 }
 
+/// The wall as the simulated cameras see it: every placement so far.
+struct World(std::sync::Mutex<WorldState>);
+
+type WorldState = (Vec<bool>, Vec<(mason_wall::BrickId, f64)>);
+
+impl World {
+    fn lock(&self) -> std::sync::MutexGuard<'_, WorldState> {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
+
+impl crate::agent::WallView for World {
+    fn placed(&self, brick: mason_wall::BrickId) -> bool {
+        self.lock().0.get(brick.index()).copied().unwrap_or(false)
+    }
+    fn lost_since(&self, brick: mason_wall::BrickId, since: f64) -> bool {
+        self.lock().1.iter().any(|&(b, t)| b == brick && t > since)
+    }
+}
+
 /// Flies `setup`'s team (`setup.uav` is ignored: one agent per UAV) on the virtual bus until
 /// every agent has finished or `setup.config.max_time_s` has passed.
 pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun {
     let n = setup.config.uavs;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let world = std::sync::Arc::new(World(std::sync::Mutex::new((
+        vec![false; setup.wall.len()],
+        Vec::new(),
+    ))));
     let make = |u: usize, incarnation: u64| {
         let vehicle = SimulatedVehicle::new(
             setup.config,
             seed ^ (u as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ incarnation,
-        );
+        )
+        .with_world(world.clone());
         Agent::new(
             AgentSetup {
                 uav: u,
@@ -161,6 +209,11 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
             ki += 1;
             if agents[u].take().is_some() {
                 let tail = killed_events(&events, u as u32, at);
+                for e in &tail {
+                    if let EventKind::Lost { brick } = e.kind {
+                        world.lock().1.push((brick, e.t));
+                    }
+                }
                 events.extend(tail);
             }
             continue;
@@ -169,7 +222,17 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
             ri += 1;
             if agents[u].is_none() {
                 let inc = 1 + restarts[..ri].iter().filter(|r| r.0 == u).count() as u64;
-                agents[u] = Some(make(u, inc));
+                let mut agent = make(u, inc);
+                // It reads back what it placed from its own log.
+                let mine: Vec<_> = events
+                    .iter()
+                    .filter_map(|e| match e.kind {
+                        EventKind::Place { brick } if e.uav == u as u32 => Some(brick),
+                        _ => None,
+                    })
+                    .collect();
+                agent.remember(&mine);
+                agents[u] = Some(agent);
                 wake[u] = t;
             }
             continue;
@@ -186,6 +249,13 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
         };
         let tick = agents[target].as_mut().expect("running").tick(t);
         wake[target] = tick.wake;
+        for e in &tick.events {
+            match e.kind {
+                EventKind::Place { brick } => world.lock().0[brick.index()] = true,
+                EventKind::Lost { brick } => world.lock().1.push((brick, e.t)),
+                _ => {}
+            }
+        }
         events.extend(tick.events);
         for m in tick.messages {
             sent += 1;
