@@ -345,6 +345,13 @@ pub struct AgentArgs {
     /// This run's incarnation (a restarted agent takes a higher one than before)
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub incarnation: u64,
+    /// A trace of this UAV's earlier run: the bricks it placed are remembered; repeatable
+    #[arg(long)]
+    pub remember: Vec<PathBuf>,
+    /// The simulated camera at the wall sees what the team's trace files (*.jsonl) in this
+    /// folder say is on the wall or fell (launch passes its --out); without it, no camera
+    #[arg(long)]
+    pub world: Option<PathBuf>,
 }
 
 /// The network options of `--config FILE.toml`.
@@ -487,6 +494,12 @@ impl AgentArgs {
         }
         if let Some(p) = &self.trace {
             check_output(p)?;
+        }
+        if let Some(d) = self.world.as_ref().filter(|d| !d.is_dir()) {
+            return Err(input_error(format!(
+                "--world {}: not a folder",
+                d.display()
+            )));
         }
         Ok(())
     }
@@ -702,11 +715,16 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
     let clock = MissionClock::new(start_at, team.speed);
     let seed = agent_seed(team.seed, a.uav, a.incarnation);
     let mut transport = FaultLayer::new(link, clock, team.link.clone(), seed);
-    let vehicle = SimulatedVehicle::new(&team.config, seed);
+    let mut vehicle = SimulatedVehicle::new(&team.config, seed);
+    if let Some(dir) = &a.world {
+        let world = crate::world::TraceWorld::new(dir.clone(), team.wall.len());
+        vehicle = vehicle.with_world(Arc::new(world));
+    }
     let mut agent = Agent::new(
         setup(&team, a.uav, &net.mission, a.incarnation),
         Box::new(vehicle),
     );
+    agent.remember(&crate::world::placed_by(a.uav, &a.remember)?);
     let mut logs: Vec<Box<dyn AgentLog>> = Vec::new();
     if let Some(f) = trace_file {
         logs.push(Box::new(JsonLines(f)));

@@ -93,9 +93,11 @@ fn schedule(a: &LaunchArgs) -> CliResult<Vec<(f64, usize, Action)>> {
                     "--kill {u}@{t}: UAV {u} is already killed then (add a --restart before)"
                 )))
             }
-            Action::Restart if !down[*u] => return Err(input_error(format!(
+            Action::Restart if !down[*u] => {
+                return Err(input_error(format!(
                 "--restart {u}@{t}: UAV {u} is not killed before (add a --kill {u}@T with T < {t})"
-            ))),
+            )))
+            }
             Action::Kill => down[*u] = true,
             Action::Restart => down[*u] = false,
         }
@@ -138,12 +140,21 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
         .unwrap_or_else(|| format!("launch-{}-{}", unix_now() as u64, std::process::id()));
     std::fs::create_dir_all(&a.out)
         .map_err(|e| input_error(format!("--out {}: {e}", a.out.display())))?;
+    // The agents' cameras read every trace in --out: an earlier launch's must go.
+    if let Ok(entries) = std::fs::read_dir(&a.out) {
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with("uav-") && (name.ends_with(".jsonl") || name.ends_with(".log")) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
     let exe = std::env::current_exe()
         .map_err(|e| input_error(format!("cannot find the mason binary: {e}")))?;
     let start_at = unix_now() + a.lead;
     let endpoint = |u: usize| format!("tcp/127.0.0.1:{}", ports[u]);
     let team_args = a.team.to_args();
-    let spawn = |uav: usize, incarnation: u64| -> CliResult<Run> {
+    let spawn = |uav: usize, incarnation: u64, earlier: &[PathBuf]| -> CliResult<Run> {
         let trace = a.out.join(format!("uav-{uav}-{incarnation}.jsonl"));
         let log_path = a.out.join(format!("uav-{uav}-{incarnation}.log"));
         let log = std::fs::File::create(&log_path)
@@ -164,6 +175,10 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             cmd.args(["--prefix", p]);
         }
         cmd.arg("--trace").arg(&trace);
+        cmd.arg("--world").arg(&a.out);
+        for p in earlier {
+            cmd.arg("--remember").arg(p);
+        }
         cmd.stdin(Stdio::null()).stdout(log).stderr(err);
         let child = cmd
             .spawn()
@@ -178,7 +193,7 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             killed_at: None,
         })
     };
-    let mut runs: Vec<Run> = (0..n).map(|u| spawn(u, 1)).collect::<CliResult<_>>()?;
+    let mut runs: Vec<Run> = (0..n).map(|u| spawn(u, 1, &[])).collect::<CliResult<_>>()?;
     if !quiet {
         let eps: Vec<String> = (0..n).map(endpoint).collect();
         eprintln!(
@@ -214,7 +229,8 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
                         let mut child = r.child.take().expect("running");
                         let _ = child.kill();
                         let status = child.wait();
-                        r.killed_at = Some(mission_now());
+                        let at = mission_now();
+                        r.killed_at = Some(append_death(&r.trace, u, at)?);
                         r.exit = Some(match status {
                             Ok(s) if s.code().is_some() => {
                                 format!("exited {} before the kill", s.code().unwrap_or(-1))
@@ -224,8 +240,13 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
                     }
                 }
                 Action::Restart => {
-                    let inc = 1 + runs.iter().filter(|r| r.uav == u).count() as u64;
-                    runs.push(spawn(u, inc)?);
+                    let earlier: Vec<PathBuf> = runs
+                        .iter()
+                        .filter(|r| r.uav == u)
+                        .map(|r| r.trace.clone())
+                        .collect();
+                    let inc = 1 + earlier.len() as u64;
+                    runs.push(spawn(u, inc, &earlier)?);
                 }
             }
         }
@@ -261,7 +282,11 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
     // An agent that refused its input (which launch checked already) is a bad launch.
     if let Some(r) = runs.iter().find(|r| r.exit.as_deref() == Some("2")) {
         let text = std::fs::read_to_string(&r.log).unwrap_or_default();
-        let why = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+        let why = text
+            .lines()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .unwrap_or("");
         return Err(input_error(format!(
             "agent of UAV {} refused its input ({}): {why}",
             r.uav,
@@ -407,21 +432,42 @@ fn read_trace(path: &Path, killed: bool) -> CliResult<Vec<Event>> {
     Ok(events)
 }
 
-/// Every agent's events and, for each killed agent, the events of its death at the time it
-/// was killed (never before its own last event), sorted stably by time.
+/// Every agent's events (a killed agent's file ends with the events of its death), sorted
+/// stably by time.
 fn merge(runs: &[Run]) -> CliResult<Vec<Event>> {
     let mut all = Vec::new();
     for r in runs {
-        let mut events = read_trace(&r.trace, r.killed_at.is_some())?;
-        if let Some(t) = r.killed_at {
-            let t = events.iter().map(|e| e.t).fold(t, f64::max);
-            let tail = killed_events(&events, r.uav as u32, t);
-            events.extend(tail);
-        }
-        all.extend(events);
+        all.extend(read_trace(&r.trace, r.killed_at.is_some())?);
     }
     all.sort_by(|a, b| a.t.total_cmp(&b.t));
     Ok(all)
+}
+
+/// Completes the trace of an agent killed at mission time `t`: a truncated last line is cut
+/// off, and the events of its death (`mission::team::killed_events`: it fails, leaves the
+/// zone, loses what it held, is down) are appended at `t`, or at its last event if that is
+/// later. The teammates' cameras (`--world`) see the lost brick from then on. Returns the
+/// time used.
+fn append_death(path: &Path, uav: usize, t: f64) -> CliResult<f64> {
+    let fail = |e: std::io::Error| Failure {
+        code: UNSAFE,
+        message: format!("{}: {e}", path.display()),
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+        Err(e) => return Err(fail(e)),
+    };
+    let complete = text.rfind('\n').map_or(0, |i| i + 1);
+    let events = read_trace(path, true)?;
+    let t = events.iter().map(|e| e.t).fold(t, f64::max);
+    let mut out = text[..complete].to_string();
+    for e in killed_events(&events, uav as u32, t) {
+        out.push_str(&serde_json::to_string(&e).expect("an event serialises"));
+        out.push('\n');
+    }
+    std::fs::write(path, out).map_err(fail)?;
+    Ok(t)
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ mod schedule_cmd;
 mod sim_cmd;
 mod transport;
 mod wall_cmd;
+mod world;
 #[cfg(feature = "zenoh")]
 mod zenoh_link;
 

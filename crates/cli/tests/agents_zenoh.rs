@@ -426,7 +426,9 @@ fn a_real_cut_of_the_network_sends_auto_to_windows_and_back_safely() {
     // Mission time 400 is about 2 s (lead) + 4 s after the start.
     std::thread::sleep(std::time::Duration::from_secs(6).saturating_sub(started.elapsed()));
     let cut_at = started.elapsed().as_secs_f64();
-    assert!(ip(&["netns", "exec", &ns, "ip", "link", "set", "lo", "down"]));
+    assert!(ip(&[
+        "netns", "exec", &ns, "ip", "link", "set", "lo", "down"
+    ]));
     std::thread::sleep(std::time::Duration::from_millis(600));
     assert!(ip(&["netns", "exec", &ns, "ip", "link", "set", "lo", "up"]));
     let out = team.wait_with_output().expect("launch ends");
@@ -441,7 +443,12 @@ fn a_real_cut_of_the_network_sends_auto_to_windows_and_back_safely() {
     let t_cut = (cut_at - 2.0) * 100.0;
     let modes: Vec<(f64, String)> = l
         .of_kind("comm")
-        .map(|e| (e["t"].as_f64().unwrap(), e["mode"].as_str().unwrap().to_string()))
+        .map(|e| {
+            (
+                e["t"].as_f64().unwrap(),
+                e["mode"].as_str().unwrap().to_string(),
+            )
+        })
         .collect();
     assert!(
         modes
