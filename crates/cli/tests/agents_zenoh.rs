@@ -108,16 +108,16 @@ fn a_fault_free_team_of_three_processes_builds_mbzirc() {
 
 #[test]
 fn a_killed_agent_is_declared_out_and_the_others_finish() {
-    let l = launch("kill", &["--kill", "1@300"]);
+    let l = launch("kill", &["--kill", "1@250"]);
     assert_finished(&l);
     let killed_at = l.doc["agents"][1]["killed_at"].as_f64().expect("killed");
-    assert!(killed_at >= 300.0);
+    assert!(killed_at >= 250.0);
     assert!(l
         .of_kind("place")
         .all(|e| e["uav"] != 1 || e["t"].as_f64().unwrap() < killed_at));
     assert!(l
         .of_kind("fail")
-        .any(|e| e["uav"] == 1 && e["t"].as_f64().unwrap() >= 300.0));
+        .any(|e| e["uav"] == 1 && e["t"].as_f64().unwrap() >= 250.0));
 }
 
 #[test]
