@@ -145,7 +145,10 @@ mod tests {
         std::io::Write::write_all(&mut f, b"\"uav\":0,\"kind\":\"lost\",\"brick\":4}\n").unwrap();
         assert!(w.lost_since(BrickId(4), 5.5));
         assert!(!w.lost_since(BrickId(4), 6.5));
-        assert_eq!(placed_by(0, &[a.clone()]).unwrap(), vec![BrickId(3)]);
+        assert_eq!(
+            placed_by(0, std::slice::from_ref(&a)).unwrap(),
+            vec![BrickId(3)]
+        );
         assert!(placed_by(1, &[a]).unwrap().is_empty());
         std::fs::remove_dir_all(&dir).unwrap();
     }
