@@ -4,6 +4,8 @@
 //! result, and prints. Exit codes: 0 success, 1 infeasible or nothing found in the budget,
 //! 2 bad input or usage.
 
+// Without the `zenoh` feature the agent driver is built for its tests only.
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
 mod agent_cmd;
 mod bench;
 mod cmcp_bench;
@@ -19,8 +21,10 @@ mod plan;
 mod progress;
 mod schedule_cmd;
 mod sim_cmd;
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
 mod transport;
 mod wall_cmd;
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
 mod world;
 #[cfg(feature = "zenoh")]
 mod zenoh_link;
