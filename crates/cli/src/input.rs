@@ -178,7 +178,14 @@ pub fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> CliResult<T> {
         let line = e
             .span()
             .map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
-        let msg = e.message().trim().to_string();
+        // One line: the parser's message may span several.
+        let msg = e
+            .message()
+            .trim()
+            .lines()
+            .map(str::trim)
+            .collect::<Vec<_>>()
+            .join("; ");
         match line {
             Some(l) => input_error(format!("{shown}:{l}: {msg}")),
             None => input_error(format!("{shown}: {msg}")),

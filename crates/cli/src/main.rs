@@ -4,6 +4,9 @@
 //! result, and prints. Exit codes: 0 success, 1 infeasible or nothing found in the budget,
 //! 2 bad input or usage.
 
+// Without the `zenoh` feature the agent driver is built for its tests only.
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
+mod agent_cmd;
 mod bench;
 mod cmcp_bench;
 mod crew_bench;
@@ -11,13 +14,20 @@ mod crew_cmd;
 mod demo;
 mod fail;
 mod input;
+mod launch;
 mod mapf_bench;
 mod mission_bench;
 mod plan;
 mod progress;
 mod schedule_cmd;
 mod sim_cmd;
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
+mod transport;
 mod wall_cmd;
+#[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
+mod world;
+#[cfg(feature = "zenoh")]
+mod zenoh_link;
 
 use clap::{Parser, Subcommand};
 use fail::{check_outputs, input_error, write_all, write_file, CliResult};
@@ -37,7 +47,7 @@ struct Cli {
     command: Command,
 }
 
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 struct DesignArgs {
     /// Wall design: a layer-text, MBZIRC, PNG or CMCP file, or builtin:NAME
     /// (thesis-2x5, levels5-width5, levels5-width10, mbzirc)
@@ -118,6 +128,12 @@ enum Command {
     },
     /// Fly a build order with a UAV team (discrete-event simulation, faults, Monte Carlo)
     Simulate(SimArgs),
+    /// Fly one UAV as its own process, coordinating with its team over Zenoh (feature
+    /// `zenoh`); the vehicle is simulated in-process
+    Agent(agent_cmd::AgentArgs),
+    /// Start one agent process per UAV on this machine, kill or restart some, merge their
+    /// traces and check the result (feature `zenoh`)
+    Launch(launch::LaunchArgs),
     /// Assign ground robots to goals and plan collision-free paths (seen from a UAV)
     Crew(CrewArgs),
     /// Reproduce published comparisons
@@ -401,6 +417,8 @@ fn run(cli: Cli) -> CliResult<()> {
         }
         Command::Simulate(args) => simulate(args, cli.quiet),
         Command::Crew(args) => crew(args),
+        Command::Agent(args) => agent_cmd::run(args, cli.quiet),
+        Command::Launch(args) => launch::run(args, cli.quiet),
         Command::Bench {
             suite,
             time_limit,
