@@ -330,11 +330,9 @@ fn joint_on_a_warehouse_is_valid() {
 }
 
 #[test]
-fn dense_warehouses_take_the_repair_path_and_stay_valid() {
-    // Dense enough that the PIBT rollout leaves robots short, so that the continuation repair
-    // (with groups, and further rollouts from a partial plan) runs; a regression test for a
-    // repair that once replaced part of a path without telling the others.
-    let mut repaired = 0;
+fn dense_warehouses_are_solved_and_stay_valid() {
+    // Dense one-cell aisles, where plain PIBT steps circle for ever (robots crossing in an
+    // aisle push each other to and fro): LaCAM with PIBT's corridor rules plans them.
     for seed in 0..3 {
         let grid = aisles(47, 22);
         let n = 60 + 12 * seed as usize;
@@ -360,11 +358,7 @@ fn dense_warehouses_take_the_repair_path_and_stay_valid() {
             &paths,
         )
         .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
-        if out.stats.expanded > 0 {
-            repaired += 1;
-        }
     }
-    assert_eq!(repaired, 3, "every instance needs repair");
 }
 
 /// Shelves two cells deep between one-cell aisles, with one-cell gaps every 11 columns and open
