@@ -153,9 +153,20 @@ impl<'a> Pibt<'a> {
         } else if self.swap && pusher != NIL && cand.len() > 1 {
             // No face-off: stepping ahead of the pusher into a cell where the two would be
             // caught as before comes last.
-            let u = cand[0].3;
-            if u != v && self.swap_required(pusher, i, v, u) {
-                cand.rotate_left(1);
+            let mut trapped = [false; 9];
+            for (k, c) in cand.iter().enumerate() {
+                trapped[k] = c.3 != v && self.swap_required(pusher, i, v, c.3);
+            }
+            if trapped.iter().any(|&t| t) {
+                let mut keyed: [(bool, (u32, u32, u32, u32)); 9] = [(false, (0, 0, 0, 0)); 9];
+                for (k, c) in cand.iter().enumerate() {
+                    keyed[k] = (trapped[k], *c);
+                }
+                let keyed = &mut keyed[..cand.len()];
+                keyed.sort_by_key(|&(t, _)| t);
+                for (c, (_, k)) in cand.iter_mut().zip(keyed.iter()) {
+                    *c = *k;
+                }
             }
         }
         for &(_, _, _, u) in cand.iter() {
