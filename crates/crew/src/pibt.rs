@@ -312,4 +312,71 @@ mod tests {
         }
         assert_eq!(q[0], c(3, 0));
     }
+
+    /// Steps PIBT with LaCAM's dynamic priorities (a robot away from its goal gains one per
+    /// step, one on its goal drops back) until every robot is home; the steps it took.
+    fn rollout(
+        g: &Grid,
+        starts: &[Cell],
+        goals: &[Cell],
+        swap: bool,
+        steps: usize,
+    ) -> Option<usize> {
+        let m = MoveGraph::new(g, Connectivity::Four);
+        let dist = goal_distances(g, Connectivity::Four, goals);
+        let mut p = Pibt::new(&m, &dist, 7);
+        p.set_swap(swap);
+        let n = starts.len();
+        let mut q: Vec<u32> = starts.iter().map(|c| c.0).collect();
+        let mut priority: Vec<f32> = (0..n).map(|i| 0.1 * i as f32).collect();
+        let mut next = vec![0; n];
+        for t in 0..steps {
+            if (0..n).all(|i| q[i] == goals[i].0) {
+                return Some(t);
+            }
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            order.sort_by(|&a, &b| priority[b as usize].total_cmp(&priority[a as usize]));
+            assert!(p.step(&q, &mut next, &order, &[]));
+            std::mem::swap(&mut q, &mut next);
+            for i in 0..n {
+                let x = priority[i];
+                priority[i] = if q[i] == goals[i].0 {
+                    x - x.floor()
+                } else {
+                    x + 1.0
+                };
+            }
+        }
+        None
+    }
+
+    /// Two shelves with a one-cell aisle between them, open at both ends (the junctions).
+    fn aisle() -> Grid {
+        crate::movingai::parse_map(
+            "type octile\nheight 5\nwidth 7\nmap\n.......\n.@@@@@.\n.......\n.@@@@@.\n.......\n",
+            "aisle",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn corridor_rules_let_a_robot_overtake_one_whose_goal_is_on_its_way() {
+        // Robot 0 at the aisle's mouth must reach (4,2); robot 1, just inside, stops at (2,2) on
+        // its way. Plain PIBT pushes robot 1 past its goal, then robot 1 pushes robot 0 back,
+        // for ever; with the corridor rules robot 1 lets robot 0 in first.
+        let g = aisle();
+        let c = |x, y| g.cell(x, y).unwrap();
+        let (starts, goals) = ([c(0, 2), c(1, 2)], [c(4, 2), c(2, 2)]);
+        assert!(rollout(&g, &starts, &goals, true, 60).is_some());
+        assert_eq!(rollout(&g, &starts, &goals, false, 60), None);
+    }
+
+    #[test]
+    fn corridor_rules_let_robots_facing_each_other_pass() {
+        // Two robots in the aisle, each with its goal behind the other.
+        let g = aisle();
+        let c = |x, y| g.cell(x, y).unwrap();
+        let (starts, goals) = ([c(2, 2), c(3, 2)], [c(5, 2), c(1, 2)]);
+        assert!(rollout(&g, &starts, &goals, true, 60).is_some());
+    }
 }
