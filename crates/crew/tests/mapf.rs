@@ -374,3 +374,41 @@ fn aisles(w: u32, h: u32) -> Grid {
     }
     grid
 }
+
+#[test]
+fn dense_aisles_need_few_configurations() {
+    // A regression test for PIBT's corridor rules: on one-cell aisles with 140 robots, LaCAM
+    // with them finds a plan within about 250 configurations; plain PIBT steps leave robots
+    // circling in the aisles and LaCAM had not found one after 200 000. The cap is no timing,
+    // only a bound on the search.
+    for seed in 0..3 {
+        let grid = aisles(47, 22);
+        let n = 140;
+        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
+        let inst = Instance::new(
+            grid,
+            Connectivity::Four,
+            robots,
+            goals,
+            Some((0..n).collect()),
+            "aisles",
+        )
+        .unwrap();
+        let budget = Budget {
+            deadline: None,
+            node_limit: Some(5_000),
+        };
+        let out = solve(&inst, &lacam_config(0, seed), &budget).unwrap();
+        let Some(paths) = out.paths else {
+            panic!("seed {seed}: {:?} {:?}", out.status, out.reason)
+        };
+        validate(
+            &inst.grid,
+            inst.connectivity,
+            &inst.robots,
+            &out.goals,
+            &paths,
+        )
+        .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+    }
+}
