@@ -45,6 +45,8 @@ pub struct Pibt<'a> {
     rng: ChaCha8Rng,
     /// Whether the corridor rules are on (see [`Pibt::set_swap`]).
     swap: bool,
+    /// Per robot, the next cell of its guide path from each cell on it (empty: none).
+    guide: Vec<rustc_hash::FxHashMap<u32, u32>>,
 }
 
 impl<'a> Pibt<'a> {
@@ -57,6 +59,7 @@ impl<'a> Pibt<'a> {
             occupied_next: vec![NIL; graph.cells()],
             rng: ChaCha8Rng::seed_from_u64(seed),
             swap: true,
+            guide: Vec::new(),
         }
     }
 
@@ -64,6 +67,15 @@ impl<'a> Pibt<'a> {
     /// which leaves plain PIBT.
     pub fn set_swap(&mut self, on: bool) {
         self.swap = on;
+    }
+
+    /// Gives each robot a guide path ([`crate::scatter`]): a robot standing on its guide path
+    /// tries the path's next cell first, before the cells nearest its goal.
+    pub fn set_guide(&mut self, paths: &[Vec<u32>]) {
+        self.guide = paths
+            .iter()
+            .map(|p| p.windows(2).map(|w| (w[0], w[1])).collect())
+            .collect();
     }
 
     /// Fills `to` with one legal step from `from`: constrained robots go where `constraints`
@@ -134,11 +146,15 @@ impl<'a> Pibt<'a> {
     fn push(&mut self, i: u32, pusher: u32, from: &[u32], to: &mut [u32]) -> bool {
         let v = from[i as usize];
         let dist = &self.dist[i as usize];
+        let guided = self.guide.get(i as usize).and_then(|g| g.get(&v).copied());
         let mut cand = [(0u32, 0u32, 0u32, 0u32); 9];
         let mut len = 0;
         for &u in std::iter::once(&v).chain(self.graph.neighbours(v)) {
             let busy = u32::from(self.occupied_now[u as usize] != NIL && u != v);
             cand[len] = (dist[u as usize], busy, self.rng.gen::<u32>(), u);
+            if guided == Some(u) {
+                cand[len].0 = 0;
+            }
             len += 1;
         }
         let cand = &mut cand[..len];

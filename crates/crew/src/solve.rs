@@ -5,13 +5,14 @@ use crate::astar::astar;
 use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
-use crate::lacam::{lacam, LacamEnd};
+use crate::lacam::{lacam_guided, LacamEnd};
 use crate::moves::{goal_distances, MoveGraph};
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
 use crate::refine::{refine, RefineConfig};
 use crate::rra::GoalDistance;
+use crate::scatter::guide_paths;
 use crate::st::{space_time_plan, StFailure};
 use crate::tswap::{bottleneck_assignment, tswap, TswapEnd};
 use std::time::Instant;
@@ -296,6 +297,11 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
+/// Guide paths ([`crate::scatter`]): at most 10 steps longer than the shortest, a robot met
+/// costs 2 steps, at most 4000 states searched per robot. On warehouse-10-20-10-2-1 they cut the
+/// first plan's sum of costs by about a third at 500 and 1000 robots.
+const GUIDE: (u32, u32, usize) = (10, 2, 4000);
+
 /// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
 fn solve_lacam(
     inst: &Instance,
@@ -329,9 +335,18 @@ fn solve_lacam(
             .map(|(r, &s)| u64::from(dist[r][s as usize]))
             .sum(),
     );
-    // LaCAM from the start: complete, and with PIBT's corridor rules its first descent is
-    // usually already a plan.
-    let (end, configurations) = lacam(&graph, &dist, &starts, &targets, budget, config.seed);
+    // Guide paths that spread the robots out, then LaCAM from the start: complete, and with
+    // PIBT's corridor rules its first descent is usually already a plan.
+    let guide = guide_paths(&graph, &dist, &starts, &targets, GUIDE, budget);
+    let (end, configurations) = lacam_guided(
+        &graph,
+        &dist,
+        &starts,
+        &targets,
+        &guide,
+        budget,
+        config.seed,
+    );
     stats.configurations = configurations;
     match end {
         LacamEnd::Found(mut paths) => {
