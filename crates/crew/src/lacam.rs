@@ -60,9 +60,26 @@ pub fn lacam(
     budget: &Budget,
     seed: u64,
 ) -> (LacamEnd, u64) {
+    lacam_guided(graph, dist, starts, goals, &[], budget, seed)
+}
+
+/// [`lacam`] with PIBT following `guide` paths where robots stand on them
+/// ([`crate::pibt::Pibt::set_guide`]; empty: none).
+pub fn lacam_guided(
+    graph: &MoveGraph,
+    dist: &[Vec<u32>],
+    starts: &[u32],
+    goals: &[u32],
+    guide: &[Vec<u32>],
+    budget: &Budget,
+    seed: u64,
+) -> (LacamEnd, u64) {
     let n = starts.len();
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x1aca_0001);
     let mut pibt = Pibt::new(graph, dist, seed);
+    if !guide.is_empty() {
+        pibt.set_guide(guide);
+    }
     let max_d = (0..n)
         .map(|i| dist[i][starts[i] as usize])
         .max()

@@ -15,7 +15,8 @@
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
 //! - [`reservation`], [`paper`], [`st`]: collision resolution, prioritized (incomplete);
-//! - [`moves`], [`pibt`], [`repair`], [`lacam`], [`refine`]: complete and anytime labelled MAPF;
+//! - [`moves`], [`scatter`], [`pibt`], [`lacam`], [`refine`]: complete and anytime labelled
+//!   MAPF;
 //! - [`cbs`]: optimal labelled MAPF for a few robots (the tests' yardstick);
 //! - [`tswap`]: unlabelled MAPF (assignment and paths together); [`solve`]: the pipeline;
 //! - [`validate`]: the plan checker; [`outcome`]: status, budget, stats; [`generate`]: test worlds.
@@ -59,9 +60,9 @@ pub mod perm;
 pub mod pibt;
 pub mod prm;
 pub mod refine;
-pub mod repair;
 pub mod reservation;
 pub mod rra;
+pub mod scatter;
 pub mod solve;
 pub mod st;
 pub mod tswap;

@@ -45,7 +45,7 @@ pub struct RefineConfig {
 impl Default for RefineConfig {
     fn default() -> Self {
         RefineConfig {
-            neighbourhood: 8,
+            neighbourhood: 4,
             rounds: None,
             stall: Some(1000),
             node_limit: 30_000,

@@ -5,14 +5,14 @@ use crate::astar::astar;
 use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
-use crate::lacam::{lacam, LacamEnd};
+use crate::lacam::{lacam_guided, LacamEnd};
 use crate::moves::{goal_distances, MoveGraph};
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
 use crate::refine::{refine, RefineConfig};
-use crate::repair::{rollout_and_repair, RepairEnd};
 use crate::rra::GoalDistance;
+use crate::scatter::guide_paths;
 use crate::st::{space_time_plan, StFailure};
 use crate::tswap::{bottleneck_assignment, tswap, TswapEnd};
 use std::time::Instant;
@@ -297,34 +297,10 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
-/// Rollouts tried one after the other before LaCAM takes over.
-const ROLLOUTS: u64 = 12;
-
-fn count_home(q: &[u32], goals: &[u32]) -> usize {
-    q.iter().zip(goals).filter(|(a, b)| a == b).count()
-}
-
-/// `rest` (which starts where every path of `prefix` ends) after `prefix`, whose paths are held
-/// (resting) until the longest ends; each cut at its last arrival. No prefix: `rest` itself.
-fn append(prefix: Option<Vec<Vec<u32>>>, rest: Vec<Vec<u32>>) -> Vec<Vec<u32>> {
-    let Some(prefix) = prefix else {
-        return rest;
-    };
-    let end = prefix.iter().map(Vec::len).max().unwrap_or(1) - 1;
-    prefix
-        .into_iter()
-        .zip(rest)
-        .map(|(mut p, r)| {
-            let last = p[p.len() - 1];
-            p.resize(end + 1, last);
-            p.extend_from_slice(&r[1..]);
-            let g = p[p.len() - 1];
-            let arrive = p.iter().rposition(|&c| c != g).map_or(0, |t| t + 1);
-            p.truncate(arrive + 1);
-            p
-        })
-        .collect()
-}
+/// Guide paths ([`crate::scatter`]): at most 10 steps longer than the shortest, a robot met
+/// costs 2 steps, at most 4000 states searched per robot. On warehouse-10-20-10-2-1 they cut the
+/// first plan's sum of costs by about a third at 500 and 1000 robots.
+const GUIDE: (u32, u32, usize) = (10, 2, 4000);
 
 /// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
 fn solve_lacam(
@@ -359,66 +335,18 @@ fn solve_lacam(
             .map(|(r, &s)| u64::from(dist[r][s as usize]))
             .sum(),
     );
-    let max_d = (0..starts.len())
-        .map(|r| dist[r][starts[r] as usize])
-        .max()
-        .unwrap_or(0);
-    // Rollouts with repair, each from where the last one left the robots, until two in a row
-    // bring no more robots home; then LaCAM from there (configurations reachable from the start reach
-    // the goals whenever the start does: moves are reversible).
-    let mut prefix: Option<Vec<Vec<u32>>> = None;
-    let mut from = starts.clone();
-    let mut home = count_home(&from, &targets);
-    let mut end = None;
-    let mut idle = 0;
-    for round in 0..ROLLOUTS {
-        let (quick, repaired) = rollout_and_repair(
-            &graph,
-            &dist,
-            &from,
-            &targets,
-            8 * max_d + 256,
-            budget,
-            config.seed.wrapping_add(round),
-        );
-        stats.expanded += repaired.expanded;
-        match quick {
-            RepairEnd::Found(paths) => {
-                end = Some((LacamEnd::Found(append(prefix.take(), paths)), 0));
-                break;
-            }
-            RepairEnd::Budget => {
-                end = Some((LacamEnd::Budget, 0));
-                break;
-            }
-            RepairEnd::GaveUp(None) => break,
-            RepairEnd::GaveUp(Some(partial)) => {
-                let here: Vec<u32> = partial.iter().map(|p| p[p.len() - 1]).collect();
-                let now = count_home(&here, &targets);
-                prefix = Some(append(prefix.take(), partial));
-                from = here;
-                if now <= home {
-                    idle += 1;
-                    if idle >= 2 {
-                        break;
-                    }
-                } else {
-                    idle = 0;
-                    home = now;
-                }
-            }
-        }
-    }
-    let (end, configurations) = match end {
-        Some(e) => e,
-        None => match lacam(&graph, &dist, &from, &targets, budget, config.seed) {
-            (LacamEnd::Found(rest), k) => (LacamEnd::Found(append(prefix, rest)), k),
-            (LacamEnd::Exhausted, _) if prefix.is_some() => {
-                lacam(&graph, &dist, &starts, &targets, budget, config.seed)
-            }
-            other => other,
-        },
-    };
+    // Guide paths that spread the robots out, then LaCAM from the start: complete, and with
+    // PIBT's corridor rules its first descent is usually already a plan.
+    let guide = guide_paths(&graph, &dist, &starts, &targets, GUIDE, budget);
+    let (end, configurations) = lacam_guided(
+        &graph,
+        &dist,
+        &starts,
+        &targets,
+        &guide,
+        budget,
+        config.seed,
+    );
     stats.configurations = configurations;
     match end {
         LacamEnd::Found(mut paths) => {
@@ -455,8 +383,7 @@ fn solve_lacam(
         LacamEnd::Budget => Err((
             Status::Timeout,
             format!(
-                "the budget ran out before a first plan ({home} of {} robots home where the last PIBT rollout began; {configurations} LaCAM configurations)",
-                targets.len()
+                "the budget ran out before a first plan ({configurations} LaCAM configurations)"
             ),
         )),
     }
@@ -528,22 +455,5 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
             )),
             stats,
         ),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::append;
-
-    #[test]
-    fn append_holds_the_prefix_then_continues() {
-        // Robot 0 arrives at step 2, robot 1 at step 1; the continuation starts at step 2.
-        let prefix = vec![vec![0, 1, 2], vec![5, 6]];
-        let rest = vec![vec![2, 3], vec![6, 6]];
-        assert_eq!(
-            append(Some(prefix), rest),
-            vec![vec![0, 1, 2, 3], vec![5, 6]]
-        );
-        assert_eq!(append(None, vec![vec![4]]), vec![vec![4]]);
     }
 }

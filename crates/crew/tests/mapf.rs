@@ -330,11 +330,9 @@ fn joint_on_a_warehouse_is_valid() {
 }
 
 #[test]
-fn dense_warehouses_take_the_repair_path_and_stay_valid() {
-    // Dense enough that the PIBT rollout leaves robots short, so that the continuation repair
-    // (with groups, and further rollouts from a partial plan) runs; a regression test for a
-    // repair that once replaced part of a path without telling the others.
-    let mut repaired = 0;
+fn dense_warehouses_are_solved_and_stay_valid() {
+    // Dense one-cell aisles, where plain PIBT steps circle for ever (robots crossing in an
+    // aisle push each other to and fro): LaCAM with PIBT's corridor rules plans them.
     for seed in 0..3 {
         let grid = aisles(47, 22);
         let n = 60 + 12 * seed as usize;
@@ -360,11 +358,7 @@ fn dense_warehouses_take_the_repair_path_and_stay_valid() {
             &paths,
         )
         .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
-        if out.stats.expanded > 0 {
-            repaired += 1;
-        }
     }
-    assert_eq!(repaired, 3, "every instance needs repair");
 }
 
 /// Shelves two cells deep between one-cell aisles, with one-cell gaps every 11 columns and open
@@ -379,4 +373,42 @@ fn aisles(w: u32, h: u32) -> Grid {
         }
     }
     grid
+}
+
+#[test]
+fn dense_aisles_need_few_configurations() {
+    // A regression test for PIBT's corridor rules: on one-cell aisles with 140 robots, LaCAM
+    // with them finds a plan within about 250 configurations; plain PIBT steps leave robots
+    // circling in the aisles and LaCAM had not found one after 200 000. The cap is no timing,
+    // only a bound on the search.
+    for seed in 0..3 {
+        let grid = aisles(47, 22);
+        let n = 140;
+        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
+        let inst = Instance::new(
+            grid,
+            Connectivity::Four,
+            robots,
+            goals,
+            Some((0..n).collect()),
+            "aisles",
+        )
+        .unwrap();
+        let budget = Budget {
+            deadline: None,
+            node_limit: Some(5_000),
+        };
+        let out = solve(&inst, &lacam_config(0, seed), &budget).unwrap();
+        let Some(paths) = out.paths else {
+            panic!("seed {seed}: {:?} {:?}", out.status, out.reason)
+        };
+        validate(
+            &inst.grid,
+            inst.connectivity,
+            &inst.robots,
+            &out.goals,
+            &paths,
+        )
+        .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+    }
 }
