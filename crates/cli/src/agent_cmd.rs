@@ -342,6 +342,11 @@ pub struct AgentArgs {
     /// Write the trace here: one JSON event per line, flushed per line
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Write an MCAP log here for Foxglove: this UAV's poses (2 Hz), states, zone, bricks,
+    /// and every message it sent or heard (finished when the agent stops; an agent killed
+    /// with SIGKILL leaves a log without its summary)
+    #[arg(long)]
+    pub mcap: Option<PathBuf>,
     /// This run's incarnation (a restarted agent takes a higher one than before)
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub incarnation: u64,
@@ -507,9 +512,8 @@ impl AgentArgs {
 
 /// Where an agent writes what it does.
 ///
-/// MCAP: the agent's Foxglove log (issue #14, `mason_report::McapLog` from the `mcap` branch)
-/// plugs in here as a second `AgentLog`: [`AgentLog::pose`] gives the poses, the events give
-/// states, zone and bricks, and [`AgentLog::message`] the messages sent and heard.
+/// Where an agent's events, messages and poses go: its trace file ([`JsonLines`]) and its
+/// MCAP log ([`McapAgentLog`]).
 pub trait AgentLog {
     /// One trace event.
     fn event(&mut self, e: &Event) -> std::io::Result<()>;
@@ -520,6 +524,93 @@ pub trait AgentLog {
     /// The UAV's pose at mission time `t` (m), after every tick.
     fn pose(&mut self, _t: f64, _pose: (f64, f64, f64)) -> std::io::Result<()> {
         Ok(())
+    }
+    /// The agent stopped: complete the log.
+    fn finish(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// The agent's MCAP log (the topics of `simulate --mcap`): poses at most every
+/// [`mason_report::POSE_RATE_HZ`]⁻¹ s of mission time and at every event, heading along
+/// the last move; every event; every message sent or heard on `/messages` (`kind` is
+/// `sent/KIND` or `heard/KIND`, `body` the whole message).
+pub struct McapAgentLog<'a> {
+    log: Option<mason_report::McapLog<'a, std::io::BufWriter<std::fs::File>>>,
+    uav: u32,
+    last: Option<(f64, (f64, f64, f64))>,
+    yaw: f64,
+    pose_due: bool,
+}
+
+impl<'a> McapAgentLog<'a> {
+    /// A log into `file` for UAV `uav` of the mission `meta` describes.
+    pub fn new(
+        file: std::fs::File,
+        meta: &mason_report::LogMeta<'a>,
+        uav: usize,
+    ) -> std::io::Result<Self> {
+        let log = mason_report::McapLog::new(std::io::BufWriter::new(file), meta)
+            .map_err(std::io::Error::other)?;
+        Ok(McapAgentLog {
+            log: Some(log),
+            uav: uav as u32,
+            last: None,
+            yaw: 0.0,
+            pose_due: true,
+        })
+    }
+
+    fn log(
+        &mut self,
+    ) -> std::io::Result<&mut mason_report::McapLog<'a, std::io::BufWriter<std::fs::File>>> {
+        self.log
+            .as_mut()
+            .ok_or_else(|| std::io::Error::other("the MCAP log is finished"))
+    }
+}
+
+impl AgentLog for McapAgentLog<'_> {
+    fn event(&mut self, e: &Event) -> std::io::Result<()> {
+        self.pose_due = true;
+        self.log()?.event(e).map_err(std::io::Error::other)
+    }
+
+    fn message(&mut self, t: f64, m: &Message, sent: bool) -> std::io::Result<()> {
+        let body = serde_json::to_value(m).map_err(std::io::Error::other)?;
+        let kind = format!("{}/{}", if sent { "sent" } else { "heard" }, m.kind.key());
+        self.log()?
+            .message(t, m.uav, &kind, &body)
+            .map_err(std::io::Error::other)
+    }
+
+    fn pose(&mut self, t: f64, (x, y, z): (f64, f64, f64)) -> std::io::Result<()> {
+        let period = 1.0 / mason_report::POSE_RATE_HZ;
+        let due = self.pose_due || self.last.is_none_or(|(t0, _)| t - t0 >= period);
+        if !due {
+            return Ok(());
+        }
+        if let Some((_, (x0, y0, _))) = self.last {
+            if (x - x0).hypot(y - y0) > 1e-6 {
+                self.yaw = (y - y0).atan2(x - x0);
+            }
+        }
+        self.last = Some((t, (x, y, z)));
+        self.pose_due = false;
+        let (uav, yaw) = (self.uav, self.yaw);
+        self.log()?
+            .pose(t, uav, mason_report::UavPose { x, y, z, yaw })
+            .map_err(std::io::Error::other)
+    }
+
+    fn finish(&mut self) -> std::io::Result<()> {
+        match self.log.take() {
+            Some(log) => {
+                let mut out = log.finish().map_err(std::io::Error::other)?;
+                std::io::Write::flush(&mut out)
+            }
+            None => Ok(()),
+        }
     }
 }
 
@@ -544,7 +635,7 @@ impl AgentLog for JsonLines {
 }
 
 /// Logs to none, one or several logs.
-impl AgentLog for Vec<Box<dyn AgentLog>> {
+impl AgentLog for Vec<Box<dyn AgentLog + '_>> {
     fn event(&mut self, e: &Event) -> std::io::Result<()> {
         self.iter_mut().try_for_each(|l| l.event(e))
     }
@@ -553,6 +644,9 @@ impl AgentLog for Vec<Box<dyn AgentLog>> {
     }
     fn pose(&mut self, t: f64, p: (f64, f64, f64)) -> std::io::Result<()> {
         self.iter_mut().try_for_each(|l| l.pose(t, p))
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.finish())
     }
 }
 
@@ -703,6 +797,12 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
         ),
         None => None,
     };
+    let mcap_file = match &a.mcap {
+        Some(p) => Some(
+            std::fs::File::create(p).map_err(|e| input_error(format!("{}: {e}", p.display())))?,
+        ),
+        None => None,
+    };
     let stop = Arc::new(AtomicBool::new(false));
     {
         let stop = stop.clone();
@@ -725,11 +825,25 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
         Box::new(vehicle),
     );
     agent.remember(&crate::world::placed_by(a.uav, &a.remember)?);
-    let mut logs: Vec<Box<dyn AgentLog>> = Vec::new();
+    let mut logs: Vec<Box<dyn AgentLog + '_>> = Vec::new();
     if let Some(f) = trace_file {
         logs.push(Box::new(JsonLines(f)));
     }
-    // MCAP: push the agent's McapLog here (see `AgentLog`).
+    let meta = mason_report::LogMeta {
+        mission_id: &net.mission,
+        uavs: team.config.uavs,
+        arena: &team.config.arena,
+        wall: &team.wall,
+    };
+    if let Some(f) = mcap_file {
+        let log = McapAgentLog::new(f, &meta, a.uav).map_err(|e| {
+            input_error(format!(
+                "{}: {e}",
+                a.mcap.as_ref().expect("given").display()
+            ))
+        })?;
+        logs.push(Box::new(log));
+    }
     let started = Instant::now();
     let ending = drive(
         &mut agent,
@@ -740,6 +854,7 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
         team.config.coord.heartbeat_s,
         &stop,
     )
+    .and_then(|ending| logs.finish().map(|()| ending))
     .map_err(|e| input_error(format!("trace: {e}")))?;
     let stats = transport.stats;
     transport.into_inner().close();

@@ -175,6 +175,8 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             cmd.args(["--prefix", p]);
         }
         cmd.arg("--trace").arg(&trace);
+        let mcap = a.out.join(format!("uav-{uav}-{incarnation}.mcap"));
+        cmd.arg("--mcap").arg(&mcap);
         cmd.arg("--world").arg(&a.out);
         for p in earlier {
             cmd.arg("--remember").arg(p);

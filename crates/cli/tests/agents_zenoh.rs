@@ -35,6 +35,7 @@ fn out_dir(name: &str) -> PathBuf {
 struct Launch {
     out: Output,
     doc: Value,
+    dir: PathBuf,
 }
 
 impl Launch {
@@ -85,7 +86,7 @@ fn launch(name: &str, extra: &[&str]) -> Launch {
     let text = std::fs::read_to_string(dir.join("trace.json"))
         .unwrap_or_else(|e| panic!("{name}: no trace.json ({e}): {}", stderr(&out)));
     let doc: Value = serde_json::from_str(&text).expect("trace.json is JSON");
-    Launch { out, doc }
+    Launch { out, doc, dir }
 }
 
 fn assert_finished(l: &Launch) {
@@ -104,6 +105,38 @@ fn a_fault_free_team_of_three_processes_builds_mbzirc() {
     assert!(agents.iter().all(|a| a["exit"] == "0"), "{agents:?}");
     let wall = l.doc["summary"]["wall_time_s"].as_f64().unwrap();
     eprintln!("fault-free mbzirc, 3 agents, --speed 100: {wall:.1} s wall");
+    // Every agent's MCAP log, read back by PyPI's `mcap` (tests/python/read_mcap.py): its own
+    // placements, its poses, and the messages it sent and heard.
+    let Some(python) = python_with("mcap.reader", "scripts/install-python-mcap.sh") else {
+        return;
+    };
+    for uav in 0..3 {
+        let file = l.dir.join(format!("uav-{uav}-1.mcap"));
+        let out = Command::new(&python)
+            .arg(root().join("tests/python/read_mcap.py"))
+            .arg(&file)
+            .output()
+            .expect("python runs");
+        assert!(
+            out.status.success(),
+            "read_mcap.py {}: {}",
+            file.display(),
+            stderr(&out)
+        );
+        let summary: Value = serde_json::from_str(stdout(&out).trim()).expect("a JSON summary");
+        let mine = l.of_kind("place").filter(|e| e["uav"] == uav).count();
+        assert_eq!(summary["placed"], mine, "UAV {uav}: {summary}");
+        let topics = &summary["topics"];
+        assert!(
+            topics[format!("/uav/{uav}/pose")].as_u64() > Some(100),
+            "{summary}"
+        );
+        assert!(topics["/messages"].as_u64() > Some(100), "{summary}");
+        assert!(
+            topics[format!("/uav/{uav}/state")].as_u64() > Some(10),
+            "{summary}"
+        );
+    }
 }
 
 #[test]
@@ -180,7 +213,8 @@ fn a_restarted_agent_rejoins_without_placing_a_brick_twice() {
 }
 
 /// The venv's python with `zenoh` in it, or None (after checking MASON_REQUIRE_PYTHON).
-fn python_with_zenoh() -> Option<PathBuf> {
+/// The venv's python if it can import `module` (after checking MASON_REQUIRE_PYTHON).
+fn python_with(module: &str, installer: &str) -> Option<PathBuf> {
     let env = std::env::var_os("MASON_PYENV")
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("target/pyenv"));
@@ -191,7 +225,7 @@ fn python_with_zenoh() -> Option<PathBuf> {
     };
     let python = env.join("bin/python");
     let works = Command::new(&python)
-        .args(["-c", "import zenoh"])
+        .args(["-c", &format!("import {module}")])
         .output()
         .is_ok_and(|o| o.status.success());
     if works {
@@ -199,11 +233,11 @@ fn python_with_zenoh() -> Option<PathBuf> {
     }
     assert!(
         std::env::var_os("MASON_REQUIRE_PYTHON").is_none(),
-        "MASON_REQUIRE_PYTHON is set but {} cannot import zenoh (run scripts/install-python-zenoh.sh)",
+        "MASON_REQUIRE_PYTHON is set but {} cannot import {module} (run {installer})",
         python.display()
     );
     eprintln!(
-        "skipped: no Python zenoh in {} (scripts/install-python-zenoh.sh installs it)",
+        "skipped: no Python {module} in {} ({installer} installs it)",
         env.display()
     );
     None
@@ -222,7 +256,7 @@ fn free_base_port() -> u16 {
 
 #[test]
 fn a_python_ground_station_decodes_every_uav_s_heartbeats_and_states() {
-    let Some(python) = python_with_zenoh() else {
+    let Some(python) = python_with("zenoh", "scripts/install-python-zenoh.sh") else {
         return;
     };
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
