@@ -473,6 +473,7 @@ fn a_real_cut_of_the_network_sends_auto_to_windows_and_back_safely() {
     let l = Launch {
         out,
         doc: serde_json::from_str(&text).unwrap(),
+        dir: dir.clone(),
     };
     assert_finished(&l);
     // Mission time of the cut, roughly: (wall − lead) × speed.

@@ -292,6 +292,12 @@ pub struct AgentSetup<'a> {
     pub lease_s: f64,
 }
 
+/// Whether two times that may have crossed the wire name the same instant: a JSON round trip
+/// by another client may change a float's last bits.
+fn same_time(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-6 * (1.0 + a.abs().max(b.abs()))
+}
+
 /// The default time after which an unheard teammate is declared out (s).
 pub const DEFAULT_DEAD_AFTER_S: f64 = 30.0;
 /// The default lease of a zone request (s).
@@ -1115,7 +1121,7 @@ impl<'a> Agent<'a> {
                     && self.peers[v].as_ref().is_some_and(|p| {
                         p.incarnation == r.incarnation
                             && p.status.brick == Some(b.0)
-                            && p.status.claimed_at == r.claimed_at
+                            && same_time(p.status.claimed_at, r.claimed_at)
                     });
                 if !still {
                     self.pair_follower = None;
@@ -1155,7 +1161,7 @@ impl<'a> Agent<'a> {
         }
         // The follower follows a leader that carries the brick with this very claim.
         let (me, inc, at) = (self.me as u32, self.incarnation, self.claimed_at);
-        let mine = |r: &PairRef| r.uav == me && r.incarnation == inc && r.claimed_at == at;
+        let mine = |r: &PairRef| r.uav == me && r.incarnation == inc && same_time(r.claimed_at, at);
         let Some(lead) = partner_status.filter(|s| same(s) && s.pair.as_ref().is_some_and(mine))
         else {
             return;
