@@ -375,18 +375,7 @@ pub struct NetworkFile {
     pub connect: Vec<String>,
 }
 
-/// Where and how an agent talks, checked.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Network {
-    /// The mission id (one key chunk).
-    pub mission: String,
-    /// The key prefix (key chunks, no wildcard).
-    pub prefix: String,
-    /// Endpoints to listen on.
-    pub listen: Vec<String>,
-    /// Endpoints to connect to.
-    pub connect: Vec<String>,
-}
+pub use crate::transport::Network;
 
 /// The default key prefix.
 pub const DEFAULT_PREFIX: &str = "mason";

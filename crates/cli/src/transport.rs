@@ -9,6 +9,20 @@ use mason_mission::agent::Message;
 use mason_mission::Window;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+
+/// Where and how an agent talks, checked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Network {
+    /// The mission id (one key chunk).
+    pub mission: String,
+    /// The key prefix (key chunks, no wildcard).
+    pub prefix: String,
+    /// Endpoints to listen on.
+    pub listen: Vec<String>,
+    /// Endpoints to connect to.
+    pub connect: Vec<String>,
+}
+
 #[cfg(test)]
 use std::collections::VecDeque;
 #[cfg(test)]

@@ -4,8 +4,8 @@
 //! `PREFIX/MISSION/*/*` and skips its own key. Anything that does not decode as a
 //! [`Message`] is counted and ignored.
 
-use crate::agent_cmd::Network;
 use crate::fail::{input_error, CliResult};
+use crate::transport::Network;
 use crate::transport::Transport;
 use mason_mission::agent::{Message, MessageKind};
 use std::collections::HashMap;
