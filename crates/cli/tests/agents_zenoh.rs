@@ -11,7 +11,7 @@
 
 mod common;
 
-use common::{assert_input_error, mason, stderr, stdout};
+use common::{assert_input_error, mason, python_with, root, stderr, stdout};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -19,10 +19,6 @@ use std::process::{Command, Output, Stdio};
 use std::sync::Mutex;
 
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn out_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("mason-agents-{name}-{}", std::process::id()));
@@ -210,37 +206,6 @@ fn a_restarted_agent_rejoins_without_placing_a_brick_twice() {
     assert!(l
         .of_kind("state")
         .any(|e| e["uav"] == 2 && e["t"].as_f64().unwrap() > 210.0 && e["state"] == "TakeOff"));
-}
-
-/// The venv's python with `zenoh` in it, or None (after checking MASON_REQUIRE_PYTHON).
-/// The venv's python if it can import `module` (after checking MASON_REQUIRE_PYTHON).
-fn python_with(module: &str, installer: &str) -> Option<PathBuf> {
-    let env = std::env::var_os("MASON_PYENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("target/pyenv"));
-    let env = if env.is_absolute() {
-        env
-    } else {
-        root().join(env)
-    };
-    let python = env.join("bin/python");
-    let works = Command::new(&python)
-        .args(["-c", &format!("import {module}")])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if works {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("MASON_REQUIRE_PYTHON").is_none(),
-        "MASON_REQUIRE_PYTHON is set but {} cannot import {module} (run {installer})",
-        python.display()
-    );
-    eprintln!(
-        "skipped: no Python {module} in {} ({installer} installs it)",
-        env.display()
-    );
-    None
 }
 
 fn free_base_port() -> u16 {

@@ -6,44 +6,10 @@
 
 mod common;
 
-use common::{assert_input_error, mason, stdout};
+use common::{assert_input_error, mason, python_with, root, stdout};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// The venv's python with `mcap` in it, or None (after checking MASON_REQUIRE_PYTHON).
-fn python_with_mcap() -> Option<PathBuf> {
-    let env = std::env::var_os("MASON_PYENV")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("target/pyenv"));
-    let env = if env.is_absolute() {
-        env
-    } else {
-        root().join(env)
-    };
-    let python = env.join("bin/python");
-    let works = Command::new(&python)
-        .args(["-c", "import mcap.reader"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if works {
-        return Some(python);
-    }
-    assert!(
-        std::env::var_os("MASON_REQUIRE_PYTHON").is_none(),
-        "MASON_REQUIRE_PYTHON is set but {} cannot import mcap (run scripts/install-python-mcap.sh)",
-        python.display()
-    );
-    eprintln!(
-        "skipped: no Python mcap reader in {} (scripts/install-python-mcap.sh installs it)",
-        env.display()
-    );
-    None
-}
 
 /// The checker's one-line JSON summary of `file`.
 fn read_mcap(python: &Path, file: &Path) -> Value {
@@ -140,7 +106,7 @@ fn assert_agrees(summary: &Value, run: &Value, uavs: usize) {
 
 #[test]
 fn simulate_mcap_reads_back_with_pypi_mcap_and_matches_the_json() {
-    let Some(python) = python_with_mcap() else {
+    let Some(python) = python_with("mcap.reader", "scripts/install-python-mcap.sh") else {
         return;
     };
     let dir = temp_dir("read");

@@ -247,31 +247,13 @@ fn dump_case() {
     let case: usize = std::env::var("MASON_CASE").unwrap().parse().unwrap();
     let (faults, coord, grasp) = random_case(case);
     println!("{faults:?} {coord:?} grasp {grasp}");
-    let w = wall("mbzirc");
-    let model = CostModel::default();
-    let order = order(&w, &model);
-    let mut config = MissionConfig::with_uavs(3);
-    config.faults.grasp_fail = grasp;
-    let slot = slot_length(&w, &model, &config).unwrap();
-    let setup = AgentSetup {
-        wall: &w,
-        order: &order,
-        assignment: None,
-        model: &model,
-        config: &config,
-        coord,
-        slot_s: slot,
-        uav: 0,
-        mission: "test",
-        incarnation: 1,
-        dead_after_s: DEFAULT_DEAD_AFTER_S,
-        lease_s: DEFAULT_LEASE_S,
-    };
-    let run = fly_team(setup, &faults, case as u64);
+    let (run, _, summary) = try_fly("mbzirc", 3, coord, &faults, case as u64, |c| {
+        c.faults.grasp_fail = grasp;
+    });
     for e in &run.events {
         println!("{:8.2} {} {:?}", e.t, e.uav, e.kind);
     }
-    println!("{:?}", check_trace(&w, 3, &run.events));
+    println!("{summary:?}");
 }
 
 #[test]

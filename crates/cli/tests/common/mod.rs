@@ -1,9 +1,46 @@
 //! Helpers shared by the CLI test binaries: run `mason`, read its output, check a bad-input
-//! error. Each test binary uses only some of them.
+//! error, find the project's Python venv. Each test binary uses only some of them.
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The venv's python (`${MASON_PYENV:-target/pyenv}`) if it can import `module`, else `None`
+/// with a skip notice; with MASON_REQUIRE_PYTHON set, a missing module fails the test instead.
+/// `installer` is the project script that installs it.
+pub fn python_with(module: &str, installer: &str) -> Option<PathBuf> {
+    let env = std::env::var_os("MASON_PYENV")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("target/pyenv"));
+    let env = if env.is_absolute() {
+        env
+    } else {
+        root().join(env)
+    };
+    let python = env.join("bin/python");
+    let works = Command::new(&python)
+        .args(["-c", &format!("import {module}")])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if works {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("MASON_REQUIRE_PYTHON").is_none(),
+        "MASON_REQUIRE_PYTHON is set but {} cannot import {module} (run {installer})",
+        python.display()
+    );
+    eprintln!(
+        "skipped: no Python {module} in {} ({installer} installs it)",
+        env.display()
+    );
+    None
+}
 
 /// A fixture in the workspace's `tests/data`.
 pub fn data(name: &str) -> String {
