@@ -367,7 +367,7 @@ fn run(cli: Cli) -> CliResult<()> {
                     seed,
                     time_limit,
                 };
-                return plan_schedule(design, model, req, json, svg, html);
+                return plan_schedule(design, model, req, json, svg, html, started);
             }
             if uav_hazard.is_some() || budget.is_some() {
                 return Err(input_error(
@@ -412,7 +412,7 @@ fn run(cli: Cli) -> CliResult<()> {
             } else {
                 print!("{}", plan::plan_table(&problem, &checked));
             }
-            plan::report_overrun(limit, started, &checked);
+            plan::report_overrun(limit, started, checked.outcome.stats.elapsed.as_secs_f64());
             plan::exit_for(&checked)
         }
         Command::Simulate(args) => simulate(args, cli.quiet),
@@ -497,6 +497,7 @@ fn plan_schedule(
     json: bool,
     svg: Option<PathBuf>,
     html: Option<PathBuf>,
+    started: std::time::Instant,
 ) -> CliResult<()> {
     let req = args.resolve()?;
     let team = schedule_cmd::load_team_model(model.as_deref())?;
@@ -540,6 +541,11 @@ fn plan_schedule(
     } else {
         print!("{}", schedule_cmd::schedule_table(&problem, &checked));
     }
+    plan::report_overrun(
+        req.time_limit,
+        started,
+        checked.outcome.stats.elapsed.as_secs_f64(),
+    );
     Ok(())
 }
 
@@ -813,6 +819,7 @@ fn compare_replanning(
 }
 
 fn crew(a: CrewArgs) -> CliResult<()> {
+    let started = std::time::Instant::now();
     check_outputs(&[&a.svg, &a.html])?;
     let limit = plan::time_limit(a.time_limit)?;
     let prm = mason_crew::PrmConfig {
@@ -886,6 +893,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             crew_cmd::crew_table(&inst, &source, &choices.config, &result)
         );
     }
+    plan::report_overrun(limit, started, result.outcome.stats.elapsed.as_secs_f64());
     crew_cmd::exit_for(&result)
 }
 

@@ -565,3 +565,48 @@ fn a_huge_scenario_or_map_line_is_refused_without_being_split_or_echoed() {
     let o = mason(&["crew", &map, "--scen", &scen]);
     assert_input_error(&o, &["bad.map:2", "(500 characters)"]);
 }
+
+/// Runs `args` and asserts that, when the whole command took over 10 % more than `limit`
+/// seconds, it said so on stderr.
+fn assert_overrun_reported(args: &[&str], limit: f64) {
+    let started = std::time::Instant::now();
+    let o = mason(args);
+    let took = started.elapsed().as_secs_f64();
+    let err = stderr(&o);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{err}");
+    if took > 1.1 * limit + 0.05 {
+        assert!(
+            err.contains("overrun") && err.contains(&format!("--time-limit {limit} s")),
+            "took {took:.2} s under --time-limit {limit}, no overrun reported: {err}"
+        );
+    }
+}
+
+#[test]
+fn crew_and_team_schedules_keep_their_time_limit_or_report_the_overrun() {
+    // A debug build reads, solves, checks and prints these well past 10 ms.
+    assert_overrun_reported(
+        &[
+            "crew",
+            &data("crew-room.map"),
+            "--scen",
+            &data("crew-room.scen"),
+            "--resolve",
+            "lacam",
+            "--time-limit",
+            "0.01",
+        ],
+        0.01,
+    );
+    assert_overrun_reported(
+        &[
+            "plan",
+            "builtin:mbzirc",
+            "--objective",
+            "makespan",
+            "--time-limit",
+            "0.01",
+        ],
+        0.01,
+    );
+}
