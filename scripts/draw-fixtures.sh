@@ -70,3 +70,21 @@ draw tests/data/wall-imagemagick.png 28 40 2 black white 6 "R G R/G B R G/B O R 
 draw tests/data/thesis-figure-3-2-imagemagick.png 50 50 3 '#707070' '#e6e6e6' 10 "R G B G R/G B R R G"
 # No outlines at all, thin layers (0.75 units), cream paper; touching reds are read as two.
 draw tests/data/wall-imagemagick-borderless.png 24 18 0 none '#f5efdc' 8 "R R G . B/O R R G R R"
+# The proportions the first reader could not read (layers 1.25, 1.0, 0.4 and 2.0 units tall),
+# then changed as an image tool changes a drawing: scaled by a fraction, scaled with Lanczos
+# (its ringing overshoots the edges), stretched unevenly, blurred.
+W3="R G R/G B R G/B O R G"
+W5="G R G R . B/O R G R R/B B G R/R O R G R/G G B R R R"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+draw "$tmp/125.png" 20 25 2 black white 5 "$W3"
+"$CONVERT" "$tmp/125.png" -resize 61.8% tests/data/wall-imagemagick-125-scaled.png
+draw "$tmp/100.png" 20 20 1 '#808080' white 5 "$W3"
+"$CONVERT" "$tmp/100.png" -resize 173% tests/data/wall-imagemagick-100-scaled.png
+draw "$tmp/040.png" 30 12 2 white '#f5efdc' 5 "$W3"
+"$CONVERT" "$tmp/040.png" -resize 80%x130% tests/data/wall-imagemagick-040-stretched.png
+draw "$tmp/200.png" 16 32 0 none white 5 "$W3"
+"$CONVERT" "$tmp/200.png" -filter Lanczos -resize 150% tests/data/wall-imagemagick-200-lanczos.png
+draw tests/data/wall-imagemagick-5-thick.png 24 30 4 '#404040' white 6 "$W5"
+draw "$tmp/5.png" 18 14 1 black '#fffaf0' 4 "$W5"
+"$CONVERT" "$tmp/5.png" -blur 0x1.0 tests/data/wall-imagemagick-5-blurred.png

@@ -342,12 +342,23 @@ fn find_layers(px: &Pixels) -> Result<Vec<Layer>, Failure> {
         .flat_map(|&b| split_at_faint_borders(px, b))
         .filter(tall)
         .collect();
-    // A thin segment is the blurred edge of a layer at most two rows away, a speck of noise
-    // (no run as long as two bricks' least colour), or a stray mark.
-    for s in segments.iter().filter(|s| !tall(s)) {
-        let near = bands
-            .iter()
-            .any(|l| l.bottom + 2 >= s.top && s.bottom + 2 >= l.top);
+    // A thin segment is the blurred edge of a layer (at most two rows away, or joined to it
+    // by coloured rows all the way), a speck of noise (no run as long as two bricks' least
+    // colour), or a stray mark.
+    let mut block = vec![0usize; segments.len()]; // stacks of segments with no row between
+    for i in 1..segments.len() {
+        block[i] = block[i - 1] + usize::from(segments[i].top != segments[i - 1].bottom);
+    }
+    let mut has_layer = vec![false; block.last().map_or(0, |b| b + 1)];
+    for (s, &b) in segments.iter().zip(&block) {
+        has_layer[b] |= tall(s);
+    }
+    let solid: Vec<bool> = block.iter().map(|&b| has_layer[b]).collect();
+    for (i, s) in segments.iter().enumerate().filter(|(_, s)| !tall(s)) {
+        let near = solid[i]
+            || bands
+                .iter()
+                .any(|l| l.bottom + 2 >= s.top && s.bottom + 2 >= l.top);
         let speck = (s.top..s.bottom)
             .flat_map(|y| &row_spans[y])
             .all(|r| r.end - r.start < 2 * MIN_COLOUR_PX);
@@ -645,31 +656,48 @@ fn split_at_dips(means: &[[f32; 3]], run: Span) -> Vec<Span> {
 /// another grey lies between them).
 fn colour_junction(means: &[[f32; 3]], pair: &[Span], colours: &[[f32; 3]]) -> Option<f64> {
     let (a, b) = (pair[0], pair[1]);
-    let (ka, kb) = (colours[0], colours[1]);
-    let d: [f32; 3] = std::array::from_fn(|c| kb[c] - ka[c]);
-    let norm: f32 = d.iter().map(|v| v * v).sum();
-    if b.start - a.end > 2 || norm <= 0.0 {
-        return None;
-    }
-    let share_of_b = |p: [f32; 3]| -> f32 {
-        ((0..3).map(|c| (p[c] - ka[c]) * d[c]).sum::<f32>() / norm).clamp(0.0, 1.0)
-    };
-    let off_the_blend = |p: [f32; 3]| -> f32 {
-        let t = share_of_b(p);
-        (0..3)
-            .map(|c| (p[c] - ka[c] - t * d[c]).powi(2))
-            .sum::<f32>()
-            .sqrt()
-    };
-    if (a.end - 1..b.start + 1).any(|x| off_the_blend(means[x]) > BLEND_DISTANCE) {
+    let blend = Blend::new(colours[0], colours[1])?;
+    if b.start - a.end > 2 || (a.end - 1..b.start + 1).any(|x| !blend.holds(means[x])) {
         return None;
     }
     let from = a.end.saturating_sub(EDGE_REACH).max((a.start + a.end) / 2);
     let to = (b.start + EDGE_REACH).min((b.start + b.end) / 2);
     let first_share: f64 = (from..to)
-        .map(|x| 1.0 - f64::from(share_of_b(means[x])))
+        .map(|x| 1.0 - f64::from(blend.share_of_second(means[x])))
         .sum();
     Some(from as f64 + first_share)
+}
+
+/// The colours on the straight line from one colour to another: what two colours blurred or
+/// anti-aliased into each other make.
+struct Blend {
+    first: [f32; 3],
+    step: [f32; 3],
+    norm: f32,
+}
+
+impl Blend {
+    /// `None` when the two colours are the same.
+    fn new(first: [f32; 3], second: [f32; 3]) -> Option<Blend> {
+        let step: [f32; 3] = std::array::from_fn(|c| second[c] - first[c]);
+        let norm: f32 = step.iter().map(|v| v * v).sum();
+        (norm > 0.0).then_some(Blend { first, step, norm })
+    }
+
+    /// How much of the second colour `p` holds, in [0, 1].
+    fn share_of_second(&self, p: [f32; 3]) -> f32 {
+        let along: f32 = (0..3).map(|c| (p[c] - self.first[c]) * self.step[c]).sum();
+        (along / self.norm).clamp(0.0, 1.0)
+    }
+
+    /// Whether `p` lies on the line, within [`BLEND_DISTANCE`].
+    fn holds(&self, p: [f32; 3]) -> bool {
+        let t = self.share_of_second(p);
+        let off: f32 = (0..3)
+            .map(|c| (p[c] - self.first[c] - t * self.step[c]).powi(2))
+            .sum();
+        off.sqrt() <= BLEND_DISTANCE
+    }
 }
 
 /// A run's colour: the median of its columns, its two edge columns left out.
@@ -717,7 +745,8 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
             .collect();
         // Over two colours blending into each other, faint shares count (they add up to the
         // whole); over a border, a faint tint is the paper's.
-        let (columns, share_of): (Vec<usize>, ShareOf) = if alike.is_empty() {
+        let two_colours = alike.is_empty();
+        let (columns, share_of): (Vec<usize>, ShareOf) = if two_colours {
             (all, colour_share)
         } else {
             (alike, coverage)
@@ -725,30 +754,58 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         if columns.is_empty() {
             continue;
         }
-        // Each column's colour in each layer, and each row's share of it near the gap.
-        let upper_colours = column_means(px, upper);
-        let lower_colours = column_means(px, lower);
-        let share = |y: usize, colours: &[[f32; 3]]| -> f64 {
-            columns
-                .iter()
-                .map(|&x| share_of(px.rgb(y * px.width + x), colours[x]))
-                .sum::<f64>()
-                / columns.len() as f64
-        };
         let middle = (upper.bottom + lower.top) / 2;
         let upper_inner = upper
             .bottom
             .saturating_sub(2 * EDGE_REACH)
             .max((upper.top + upper.bottom) / 2);
         let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
-        let colour_bottom = upper_inner as f64
-            + (upper_inner..middle)
-                .map(|y| share(y, &upper_colours))
-                .sum::<f64>();
-        let colour_top = lower_inner as f64
-            - (middle..lower_inner)
-                .map(|y| share(y, &lower_colours))
-                .sum::<f64>();
+        // Each column's colour in each layer. Where two colours blend straight into each other
+        // (every row between them on the line from one to the other, each pixel averaged with
+        // its left and right neighbours against noise), each row's share of the lower colour
+        // is measured along that line: the shares add up to one and show no border.
+        let upper_colours = column_means(px, upper);
+        let lower_colours = column_means(px, lower);
+        let smoothed = |x: usize, y: usize| -> [f32; 3] {
+            let near = x.saturating_sub(1)..(x + 2).min(px.width);
+            let n = near.len() as f32;
+            let mut sum = [0f32; 3];
+            for xx in near {
+                let p = px.rgb(y * px.width + xx);
+                (0..3).for_each(|c| sum[c] += p[c]);
+            }
+            sum.map(|v| v / n)
+        };
+        let blends: Vec<Option<Blend>> = columns
+            .iter()
+            .map(|&x| {
+                let blend = Blend::new(upper_colours[x], lower_colours[x])?;
+                let straight =
+                    two_colours && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)));
+                straight.then_some(blend)
+            })
+            .collect();
+        // Each row's share of a layer's colour near the gap (`lower`: of the lower layer's).
+        let share = |y: usize, lower_layer: bool| -> f64 {
+            columns
+                .iter()
+                .zip(&blends)
+                .map(|(&x, blend)| {
+                    let p = px.rgb(y * px.width + x);
+                    match (blend, lower_layer) {
+                        (Some(b), true) => f64::from(b.share_of_second(p)),
+                        (Some(b), false) => 1.0 - f64::from(b.share_of_second(p)),
+                        (None, true) => share_of(p, lower_colours[x]),
+                        (None, false) => share_of(p, upper_colours[x]),
+                    }
+                })
+                .sum::<f64>()
+                / columns.len() as f64
+        };
+        let colour_bottom =
+            upper_inner as f64 + (upper_inner..middle).map(|y| share(y, false)).sum::<f64>();
+        let colour_top =
+            lower_inner as f64 - (middle..lower_inner).map(|y| share(y, true)).sum::<f64>();
         gaps.push(colour_top - colour_bottom);
     }
     if gaps.is_empty() {

@@ -142,29 +142,47 @@ fn borderless_runs(wall: &Wall) -> Vec<Vec<(i64, i64, BrickType)>> {
 }
 
 /// Whether a drawing with no borders is ambiguous by nature, whatever the reader: two
-/// touching layers draw the same, or the colour runs also fit a coarser unit with fewer
-/// bricks (every edge on a grid of `p` units, and every run a whole number of its colour's
-/// length at `q` < `p` units per `p`).
+/// touching layers draw the same, or the colour runs also fit a coarser grid with fewer bricks
+/// and a thin border (at most a fifth of the coarser unit, the gaps between runs read as
+/// borders). On a grid of `p / q` drawn units with a border of `b` drawn units, a run's grid
+/// lines are its edges moved out by half the border, except where it touches another run (two
+/// colours blending, no border): every grid line must fall on the coarse grid and every run be
+/// a whole number of its colour's length.
 fn ambiguous_without_borders(wall: &Wall) -> bool {
     let layers = borderless_runs(wall);
     if layers.windows(2).any(|w| w[0] == w[1]) {
         return true;
     }
-    let edges: Vec<i64> = layers
-        .iter()
-        .flatten()
-        .flat_map(|&(a, b, _)| [a, b])
-        .collect();
-    let g = edges
-        .iter()
-        .fold(0i64, |g, &e| gcd(g, (e - edges[0]).abs()));
-    (2..=g).filter(|p| g % p == 0).any(|p| {
-        (1..p).filter(|&q| gcd(p, q) == 1).any(|q| {
-            layers
-                .iter()
-                .flatten()
-                .all(|&(a, b, kind)| ((b - a) / p * q) % i64::from(kind.units()) == 0)
-        })
+    let bricks = |q: i64, p: i64, b: i64| -> Option<i64> {
+        // Coordinates doubled, so that half a border is whole; whole multiples of `p / q`
+        // that are whole drawn units are multiples of `p`.
+        let mut lines = Vec::new();
+        let mut count = 0;
+        for runs in &layers {
+            for (i, &(a, e, kind)) in runs.iter().enumerate() {
+                let touches_left = i > 0 && runs[i - 1].1 == a;
+                let touches_right = runs.get(i + 1).is_some_and(|n| n.0 == e);
+                let left = 2 * a - if touches_left { 0 } else { b };
+                let right = 2 * e + if touches_right { 0 } else { b };
+                lines.extend([left, right]);
+                let length = right - left;
+                if length % (2 * p) != 0 || (length / (2 * p) * q) % i64::from(kind.units()) != 0 {
+                    return None;
+                }
+                count += length / (2 * p) * q / i64::from(kind.units());
+            }
+        }
+        lines
+            .iter()
+            .all(|&l| (l - lines[0]).rem_euclid(2 * p) == 0)
+            .then_some(count)
+    };
+    let drawn = bricks(1, 1, 0).expect("the drawn grid fits");
+    let widest = layers.iter().flatten().map(|r| r.1).max().unwrap_or(0);
+    (2..=widest.max(2)).any(|p| {
+        (1..p)
+            .filter(|&q| gcd(p, q) == 1)
+            .any(|q| (0..=p / (5 * q)).any(|b| bricks(q, p, b).is_some_and(|n| n < drawn)))
     })
 }
 
@@ -377,11 +395,22 @@ fn brick_of_wrong_length_names_its_pixel() {
 /// stroked rectangles with anti-aliased edges, at other proportions and on other paper.
 #[test]
 fn drawings_made_with_imagemagick_read_back() {
+    const THREE_LAYERS: &str = "R G R\nG B R G\nB O R G";
+    const FIVE_LAYERS: &str = "G R G R . B\nO R G R R\nB B G R\nR O R G R\nG G B R R R";
     let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data");
     for (file, text) in [
         ("wall-imagemagick.png", "R G R\nG B R G\nB O R G"),
         ("thesis-figure-3-2-imagemagick.png", "R G B G R\nG B R R G"),
         ("wall-imagemagick-borderless.png", "R R G . B\nO R R G R R"),
+        // Layers 1.25, 1.0, 0.4 and 2.0 units tall, then scaled by 61.8 % and 173 %,
+        // stretched 80 % × 130 %, and scaled 150 % with Lanczos.
+        ("wall-imagemagick-125-scaled.png", THREE_LAYERS),
+        ("wall-imagemagick-100-scaled.png", THREE_LAYERS),
+        ("wall-imagemagick-040-stretched.png", THREE_LAYERS),
+        ("wall-imagemagick-200-lanczos.png", THREE_LAYERS),
+        // Five layers: 4 px dark outlines; 1 px outlines on ivory, blurred.
+        ("wall-imagemagick-5-thick.png", FIVE_LAYERS),
+        ("wall-imagemagick-5-blurred.png", FIVE_LAYERS),
     ] {
         let bytes = std::fs::read(data.join(file)).unwrap();
         let read = read_png(&bytes, file).unwrap_or_else(|e| panic!("{e}"));
