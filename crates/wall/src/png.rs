@@ -690,6 +690,15 @@ impl Blend {
         (along / self.norm).clamp(0.0, 1.0)
     }
 
+    /// Whether every blend of the two is a colour: orange and blue blend through grey, and
+    /// there a grey border between them would look like their blend.
+    fn keeps_colour(&self) -> bool {
+        [0.25f32, 0.5, 0.75].into_iter().all(|t| {
+            let p: [f32; 3] = std::array::from_fn(|c| self.first[c] + t * self.step[c]);
+            colour_part(p).into_iter().fold(0f32, f32::max) >= MIN_SATURATION
+        })
+    }
+
     /// Whether `p` lies on the line, within [`BLEND_DISTANCE`].
     fn holds(&self, p: [f32; 3]) -> bool {
         let t = self.share_of_second(p);
@@ -762,8 +771,9 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
         let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
         // Each column's colour in each layer. Where two colours blend straight into each other
         // (every row between them on the line from one to the other, each pixel averaged with
-        // its left and right neighbours against noise), each row's share of the lower colour
-        // is measured along that line: the shares add up to one and show no border.
+        // its left and right neighbours against noise, and no grey on that line), each row's
+        // share of the lower colour is measured along that line: the shares add up to one and
+        // show no border.
         let upper_colours = column_means(px, upper);
         let lower_colours = column_means(px, lower);
         let smoothed = |x: usize, y: usize| -> [f32; 3] {
@@ -780,8 +790,9 @@ fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<
             .iter()
             .map(|&x| {
                 let blend = Blend::new(upper_colours[x], lower_colours[x])?;
-                let straight =
-                    two_colours && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)));
+                let straight = two_colours
+                    && blend.keeps_colour()
+                    && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)));
                 straight.then_some(blend)
             })
             .collect();

@@ -309,6 +309,48 @@ fn every_cell_of_the_proportion_grid_reads_back() {
 /// read exactly (the border around the wall is measured); with a border as white as the
 /// paper, or with bricks all alike, the drawing may also be reported as ambiguous, never
 /// misread.
+/// Drawings the stress run once misread, each standing for a kind of drawing: a layer's
+/// blurred, noisy lower edge that flickers over several rows (once called a stray mark); two
+/// colours blurred into each other between borderless layers (once measured as a 1.5 px
+/// border, which picked a grid a quarter as wide); orange on blue across a grey border (orange
+/// and blue blend through grey, so that border must not be taken for their blend).
+#[test]
+fn drawings_the_stress_run_once_misread() {
+    let cream = BACKGROUNDS[1];
+    let cases = [
+        (
+            "G O G G | O R G\nO O R | G R O . R R R R",
+            24.04,
+            3.0,
+            [128, 128, 128],
+            1,
+            20,
+            0x1_1a9d,
+        ),
+        ("R\nG R R R R", 24.13, 0.0, [0, 0, 0], 9, 20, 0x1_5a7f),
+        ("B\nO", 16.0, 2.0, [128, 128, 128], 7, 0, 0),
+        ("B\nO", 24.0, 2.0, [128, 128, 128], 8, 0, 0),
+    ];
+    for (text, unit_px, border_px, border, margin_px, noise, seed) in cases {
+        let wall = parse_layer_text(text, "t").unwrap();
+        let drawing = Drawing {
+            style: RasterStyle {
+                unit_px,
+                layer_units: 3.0,
+                border_px,
+                border,
+                background: cream,
+                margin_px,
+            },
+            blur: true,
+            noise,
+        };
+        let img = draw(&wall, &drawing, &mut ChaCha8Rng::seed_from_u64(seed));
+        let read = read_image(&img, "t.png").unwrap_or_else(|e| panic!("{text}: {e}"));
+        assert_eq!(canonical(&read), canonical(&wall), "{text} {drawing:?}");
+    }
+}
+
 #[test]
 fn lone_bricks_in_one_layer() {
     let pinned = ["R . . G . O", "O . . R", "R . G . . B"];
