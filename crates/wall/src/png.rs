@@ -121,26 +121,57 @@ pub fn classify_pixel(p: [u8; 3]) -> Option<(BrickType, f32)> {
     Some((kind, sat))
 }
 
-/// Decodes PNG (or any format the `image` crate was built with) bytes and reads the wall.
+/// Decodes PNG bytes and reads the wall.
 ///
-/// The image's size is checked before it is decoded: more than [`MAX_PIXELS`] is an error.
+/// The image's size is checked from its header before it is decoded: more than
+/// [`MAX_PIXELS`] is an error. It is decoded straight to 8-bit RGB (16-bit samples cut to 8,
+/// grey spread to three channels, alpha dropped), so a 50-megapixel image needs about 4 bytes
+/// per pixel at most while decoding.
 pub fn read_png(bytes: &[u8], name: &str) -> Result<Wall, WallError> {
-    let decode_error = |reason: String| {
+    let img = decode_rgb(bytes).map_err(|reason| {
         WallError::new(name, Location::Whole, WallErrorKind::ImageDecode { reason })
-    };
-    let reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| decode_error(e.to_string()))?;
-    let (w, h) = reader
-        .into_dimensions()
-        .map_err(|e| decode_error(e.to_string()))?;
+    })?;
+    read_image(&img, name)
+}
+
+/// PNG bytes as 8-bit RGB, refusing more than [`MAX_PIXELS`] before allocating for them.
+fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
+    let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
+    let (w, h) = reader.info().size();
     if u64::from(w) * u64::from(h) > MAX_PIXELS {
-        return Err(decode_error(format!(
+        return Err(format!(
             "{w}×{h} is more than the {MAX_PIXELS} pixels a wall image may have"
-        )));
+        ));
     }
-    let img = image::load_from_memory(bytes).map_err(|e| decode_error(e.to_string()))?;
-    read_image(&img.to_rgb8(), name)
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| format!("{w}×{h} does not fit in memory"))?;
+    let mut buf = vec![0u8; size];
+    let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
+    buf.truncate(frame.buffer_size());
+    let pixels = w as usize * h as usize;
+    let rgb = match frame.color_type {
+        png::ColorType::Rgb => buf,
+        png::ColorType::Rgba => {
+            for i in 0..pixels {
+                buf.copy_within(4 * i..4 * i + 3, 3 * i);
+            }
+            buf.truncate(3 * pixels);
+            buf
+        }
+        png::ColorType::Grayscale | png::ColorType::GrayscaleAlpha => {
+            let step = if frame.color_type == png::ColorType::Grayscale {
+                1
+            } else {
+                2
+            };
+            buf.iter().step_by(step).flat_map(|&g| [g, g, g]).collect()
+        }
+        png::ColorType::Indexed => return Err("an indexed image was not expanded".into()),
+    };
+    RgbImage::from_raw(w, h, rgb).ok_or_else(|| "the decoded image is short".into())
 }
 
 /// Reads a wall from a decoded image (see the module documentation for the steps).
@@ -1480,6 +1511,52 @@ fn assemble(name: &str, found: Vec<Found>) -> Result<Wall, WallError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// PNG bytes of `img` in any of the `image` crate's colour types.
+    fn encode(img: &image::DynamicImage) -> Vec<u8> {
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+        out.into_inner()
+    }
+
+    #[test]
+    fn every_png_colour_type_decodes_to_the_same_rgb() {
+        let rgb = RgbImage::from_fn(7, 5, |x, y| {
+            image::Rgb([(40 * x) as u8, (50 * y) as u8, (13 * x * y) as u8])
+        });
+        let dynamic = image::DynamicImage::ImageRgb8(rgb.clone());
+        let close = |a: &RgbImage, b: &RgbImage| {
+            a.dimensions() == b.dimensions()
+                && a.as_raw()
+                    .iter()
+                    .zip(b.as_raw())
+                    .all(|(x, y)| x.abs_diff(*y) <= 1)
+        };
+        for img in [
+            dynamic.clone(),
+            image::DynamicImage::ImageRgba8(dynamic.to_rgba8()),
+            image::DynamicImage::ImageRgb16(dynamic.to_rgb16()),
+            image::DynamicImage::ImageRgba16(dynamic.to_rgba16()),
+            image::DynamicImage::ImageLuma8(dynamic.to_luma8()),
+            image::DynamicImage::ImageLumaA8(dynamic.to_luma_alpha8()),
+            image::DynamicImage::ImageLuma16(dynamic.to_luma16()),
+        ] {
+            let decoded = decode_rgb(&encode(&img)).unwrap();
+            assert!(close(&decoded, &img.to_rgb8()), "{:?}", img.color());
+        }
+        // A palette image, as paint programs save small drawings.
+        let mut bytes = Vec::new();
+        {
+            let mut encoder = png::Encoder::new(&mut bytes, 3, 1);
+            encoder.set_color(png::ColorType::Indexed);
+            encoder.set_palette(vec![255, 0, 0, 0, 255, 0, 0, 0, 255]);
+            let mut writer = encoder.write_header().unwrap();
+            writer.write_image_data(&[2, 1, 0]).unwrap();
+        }
+        let decoded = decode_rgb(&bytes).unwrap();
+        assert_eq!(decoded.as_raw(), &vec![0, 0, 255, 0, 255, 0, 255, 0, 0]);
+        assert!(decode_rgb(b"not a png").is_err());
+    }
 
     fn ambiguous(fit: Result<Reading, Misfit>) -> bool {
         matches!(fit, Err(Misfit { kind: WallErrorKind::ImageLayout { reason }, .. }) if reason.contains("ambiguous"))
