@@ -1,0 +1,196 @@
+//! Between steps 3 and 4, *the border seen*: how wide the border is where it can be measured
+//! apart from the bricks (between layers, or around the wall), to choose among grids.
+
+use super::*;
+
+/// How much of a reference colour a pixel holds.
+pub(super) type ShareOf = fn([f32; 3], [f32; 3]) -> f64;
+
+/// The border between layers (px), where layers touch: the median gap between the colour of
+/// a layer and of the layer below it, over columns where both have colour. `None` for a
+/// single layer or layers that never sit on each other.
+pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64> {
+    let mut gaps = Vec::new();
+    for pair in 0..layers.len().saturating_sub(1) {
+        let (upper, lower) = (layers[pair], layers[pair + 1]);
+        if lower.top - upper.bottom > 4 * EDGE_REACH {
+            continue;
+        }
+        // Where one colour sits on the same colour, no blend of two colours blurs the gap.
+        let all = inside_runs(px, runs, &[pair, pair + 1]);
+        let (above, below) = (
+            colour_inside(px, runs, pair),
+            colour_inside(px, runs, pair + 1),
+        );
+        let alike: Vec<usize> = all
+            .iter()
+            .copied()
+            .filter(|&x| above[x] == below[x])
+            .collect();
+        // Over two colours blending into each other, faint shares count (they add up to the
+        // whole); over a border, a faint tint is the paper's.
+        let two_colours = alike.is_empty();
+        let (columns, share_of): (Vec<usize>, ShareOf) = if two_colours {
+            (all, colour_share)
+        } else {
+            (alike, coverage)
+        };
+        if columns.is_empty() {
+            continue;
+        }
+        let middle = (upper.bottom + lower.top) / 2;
+        let upper_inner = upper
+            .bottom
+            .saturating_sub(2 * EDGE_REACH)
+            .max((upper.top + upper.bottom) / 2);
+        let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
+        // Each column's colour in each layer. Where two colours blend straight into each other
+        // (every row between them on the line from one to the other, each pixel averaged with
+        // its left and right neighbours against noise, and no grey on that line), each row's
+        // share of the lower colour is measured along that line: the shares add up to one and
+        // show no border.
+        let upper_colours = column_means(px, upper);
+        let lower_colours = column_means(px, lower);
+        let smoothed = |x: usize, y: usize| -> [f32; 3] {
+            let near = x.saturating_sub(1)..(x + 2).min(px.width);
+            let n = near.len() as f32;
+            let mut sum = [0f32; 3];
+            for xx in near {
+                let p = px.rgb(y * px.width + xx);
+                (0..3).for_each(|c| sum[c] += p[c]);
+            }
+            sum.map(|v| v / n)
+        };
+        let blends: Vec<Option<Blend>> = columns
+            .iter()
+            .map(|&x| {
+                let blend = Blend::new(upper_colours[x], lower_colours[x])?;
+                let straight = two_colours
+                    && blend.keeps_colour()
+                    && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)));
+                straight.then_some(blend)
+            })
+            .collect();
+        // Each row's share of a layer's colour near the gap (`lower`: of the lower layer's).
+        let share = |y: usize, lower_layer: bool| -> f64 {
+            columns
+                .iter()
+                .zip(&blends)
+                .map(|(&x, blend)| {
+                    let p = px.rgb(y * px.width + x);
+                    match (blend, lower_layer) {
+                        (Some(b), true) => f64::from(b.share_of_second(p)),
+                        (Some(b), false) => 1.0 - f64::from(b.share_of_second(p)),
+                        (None, true) => share_of(p, lower_colours[x]),
+                        (None, false) => share_of(p, upper_colours[x]),
+                    }
+                })
+                .sum::<f64>()
+                / columns.len() as f64
+        };
+        let colour_bottom =
+            upper_inner as f64 + (upper_inner..middle).map(|y| share(y, false)).sum::<f64>();
+        let colour_top =
+            lower_inner as f64 - (middle..lower_inner).map(|y| share(y, true)).sum::<f64>();
+        gaps.push(colour_top - colour_bottom);
+    }
+    if gaps.is_empty() {
+        return None;
+    }
+    gaps.sort_by(f64::total_cmp);
+    Some(gaps[gaps.len() / 2].max(0.0))
+}
+
+/// The border seen above the top layer (or below the bottom one): the rows between the
+/// colour's edge and the paper, each counted by how far it is from the paper's colour
+/// relative to the farthest. `None` where the border looks like the paper, or the paper is
+/// not in view.
+pub(super) fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64> {
+    let sides = [(0, true), (layers.len() - 1, false)];
+    sides.into_iter().find_map(|(index, above)| {
+        let layer = layers[index];
+        let columns = inside_runs(px, runs, &[index]);
+        if columns.is_empty() {
+            return None;
+        }
+        let colours = column_means(px, layer);
+        let middle = (layer.top + layer.bottom) / 2;
+        // Rows outward from inside the colour to the paper (at most RING_REACH past the
+        // colour's edge, or the image's), nearest first.
+        let reach = 2 * EDGE_REACH + RING_REACH;
+        let outward: Vec<usize> = if above {
+            let inner = (layer.top + 2 * EDGE_REACH).min(middle);
+            (inner.saturating_sub(reach)..inner).rev().collect()
+        } else {
+            let inner = layer.bottom.saturating_sub(2 * EDGE_REACH).max(middle);
+            (inner..(inner + reach).min(px.height)).collect()
+        };
+        if outward.len() < 2 * EDGE_REACH + 2 {
+            return None;
+        }
+        let n = columns.len() as f32;
+        let mean_of = |f: &dyn Fn(usize) -> [f32; 3]| -> [f32; 3] {
+            let mut sum = [0f32; 3];
+            for &x in &columns {
+                let p = f(x);
+                (0..3).for_each(|c| sum[c] += p[c]);
+            }
+            sum.map(|v| v / n)
+        };
+        let colour = mean_of(&|x| colours[x]);
+        let paper = mean_of(&|x| px.rgb(outward[outward.len() - 1] * px.width + x));
+        // Each row: its share of colour, and what is left once the colour is taken out.
+        let rows: Vec<(f64, f32)> = outward
+            .iter()
+            .map(|&y| {
+                let p = mean_of(&|x| px.rgb(y * px.width + x));
+                let c = colour_share(p, colour);
+                let rest: [f32; 3] = std::array::from_fn(|k| {
+                    (p[k] - c as f32 * colour[k]) / (1.0 - c as f32).max(0.05)
+                });
+                let far: f32 = (0..3)
+                    .map(|k| (rest[k] - paper[k]).powi(2))
+                    .sum::<f32>()
+                    .sqrt();
+                (c, far)
+            })
+            .collect();
+        // Only rows with next to no colour show whether there is a border at all.
+        let deepest = rows
+            .iter()
+            .filter(|r| r.0 < FAINT_SHARE)
+            .map(|r| r.1)
+            .fold(0f32, f32::max);
+        if deepest < MIN_RING_CONTRAST {
+            return None;
+        }
+        Some(
+            rows.iter()
+                .map(|&(c, far)| (1.0 - c) * f64::from((far / deepest).min(1.0)))
+                .sum(),
+        )
+    })
+}
+
+/// The columns well inside the runs of every listed layer.
+pub(super) fn inside_runs(px: &Pixels, runs: &[Run], layers: &[usize]) -> Vec<usize> {
+    let maps: Vec<Vec<Option<BrickType>>> =
+        layers.iter().map(|&l| colour_inside(px, runs, l)).collect();
+    (0..px.width)
+        .filter(|&x| maps.iter().all(|m| m[x].is_some()))
+        .collect()
+}
+
+/// Per column, the colour of the layer's run that covers the whole pixel, if any: one pass
+/// over the layer's runs.
+pub(super) fn colour_inside(px: &Pixels, runs: &[Run], layer: usize) -> Vec<Option<BrickType>> {
+    let mut map = vec![None; px.width];
+    for r in runs.iter().filter(|r| r.layer == layer) {
+        let first = r.left.max(0.0).ceil() as usize;
+        let end = (r.right.max(0.0).floor() as usize).min(px.width);
+        for slot in map.iter_mut().take(end).skip(first) {
+            *slot = Some(r.kind);
+        }
+    }
+    map
+}
