@@ -317,26 +317,33 @@ fn every_cell_of_the_proportion_grid_reads_back() {
 #[test]
 fn drawings_the_stress_run_once_misread() {
     let cream = BACKGROUNDS[1];
+    let grey = [128, 128, 128];
+    // (wall, px per unit, layer height in units, border px, border colour, margin, noise, seed)
     let cases = [
         (
             "G O G G | O R G\nO O R | G R O . R R R R",
             24.04,
             3.0,
-            [128, 128, 128],
+            3.0,
+            grey,
             1,
             20,
             0x1_1a9d,
         ),
-        ("R\nG R R R R", 24.13, 0.0, [0, 0, 0], 9, 20, 0x1_5a7f),
-        ("B\nO", 16.0, 2.0, [128, 128, 128], 7, 0, 0),
-        ("B\nO", 24.0, 2.0, [128, 128, 128], 8, 0, 0),
+        ("R\nG R R R R", 24.13, 3.0, 0.0, [0, 0, 0], 9, 20, 0x1_5a7f),
+        ("B\nO", 16.0, 3.0, 2.0, grey, 7, 0, 0),
+        ("B\nO", 24.0, 3.0, 2.0, grey, 8, 0, 0),
+        // Borderless: a blurred red on green between layers is no border, and the border
+        // seen between layers is tried as the grid's border even where the free fit drifts.
+        ("R\nG R R R", 32.0, 1.25, 0.0, grey, 3, 0, 0),
+        ("B R B\nB O", 8.4514, 3.0, 0.0, grey, 8, 0, 0),
     ];
-    for (text, unit_px, border_px, border, margin_px, noise, seed) in cases {
+    for (text, unit_px, layer_units, border_px, border, margin_px, noise, seed) in cases {
         let wall = parse_layer_text(text, "t").unwrap();
         let drawing = Drawing {
             style: RasterStyle {
                 unit_px,
-                layer_units: 3.0,
+                layer_units,
                 border_px,
                 border,
                 background: cream,

@@ -44,11 +44,12 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run])
             .saturating_sub(2 * EDGE_REACH)
             .max((upper.top + upper.bottom) / 2);
         let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
-        // Each column's colour in each layer. Where two colours blend straight into each other
-        // (every row between them on the line from one to the other, each pixel averaged with
-        // its left and right neighbours against noise, and no grey on that line), each row's
-        // share of the lower colour is measured along that line: the shares add up to one and
-        // show no border.
+        // Each column's colour in each layer, and the gap between them in each column: from
+        // where the upper colour ends (its share of each row, summed down to the middle) to
+        // where the lower one starts. Where two colours blend straight into each other (every
+        // row between them on the line from one to the other, each pixel averaged with its
+        // left and right neighbours against noise, and no grey on that line) there is no
+        // border at all.
         let upper_colours = column_means(px, upper);
         let lower_colours = column_means(px, lower);
         let smoothed = |x: usize, y: usize| -> [f32; 3] {
@@ -61,38 +62,28 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run])
             }
             sum.map(|v| v / n)
         };
-        let blends: Vec<Option<Blend>> = columns
-            .iter()
-            .map(|&x| {
-                let blend = Blend::new(upper_colours[x], lower_colours[x])?;
-                let straight = two_colours
-                    && blend.keeps_colour()
-                    && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)));
-                straight.then_some(blend)
-            })
-            .collect();
-        // Each row's share of a layer's colour near the gap (`lower`: of the lower layer's).
-        let share = |y: usize, lower_layer: bool| -> f64 {
-            columns
-                .iter()
-                .zip(&blends)
-                .map(|(&x, blend)| {
-                    let p = px.rgb(y * px.width + x);
-                    match (blend, lower_layer) {
-                        (Some(b), true) => f64::from(b.share_of_second(p)),
-                        (Some(b), false) => 1.0 - f64::from(b.share_of_second(p)),
-                        (None, true) => share_of(p, lower_colours[x]),
-                        (None, false) => share_of(p, upper_colours[x]),
-                    }
-                })
-                .sum::<f64>()
-                / columns.len() as f64
+        let column_gap = |x: usize| -> f64 {
+            let blends = two_colours
+                && Blend::new(upper_colours[x], lower_colours[x]).is_some_and(|blend| {
+                    blend.keeps_colour()
+                        && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)))
+                });
+            if blends {
+                return 0.0;
+            }
+            let share =
+                |y: usize, colours: &[[f32; 3]]| share_of(px.rgb(y * px.width + x), colours[x]);
+            let colour_bottom = upper_inner as f64
+                + (upper_inner..middle)
+                    .map(|y| share(y, &upper_colours))
+                    .sum::<f64>();
+            let colour_top = lower_inner as f64
+                - (middle..lower_inner)
+                    .map(|y| share(y, &lower_colours))
+                    .sum::<f64>();
+            colour_top - colour_bottom
         };
-        let colour_bottom =
-            upper_inner as f64 + (upper_inner..middle).map(|y| share(y, false)).sum::<f64>();
-        let colour_top =
-            lower_inner as f64 - (middle..lower_inner).map(|y| share(y, true)).sum::<f64>();
-        gaps.push(colour_top - colour_bottom);
+        gaps.push(columns.iter().map(|&x| column_gap(x)).sum::<f64>() / columns.len() as f64);
     }
     if gaps.is_empty() {
         return None;

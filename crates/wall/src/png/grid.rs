@@ -66,6 +66,12 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
     // unit among equals) leaves out.
     let mut best_misfit: Option<(usize, f64, Misfit)> = None;
     for unit in candidate_units(runs) {
+        // With a border seen between layers, the grid with that border is tried as well: where
+        // few edges show the border (touching colours blend, with none), the free fit can
+        // drift to another border that the seen one would then wrongly rule out.
+        if let Some(Ok(r)) = border_seen.map(|b| read_with(runs, unit, Some(b))) {
+            readings.push(r);
+        }
         let result = read_at(runs, unit);
         match result {
             Ok(r) => readings.push(r),
