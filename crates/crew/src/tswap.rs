@@ -91,7 +91,124 @@ pub fn bottleneck_assignment(dist: &[Vec<u32>], starts: &[u32]) -> Vec<Option<us
             lo = mid + 1;
         }
     }
-    best
+    least_sum_matching(&options, dist.len(), levels[hi])
+        .map(|m| m.into_iter().map(Some).collect())
+        .unwrap_or(best)
+}
+
+/// A complete matching of robots to goals using pairs no longer than `limit`, with the least
+/// sum of distances among those (`None` when there is no complete one): successive shortest
+/// augmenting paths, Dijkstra on reduced costs with one potential per robot and per goal
+/// (Johnson's reweighting keeps every reduced cost ≥ 0 and every matched pair's at 0).
+/// Each search stops at the first free goal it settles, so a robot with a free goal nearby
+/// costs little.
+fn least_sum_matching(options: &[Vec<(u32, u32)>], goals: usize, limit: u32) -> Option<Vec<usize>> {
+    let n = options.len();
+    let mut goal_of = vec![NIL; n];
+    let mut robot_of = vec![NIL; goals];
+    let (mut robot_pot, mut goal_pot) = (vec![0i64; n], vec![0i64; goals]);
+    // Per search: each goal's distance, the robot it was reached from, and whether settled.
+    let mut reach = vec![i64::MAX; goals];
+    let mut from = vec![NIL; goals];
+    let mut settled = vec![false; goals];
+    let mut touched: Vec<u32> = Vec::new();
+    let mut heap = std::collections::BinaryHeap::new();
+    for s in 0..n {
+        for &g in &touched {
+            reach[g as usize] = i64::MAX;
+            settled[g as usize] = false;
+        }
+        touched.clear();
+        heap.clear();
+        let relax = |a: usize,
+                     base: i64,
+                     reach: &mut Vec<i64>,
+                     from: &mut Vec<u32>,
+                     touched: &mut Vec<u32>,
+                     heap: &mut std::collections::BinaryHeap<std::cmp::Reverse<(i64, u32)>>,
+                     robot_pot: &[i64],
+                     goal_pot: &[i64],
+                     settled: &[bool]| {
+            for &(d, g) in options[a].iter().take_while(|&&(d, _)| d <= limit) {
+                let gi = g as usize;
+                if settled[gi] {
+                    continue;
+                }
+                let cost = base + i64::from(d) + robot_pot[a] - goal_pot[gi];
+                if cost < reach[gi] {
+                    if reach[gi] == i64::MAX {
+                        touched.push(g);
+                    }
+                    reach[gi] = cost;
+                    from[gi] = a as u32;
+                    heap.push(std::cmp::Reverse((cost, g)));
+                }
+            }
+        };
+        relax(
+            s,
+            0,
+            &mut reach,
+            &mut from,
+            &mut touched,
+            &mut heap,
+            &robot_pot,
+            &goal_pot,
+            &settled,
+        );
+        let mut settled_list: Vec<u32> = Vec::new();
+        let mut end = None;
+        while let Some(std::cmp::Reverse((d, g))) = heap.pop() {
+            let gi = g as usize;
+            if settled[gi] || d > reach[gi] {
+                continue;
+            }
+            settled[gi] = true;
+            settled_list.push(g);
+            let owner = robot_of[gi];
+            if owner == NIL {
+                end = Some((g, d));
+                break;
+            }
+            relax(
+                owner as usize,
+                d,
+                &mut reach,
+                &mut from,
+                &mut touched,
+                &mut heap,
+                &robot_pot,
+                &goal_pot,
+                &settled,
+            );
+        }
+        let (end, total) = end?;
+        // New potentials (Johnson's, capped at the end's distance and shifted by it): every
+        // settled node drops by how far short of the end it was, which keeps reduced costs ≥ 0
+        // and makes the path's zero.
+        robot_pot[s] -= total;
+        for &g in &settled_list {
+            let gi = g as usize;
+            let shift = total - reach[gi];
+            goal_pot[gi] -= shift;
+            if robot_of[gi] != NIL && g != end {
+                robot_pot[robot_of[gi] as usize] -= shift;
+            }
+        }
+        // Flip the path from the end back to s.
+        let mut g = end;
+        loop {
+            let a = from[g as usize];
+            let previous = goal_of[a as usize];
+            goal_of[a as usize] = g;
+            robot_of[g as usize] = a;
+            if a as usize == s {
+                break;
+            }
+            g = previous;
+        }
+    }
+    Some(goal_of.into_iter().map(|g| g as usize).collect())
 }
 
 /// A maximum matching of robots to goals using pairs no longer than `limit` (Kuhn's augmenting
@@ -328,5 +445,97 @@ fn deadlock(
         mark[b] = stamp;
         cycle.push(b);
         a = b;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hungarian::hungarian;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Random distance tables (some pairs unreachable): the assignment is as short in its
+    /// longest pair as any complete one, and as short in sum as the Hungarian method finds
+    /// among pairs within that longest distance.
+    #[test]
+    fn the_assignment_is_bottleneck_then_least_sum() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for case in 0..300 {
+            let n = rng.gen_range(1..8);
+            let m = n + rng.gen_range(0..3);
+            // dist[g][robot cell]: robot r stands on cell r.
+            let dist: Vec<Vec<u32>> = (0..m)
+                .map(|_| {
+                    (0..n)
+                        .map(|_| {
+                            if rng.gen_bool(0.1) {
+                                NIL
+                            } else {
+                                rng.gen_range(0..12)
+                            }
+                        })
+                        .collect()
+                })
+                .collect();
+            let starts: Vec<u32> = (0..n as u32).collect();
+            let got = bottleneck_assignment(&dist, &starts);
+            // The best longest pair and the best sum under it, by brute force over all
+            // injective pairings.
+            let mut best: Option<(u32, u32)> = None;
+            let mut pick = vec![0usize; n];
+            fn walk(
+                r: usize,
+                used: &mut Vec<bool>,
+                pick: &mut Vec<usize>,
+                dist: &[Vec<u32>],
+                best: &mut Option<(u32, u32)>,
+            ) {
+                if r == pick.len() {
+                    let ds: Vec<u32> = pick.iter().enumerate().map(|(r, &g)| dist[g][r]).collect();
+                    let key = (*ds.iter().max().unwrap(), ds.iter().sum());
+                    if best.is_none_or(|b| key < b) {
+                        *best = Some(key);
+                    }
+                    return;
+                }
+                for g in 0..used.len() {
+                    if !used[g] && dist[g][r] != NIL {
+                        used[g] = true;
+                        pick[r] = g;
+                        walk(r + 1, used, pick, dist, best);
+                        used[g] = false;
+                    }
+                }
+            }
+            walk(0, &mut vec![false; m], &mut pick, &dist, &mut best);
+            match best {
+                None => assert!(got.iter().any(Option::is_none), "case {case}"),
+                Some((longest, sum)) => {
+                    let goals: Vec<usize> = got.iter().map(|g| g.expect("complete")).collect();
+                    let mut seen = goals.clone();
+                    seen.sort_unstable();
+                    seen.dedup();
+                    assert_eq!(seen.len(), n, "case {case}: a goal taken twice");
+                    let ds: Vec<u32> = goals.iter().enumerate().map(|(r, &g)| dist[g][r]).collect();
+                    assert_eq!(*ds.iter().max().unwrap(), longest, "case {case}");
+                    assert_eq!(ds.iter().sum::<u32>(), sum, "case {case}");
+                    // The Hungarian method agrees on the sum within the longest distance.
+                    let cost: Vec<Vec<f64>> = (0..n)
+                        .map(|r| {
+                            (0..m)
+                                .map(|g| match dist[g][r] {
+                                    d if d != NIL && d <= longest => f64::from(d),
+                                    _ => 1e6,
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    let h = hungarian(&cost);
+                    let hs: f64 = h.iter().enumerate().map(|(r, &g)| cost[r][g]).sum();
+                    assert_eq!(hs, f64::from(sum), "case {case}");
+                }
+            }
+        }
     }
 }
