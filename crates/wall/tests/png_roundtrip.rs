@@ -506,6 +506,17 @@ fn a_stray_mark_too_thin_for_a_layer_is_named() {
     assert!(matches!(at, Location::Pixel(9..=10, 5)), "{at:?}");
 }
 
+/// Found by fuzzing: a band whose colour changes every pixel or two has no run of colour
+/// at all once the slivers between colours are dropped, and must be an error, not a panic.
+#[test]
+fn slivers_of_colour_with_no_run_are_named() {
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data");
+    let bytes = std::fs::read(data.join("fuzz-slivers.png")).unwrap();
+    let e = read_png(&bytes, "fuzz-slivers.png").unwrap_err();
+    assert!(matches!(e.location, Location::Pixel(..)), "{e}");
+    assert!(e.to_string().contains("changes every pixel or two"), "{e}");
+}
+
 #[test]
 fn a_mark_too_narrow_for_a_brick_is_named() {
     let img = rectangles(

@@ -195,6 +195,20 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
         ));
     }
     let runs = find_runs(&pixels, &layers).map_err(|(at, reason)| fail(at, reason))?;
+    if runs.is_empty() {
+        // Every mark of colour is a sliver between two others (found by fuzzing).
+        let top = layers[0].top;
+        let x = (0..pixels.width)
+            .find(|&x| pixels.class[top * pixels.width + x].is_some())
+            .unwrap_or(0);
+        return Err(fail(
+            Location::Pixel(x as u32, top as u32),
+            format!(
+                "the colour here changes every pixel or two: no brick shows {MIN_COLOUR_PX} px \
+                 of one colour"
+            ),
+        ));
+    }
     let border_seen = border_between_layers(&pixels, &layers, &runs)
         .or_else(|| border_around_wall(&pixels, &layers, &runs));
     let reading = fit_grid(&runs, border_seen).map_err(|misfit| misfit.into_error(name))?;
