@@ -19,12 +19,22 @@
 //! time anybody else passes there. Beyond the last step of the longest other path the world no
 //! longer changes, so states there are merged by cell and the search is finite.
 //! Each round is O(k · T · V log(T · V)) in the worst case for k robots and horizon T.
+//!
+//! Both cores: rounds run in batches of two neighbourhoods, drawn one after the other from the
+//! seeded generator (the second apart from the first), then planned side by side (rayon) against
+//! the same plan, which neither changes: each sees the plan without its own robots, plus the
+//! paths it has planned again so far. They are committed in the order drawn. The first keeps
+//! its paths when they are cheaper, exactly as a lone round would; the second too, provided its
+//! paths, planned before the first's were kept, still avoid everyone (checked with the
+//! search's own move test). The batch size is fixed, not the number of cores, so a seed gives
+//! the same plan on one thread or many; only a deadline makes the result depend on speed.
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -137,8 +147,97 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
         .map_or(0, |t| t as u64 + 1)
 }
 
+/// Neighbourhoods drawn per batch and planned side by side. Fixed, not the number of cores,
+/// so that a seed gives the same plan on one core or many.
+const BATCH: usize = 2;
+
+/// One neighbourhood of a batch: its kind, its robots in planning order, and what planning
+/// them again gave.
+struct Candidate {
+    kind: usize,
+    group: Vec<usize>,
+    /// The new paths of `group`'s first robots, in order; all of them unless a search failed.
+    fresh: Vec<Vec<u32>>,
+    expanded: u64,
+}
+
+impl Candidate {
+    /// Plans the group again, one robot after another, around everyone else as `occ` and
+    /// `paths` hold them (read only).
+    fn plan(
+        &mut self,
+        search: &mut Search,
+        graph: &MoveGraph,
+        dist: &[Vec<u32>],
+        goals: &[u32],
+        (occ, paths): (&Occupancy, &[Vec<u32>]),
+        node_limit: u64,
+    ) {
+        self.fresh.clear();
+        self.expanded = 0;
+        for i in 0..self.group.len() {
+            let r = self.group[i];
+            let view = View {
+                occ,
+                paths,
+                absent: &self.group,
+                planned: &self.fresh,
+            };
+            let found = search.plan(
+                graph,
+                &view,
+                &dist[r],
+                (pos(&paths[r], 0), 0, goals[r]),
+                node_limit,
+                &mut self.expanded,
+            );
+            match found {
+                Some(p) => self.fresh.push(p),
+                None => return,
+            }
+        }
+    }
+
+    /// Old and new sum of costs of the group, when every robot got a new path.
+    fn costs(&self, cost: &[u64]) -> Option<(u64, u64)> {
+        (self.fresh.len() == self.group.len()).then(|| {
+            (
+                self.group.iter().map(|&r| cost[r]).sum(),
+                self.fresh.iter().map(|p| arrival(p)).sum(),
+            )
+        })
+    }
+
+    /// Whether the new paths still avoid everyone, as `occ` and `paths` hold them now.
+    fn fits(&self, graph: &MoveGraph, goals: &[u32], occ: &Occupancy, paths: &[Vec<u32>]) -> bool {
+        (0..self.fresh.len()).all(|i| {
+            let view = View {
+                occ,
+                paths,
+                absent: &self.group,
+                planned: &self.fresh[..i],
+            };
+            let p = &self.fresh[i];
+            let goal = goals[self.group[i]];
+            let Some(free_from) = view.free_from(goal) else {
+                return false;
+            };
+            p.len() as u32 > free_from
+                && p.windows(2)
+                    .enumerate()
+                    .all(|(t, w)| view.can_move(graph, w[0], w[1], t as u32))
+        })
+    }
+}
+
 /// Improves `paths` (valid for `goals`) in place until the budget or `config` stops it, and
 /// never makes the sum of costs worse.
+///
+/// Rounds run in batches of [`BATCH`] neighbourhoods drawn one after another, planned in
+/// parallel on rayon's current pool against the same plan, and committed in the order drawn:
+/// an improving neighbourhood is kept when its new paths still avoid those kept before it in
+/// the batch. The plan depends on the seed alone, not on the threads or their timing (unless the
+/// deadline stops it).
 pub fn refine(
     graph: &MoveGraph,
     dist: &[Vec<u32>],
@@ -155,13 +254,16 @@ pub fn refine(
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_1a75);
     let mut occ = Occupancy::new(graph.cells(), paths);
-    let mut search = Search::new();
+    let mut searches: Vec<Search> = (0..BATCH).map(|_| Search::new()).collect();
     let mut weights = [1.0f64; 3];
     let mut stall = 0u64;
     let lower: u64 = (0..n)
         .map(|i| u64::from(dist[i][pos(&paths[i], 0) as usize]))
         .sum();
-    let mut soc: u64 = paths.iter().map(|p| arrival(p)).sum();
+    let mut cost: Vec<u64> = paths.iter().map(|p| arrival(p)).collect();
+    let mut soc: u64 = cost.iter().sum();
+    let k = config.neighbourhood.min(n);
+    let mut batch: Vec<Candidate> = Vec::with_capacity(BATCH);
     loop {
         if soc <= lower
             || budget.out_of_time()
@@ -170,88 +272,205 @@ pub fn refine(
         {
             return stats;
         }
-        stats.rounds += 1;
-        let total: f64 = weights.iter().sum();
-        let mut pick = rng.gen::<f64>() * total;
-        let mut kind = 0;
-        while kind < 2 && pick >= weights[kind] {
-            pick -= weights[kind];
-            kind += 1;
-        }
-        let k = config.neighbourhood.min(n);
-        let group = match kind {
-            0 => delayed_group(dist, paths, &occ, k, &mut rng),
-            1 => area_group(graph, paths, &occ, k, &mut rng),
-            _ => random_group(n, k, &mut rng),
-        };
-        let Some(mut group) = group else {
-            weights[kind] = (weights[kind] * 0.9).max(0.05);
-            stall += 1;
-            continue;
-        };
-        group.shuffle(&mut rng);
-        let old: Vec<Vec<u32>> = group.iter().map(|&r| paths[r].clone()).collect();
-        let old_cost: u64 = old.iter().map(|p| arrival(p)).sum();
-        for (&r, p) in group.iter().zip(&old) {
-            occ.remove(r as u32, p);
-        }
-        let mut fresh: Vec<Vec<u32>> = Vec::with_capacity(group.len());
-        let mut ok = true;
-        for &r in &group {
-            let found = search.plan(
-                graph,
-                &occ,
-                paths,
-                &dist[r],
-                (pos(&paths[r], 0), 0, goals[r]),
-                config.node_limit,
-                &mut stats.expanded,
-            );
-            match found {
-                Some(p) => {
-                    occ.add(r as u32, &p);
-                    paths[r] = p.clone();
-                    fresh.push(p);
+        let size = config
+            .rounds
+            .map_or(BATCH as u64, |r| (r - stats.rounds).min(BATCH as u64));
+        stats.rounds += size;
+        // Draw the neighbourhoods one after another, each apart from those before it.
+        batch.clear();
+        let mut taken: Vec<usize> = Vec::new();
+        for c in 0..size as usize {
+            let total: f64 = weights.iter().sum();
+            let mut pick = rng.gen::<f64>() * total;
+            let mut kind = 0;
+            while kind < 2 && pick >= weights[kind] {
+                pick -= weights[kind];
+                kind += 1;
+            }
+            let group = match kind {
+                0 => delayed_group(dist, paths, &cost, &occ, k, &taken, &mut rng),
+                1 => area_group(graph, paths, &occ, k, &taken, &mut rng),
+                _ => random_group(n, k, &taken, &mut rng),
+            };
+            match group {
+                Some(mut group) => {
+                    group.shuffle(&mut rng);
+                    taken.extend_from_slice(&group);
+                    batch.push(Candidate {
+                        kind,
+                        group,
+                        fresh: Vec::new(),
+                        expanded: 0,
+                    });
                 }
                 None => {
-                    ok = false;
-                    break;
+                    // Nobody left for this kind: the first of a batch sees the whole plan.
+                    if c == 0 {
+                        weights[kind] = (weights[kind] * 0.9).max(0.05);
+                    }
+                    stall += 1;
                 }
             }
         }
-        let new_cost: u64 = fresh.iter().map(|p| arrival(p)).sum();
-        if ok && new_cost < old_cost {
-            soc -= old_cost - new_cost;
-            stats.improvements += 1;
-            stall = 0;
-            weights[kind] += (old_cost - new_cost) as f64;
-        } else {
-            for (&r, p) in group.iter().zip(&fresh) {
-                occ.remove(r as u32, p);
+        // Plan them side by side against the same plan, read only.
+        let shared = (&occ, &*paths);
+        batch
+            .par_iter_mut()
+            .zip(searches.par_iter_mut())
+            .for_each(|(cand, search)| {
+                cand.plan(search, graph, dist, goals, shared, config.node_limit);
+            });
+        // Commit in the order drawn.
+        let mut changed = false;
+        for cand in &batch {
+            stats.expanded += cand.expanded;
+            let kept = match cand.costs(&cost) {
+                Some((old, new))
+                    if new < old && (!changed || cand.fits(graph, goals, &occ, paths)) =>
+                {
+                    Some(old - new)
+                }
+                _ => None,
+            };
+            match kept {
+                Some(gain) => {
+                    for (&r, p) in cand.group.iter().zip(&cand.fresh) {
+                        occ.remove(r as u32, &paths[r]);
+                        paths[r].clone_from(p);
+                        cost[r] = arrival(p);
+                    }
+                    for &r in &cand.group {
+                        occ.add(r as u32, &paths[r]);
+                    }
+                    soc -= gain;
+                    stats.improvements += 1;
+                    stall = 0;
+                    weights[cand.kind] += gain as f64;
+                    changed = true;
+                }
+                None => {
+                    weights[cand.kind] = (weights[cand.kind] * 0.99).max(0.05);
+                    stall += 1;
+                }
             }
-            for (&r, p) in group.iter().zip(old) {
-                occ.add(r as u32, &p);
-                paths[r] = p;
-            }
-            weights[kind] = (weights[kind] * 0.99).max(0.05);
-            stall += 1;
         }
     }
 }
 
-/// A delayed robot and the robots met on its path, or `None` when nobody is delayed.
+/// The plan as one neighbourhood sees it while it is planned again: everyone in `occ` and
+/// `paths` but the robots `absent`, plus the new paths `planned` of the first of those.
+struct View<'a> {
+    occ: &'a Occupancy,
+    paths: &'a [Vec<u32>],
+    absent: &'a [usize],
+    planned: &'a [Vec<u32>],
+}
+
+impl View<'_> {
+    /// Who is on `cell` at step `t`, or `NIL`.
+    #[inline]
+    fn who(&self, cell: u32, t: u32) -> u32 {
+        for (i, p) in self.planned.iter().enumerate() {
+            if pos(p, t) == cell {
+                return self.absent[i] as u32;
+            }
+        }
+        let r = self.occ.who(cell, t);
+        if r != NIL && self.absent.contains(&(r as usize)) {
+            NIL
+        } else {
+            r
+        }
+    }
+
+    /// The path of robot `r`, which must not be absent unless planned.
+    #[inline]
+    fn path(&self, r: u32) -> &[u32] {
+        match self.absent.iter().position(|&a| a == r as usize) {
+            Some(i) => &self.planned[i],
+            None => &self.paths[r as usize],
+        }
+    }
+
+    /// The first step from which a robot may rest on `goal` for good, or `None` when somebody
+    /// else rests there.
+    fn free_from(&self, goal: u32) -> Option<u32> {
+        let (_, resting) = self.occ.rest[goal as usize];
+        if resting != NIL && !self.absent.contains(&(resting as usize)) {
+            return None;
+        }
+        if self.planned.iter().any(|p| p[p.len() - 1] == goal) {
+            return None;
+        }
+        let before = self.occ.visits[goal as usize]
+            .iter()
+            .filter(|&&(_, r)| !self.absent.contains(&(r as usize)))
+            .map(|&(t, _)| t + 1);
+        let mine = self.planned.iter().flat_map(|p| {
+            p[..p.len() - 1]
+                .iter()
+                .enumerate()
+                .filter(|&(_, &c)| c == goal)
+                .map(|(t, _)| t as u32 + 1)
+        });
+        Some(before.chain(mine).max().unwrap_or(0))
+    }
+
+    /// One step past the last step at which anybody still moves (at least one).
+    fn horizon(&self) -> u32 {
+        let others = self
+            .paths
+            .iter()
+            .enumerate()
+            .filter(|(r, _)| !self.absent.contains(r))
+            .map(|(_, p)| p.len() as u32);
+        let mine = self.planned.iter().map(|p| p.len() as u32);
+        others.chain(mine).max().unwrap_or(0)
+    }
+
+    /// Whether a robot may move (or wait, when `a == b`) from `a` at step `t` to `b` at step
+    /// `t + 1`: nobody is on `b` then, nobody swaps with it, nobody crosses its diagonal.
+    #[inline]
+    fn can_move(&self, graph: &MoveGraph, a: u32, b: u32, t: u32) -> bool {
+        if self.who(b, t + 1) != NIL {
+            return false;
+        }
+        if a == b {
+            return true;
+        }
+        let j = self.who(b, t);
+        if j != NIL && pos(self.path(j), t + 1) == a {
+            return false;
+        }
+        if let Some((c, d)) = graph.corners(a, b) {
+            for (x, y) in [(c, d), (d, c)] {
+                let j = self.who(x, t);
+                if j != NIL && pos(self.path(j), t + 1) == y {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// A delayed robot and the robots met on its path, none of them `taken`, or `None` when no
+/// such robot is delayed.
 fn delayed_group(
     dist: &[Vec<u32>],
     paths: &[Vec<u32>],
+    cost: &[u64],
     occ: &Occupancy,
     k: usize,
+    taken: &[usize],
     rng: &mut ChaCha8Rng,
 ) -> Option<Vec<usize>> {
     let delayed: Vec<(usize, u64)> = paths
         .iter()
         .enumerate()
+        .filter(|(r, _)| !taken.contains(r))
         .filter_map(|(r, p)| {
-            let late = arrival(p) - u64::from(dist[r][p[0] as usize]);
+            let late = cost[r] - u64::from(dist[r][p[0] as usize]);
             (late > 0).then_some((r, late))
         })
         .collect();
@@ -275,7 +494,7 @@ fn delayed_group(
     'outer: for t in steps {
         for &(s, r) in &occ.visits[path[t] as usize] {
             let r = r as usize;
-            if (s as usize).abs_diff(t) <= 3 && !group.contains(&r) {
+            if (s as usize).abs_diff(t) <= 3 && !group.contains(&r) && !taken.contains(&r) {
                 group.push(r);
                 if group.len() >= k {
                     break 'outer;
@@ -283,19 +502,22 @@ fn delayed_group(
             }
         }
     }
-    fill_random(&mut group, paths.len(), k, rng);
+    fill_random(&mut group, paths.len(), k, taken, rng);
     Some(group)
 }
 
-/// The robots passing through the cells nearest a random robot's random cell.
+/// The robots passing through the cells nearest a random robot's random cell, none of them
+/// `taken`; `None` when every robot is.
 fn area_group(
     graph: &MoveGraph,
     paths: &[Vec<u32>],
     occ: &Occupancy,
     k: usize,
+    taken: &[usize],
     rng: &mut ChaCha8Rng,
 ) -> Option<Vec<usize>> {
-    let r = rng.gen_range(0..paths.len());
+    let free: Vec<usize> = (0..paths.len()).filter(|r| !taken.contains(r)).collect();
+    let &r = free.choose(rng)?;
     let centre = paths[r][rng.gen_range(0..paths[r].len())];
     let mut group = vec![r];
     let mut seen = FxHashMap::default();
@@ -317,7 +539,7 @@ fn area_group(
         here.dedup();
         here.shuffle(rng);
         for x in here {
-            if group.len() < k && !group.contains(&x) {
+            if group.len() < k && !group.contains(&x) && !taken.contains(&x) {
                 group.push(x);
             }
         }
@@ -327,21 +549,22 @@ fn area_group(
             }
         }
     }
-    fill_random(&mut group, paths.len(), k, rng);
+    fill_random(&mut group, paths.len(), k, taken, rng);
     Some(group)
 }
 
-fn random_group(n: usize, k: usize, rng: &mut ChaCha8Rng) -> Option<Vec<usize>> {
+/// Robots drawn at random, none of them `taken`; `None` when none could be drawn.
+fn random_group(n: usize, k: usize, taken: &[usize], rng: &mut ChaCha8Rng) -> Option<Vec<usize>> {
     let mut group = Vec::new();
-    fill_random(&mut group, n, k, rng);
-    Some(group)
+    fill_random(&mut group, n, k, taken, rng);
+    (!group.is_empty()).then_some(group)
 }
 
-fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, rng: &mut ChaCha8Rng) {
+fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, taken: &[usize], rng: &mut ChaCha8Rng) {
     let mut tries = 0;
     while group.len() < k.min(n) && tries < 4 * k {
         let r = rng.gen_range(0..n);
-        if !group.contains(&r) {
+        if !group.contains(&r) && !taken.contains(&r) {
             group.push(r);
         }
         tries += 1;
@@ -353,7 +576,7 @@ fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, rng: &mut ChaCha8Rng)
 type OpenEntry = (Reverse<u32>, Reverse<u32>, u32, Reverse<u32>);
 
 /// Space-time A* with reusable buffers.
-pub(crate) struct Search {
+struct Search {
     nodes: Vec<(u32, u32, u32)>,
     closed: FxHashSet<u64>,
     open: BinaryHeap<OpenEntry>,
@@ -368,35 +591,20 @@ impl Search {
         }
     }
 
-    /// The quickest path from `start` at step `t0` to `goal` around `occ` (which must not hold
-    /// the robot itself from `t0` on), as the cells from step `t0`; `None` when there is none
-    /// within the cap.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn plan(
+    /// The quickest path from `start` at step `t0` to `goal` around everyone in `view` (which
+    /// must not hold the robot itself from `t0` on), as the cells from step `t0`; `None` when
+    /// there is none within the cap.
+    fn plan(
         &mut self,
         graph: &MoveGraph,
-        occ: &Occupancy,
-        paths: &[Vec<u32>],
+        view: &View,
         dist: &[u32],
         (start, t0, goal): (u32, u32, u32),
         node_limit: u64,
         expanded: &mut u64,
     ) -> Option<Vec<u32>> {
-        if occ.rest[goal as usize].1 != NIL {
-            return None;
-        }
-        let free_from = occ.visits[goal as usize]
-            .iter()
-            .map(|&(t, _)| t + 1)
-            .max()
-            .unwrap_or(0);
-        let horizon = paths
-            .iter()
-            .map(|p| p.len() as u32)
-            .max()
-            .unwrap_or(0)
-            .max(free_from)
-            .max(t0 + 1);
+        let free_from = view.free_from(goal)?;
+        let horizon = view.horizon().max(free_from).max(t0 + 1);
         self.nodes.clear();
         self.closed.clear();
         self.open.clear();
@@ -435,7 +643,7 @@ impl Search {
             }
             for &next in std::iter::once(&cell).chain(graph.neighbours(cell)) {
                 let h = dist[next as usize];
-                if h == NIL || !self.can_move(graph, occ, paths, cell, next, t) {
+                if h == NIL || !view.can_move(graph, cell, next, t) {
                     continue;
                 }
                 let nk = key(next, (t + 1).min(horizon));
@@ -453,36 +661,5 @@ impl Search {
             }
         }
         None
-    }
-
-    #[inline]
-    fn can_move(
-        &self,
-        graph: &MoveGraph,
-        occ: &Occupancy,
-        paths: &[Vec<u32>],
-        a: u32,
-        b: u32,
-        t: u32,
-    ) -> bool {
-        if occ.who(b, t + 1) != NIL {
-            return false;
-        }
-        if a == b {
-            return true;
-        }
-        let j = occ.who(b, t);
-        if j != NIL && pos(&paths[j as usize], t + 1) == a {
-            return false;
-        }
-        if let Some((c, d)) = graph.corners(a, b) {
-            for (x, y) in [(c, d), (d, c)] {
-                let j = occ.who(x, t);
-                if j != NIL && pos(&paths[j as usize], t + 1) == y {
-                    return false;
-                }
-            }
-        }
-        true
     }
 }
