@@ -663,3 +663,202 @@ impl Search {
         None
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{keep_largest_region, random_tasks, warehouse};
+    use crate::moves::goal_distances;
+    use crate::validate::validate;
+    use crate::{solve, AssignMethod, Cell, Connectivity, CrewConfig, Grid, Instance, Resolution};
+
+    /// LaCAM's first plan, unrefined; `None` when there is none.
+    fn first_plan(inst: &Instance) -> Option<Vec<Vec<u32>>> {
+        let config = CrewConfig {
+            assign: AssignMethod::Given,
+            resolve: Resolution::Lacam,
+            refine: RefineConfig {
+                rounds: Some(0),
+                stall: None,
+                ..RefineConfig::default()
+            },
+            ..CrewConfig::default()
+        };
+        let budget = Budget {
+            deadline: None,
+            node_limit: Some(2_000_000),
+        };
+        let out = solve(inst, &config, &budget).unwrap();
+        let paths = out.paths?;
+        Some(
+            paths
+                .iter()
+                .map(|p| p.iter().map(|c| c.0).collect())
+                .collect(),
+        )
+    }
+
+    fn cells(paths: &[Vec<u32>]) -> Vec<Vec<Cell>> {
+        paths
+            .iter()
+            .map(|p| p.iter().map(|&c| Cell(c)).collect())
+            .collect()
+    }
+
+    /// A random small grid with `n` robots and goals on distinct free cells.
+    fn small_instance(rng: &mut ChaCha8Rng, n: usize, conn: Connectivity) -> Option<Instance> {
+        let (w, h) = (rng.gen_range(3..7), rng.gen_range(3..7));
+        let blocked = (0..w * h).map(|_| rng.gen_bool(0.15)).collect();
+        let mut grid = Grid::new(w, h, blocked);
+        keep_largest_region(&mut grid);
+        let mut free: Vec<Cell> = (0..grid.len() as u32)
+            .map(Cell)
+            .filter(|&c| grid.is_free(c))
+            .collect();
+        if free.len() < n + 2 {
+            return None;
+        }
+        free.shuffle(rng);
+        let robots = free[..n].to_vec();
+        free.shuffle(rng);
+        let goals = free[..n].to_vec();
+        Instance::new(grid, conn, robots, goals, Some((0..n).collect()), "small").ok()
+    }
+
+    /// A legal path from `start` to `goal`: a few random moves and waits, then straight down
+    /// the step distance.
+    fn wander(
+        graph: &MoveGraph,
+        dist: &[u32],
+        start: u32,
+        steps: usize,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<u32> {
+        let mut path = vec![start];
+        let mut c = start;
+        for _ in 0..steps {
+            let moves: Vec<u32> = std::iter::once(c)
+                .chain(graph.neighbours(c).iter().copied())
+                .collect();
+            c = *moves.choose(rng).unwrap();
+            path.push(c);
+        }
+        while dist[c as usize] > 0 {
+            c = *graph
+                .neighbours(c)
+                .iter()
+                .find(|&&m| dist[m as usize] + 1 == dist[c as usize])
+                .unwrap();
+            path.push(c);
+        }
+        path
+    }
+
+    #[test]
+    fn the_commit_check_agrees_with_the_validator() {
+        // The second neighbourhood of a batch is kept only when `fits` says its paths avoid
+        // everyone; on random paths against valid plans, `fits` must say exactly what
+        // `crew::validate` says of the plan with those paths in.
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let (mut fit, mut clash) = (0, 0);
+        for k in 0..300 {
+            let conn = if k % 2 == 0 {
+                Connectivity::Four
+            } else {
+                Connectivity::Eight
+            };
+            let n = 2 + k % 5;
+            let Some(inst) = small_instance(&mut rng, n, conn) else {
+                continue;
+            };
+            let graph = MoveGraph::new(&inst.grid, conn);
+            let dist = goal_distances(&inst.grid, conn, &inst.goals);
+            let goals: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
+            let Some(paths) = first_plan(&inst) else {
+                continue;
+            };
+            let occ = Occupancy::new(graph.cells(), &paths);
+            let mut group: Vec<usize> = (0..n).collect();
+            group.shuffle(&mut rng);
+            group.truncate(1 + k % 2);
+            let fresh: Vec<Vec<u32>> = group
+                .iter()
+                .map(|&r| wander(&graph, &dist[r], paths[r][0], rng.gen_range(0..6), &mut rng))
+                .collect();
+            let mut after = paths.clone();
+            for (&r, p) in group.iter().zip(&fresh) {
+                after[r].clone_from(p);
+            }
+            let cand = Candidate {
+                kind: 0,
+                group,
+                fresh,
+                expanded: 0,
+            };
+            let fits = cand.fits(&graph, &goals, &occ, &paths);
+            let valid = validate(&inst.grid, conn, &inst.robots, &inst.goals, &cells(&after));
+            assert_eq!(fits, valid.is_ok(), "instance {k}: {valid:?}");
+            if fits {
+                fit += 1;
+            } else {
+                clash += 1;
+            }
+        }
+        assert!(fit >= 20 && clash >= 20, "{fit} fit, {clash} clash");
+    }
+
+    #[test]
+    fn every_batch_leaves_a_valid_plan_no_costlier_than_before() {
+        let grid = warehouse(60, 40, 0.05, 2);
+        let n = 90;
+        let (robots, goals) = random_tasks(&grid, n, 4);
+        let inst = Instance::new(
+            grid,
+            Connectivity::Four,
+            robots,
+            goals,
+            Some((0..n).collect()),
+            "warehouse",
+        )
+        .unwrap();
+        let graph = MoveGraph::new(&inst.grid, inst.connectivity);
+        let dist = goal_distances(&inst.grid, inst.connectivity, &inst.goals);
+        let targets: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
+        let mut paths = first_plan(&inst).expect("a first plan");
+        let first: u64 = paths.iter().map(|p| arrival(p)).sum();
+        let mut soc = first;
+        let mut both_kept = 0;
+        let one_batch = RefineConfig {
+            rounds: Some(BATCH as u64),
+            stall: None,
+            ..RefineConfig::default()
+        };
+        for seed in 0..80 {
+            let stats = refine(
+                &graph,
+                &dist,
+                &targets,
+                &mut paths,
+                &one_batch,
+                &Budget::unlimited(),
+                seed,
+            );
+            assert_eq!(stats.rounds, BATCH as u64);
+            let m = validate(
+                &inst.grid,
+                inst.connectivity,
+                &inst.robots,
+                &inst.goals,
+                &cells(&paths),
+            )
+            .unwrap_or_else(|e| panic!("batch {seed}: {e}"));
+            assert!(m.sum_of_costs <= soc, "batch {seed}: cost rose");
+            soc = m.sum_of_costs;
+            if stats.improvements == 2 {
+                both_kept += 1;
+            }
+        }
+        assert!(soc < first, "no batch improved the plan ({first})");
+        assert!(both_kept > 0, "no batch kept both neighbourhoods");
+    }
+}

@@ -269,6 +269,51 @@ fn lacam_same_seed_same_plan() {
 }
 
 #[test]
+fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
+    // Refinement plans two neighbourhoods at a time on rayon's pool; a fixed round count must
+    // give the same plan however many threads run them.
+    let grid = mason_crew::generate::warehouse(60, 40, 0.05, 3);
+    let n = 100;
+    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, 8);
+    let inst = Instance::new(
+        grid,
+        Connectivity::Four,
+        robots,
+        goals,
+        Some((0..n).collect()),
+        "warehouse",
+    )
+    .unwrap();
+    for seed in [1, 2] {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| solve(&inst, &lacam_config(301, seed), &capped()).unwrap())
+        };
+        let one = run(1);
+        let two = run(2);
+        assert!(one.paths.is_some(), "seed {seed}: {:?}", one.reason);
+        assert_eq!(one.paths, two.paths, "seed {seed}");
+        assert_eq!(one.stats.refine_rounds, 301);
+        assert_eq!(two.stats.refine_rounds, 301);
+        assert_eq!(one.stats.improvements, two.stats.improvements);
+        assert_eq!(one.stats.expanded, two.stats.expanded);
+        assert!(one.stats.improvements > 0, "seed {seed}: nothing refined");
+        let m = validate(
+            &inst.grid,
+            inst.connectivity,
+            &inst.robots,
+            &one.goals,
+            one.paths.as_ref().unwrap(),
+        )
+        .unwrap();
+        assert!(m.sum_of_costs < one.stats.first_sum_of_costs.unwrap());
+    }
+}
+
+#[test]
 fn joint_plans_are_valid_for_their_final_assignment() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     for k in 0..60 {
