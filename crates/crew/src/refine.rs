@@ -8,7 +8,9 @@
 //! lower; otherwise the old ones go back. The plan is therefore valid after every round and its
 //! sum of costs never rises; the caller stops on a deadline or a round count.
 //!
-//! Neighbourhoods, chosen by adaptive weights (a kind that improved gets chosen more):
+//! Neighbourhoods, chosen by adaptive weights (a kind that improved gets chosen more; each
+//! weight follows its kind's gain per robot replanned with Li et al.'s reaction factor 0.01, so
+//! that one early lucky kind does not lock the others out):
 //! - *delayed*: a robot that arrives later than its shortest path would allow, with the robots
 //!   that stand on the cells of its path around the same times;
 //! - *area*: the robots that pass through the cells nearest a random cell;
@@ -150,6 +152,10 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
 /// Neighbourhoods drawn per batch and planned side by side. Fixed, not the number of cores,
 /// so that a seed gives the same plan on one core or many.
 const BATCH: usize = 2;
+
+/// How fast a kind's weight follows its gains (Li et al.'s reaction factor): a kept
+/// neighbourhood moves it towards the gain per robot replanned, any other decays it.
+const REACTION: f64 = 0.01;
 
 /// One neighbourhood of a batch: its kind, its robots in planning order, and what planning
 /// them again gave.
@@ -345,11 +351,12 @@ pub fn refine(
                     soc -= gain;
                     stats.improvements += 1;
                     stall = 0;
-                    weights[cand.kind] += gain as f64;
+                    weights[cand.kind] = REACTION * gain as f64 / cand.group.len() as f64
+                        + (1.0 - REACTION) * weights[cand.kind];
                     changed = true;
                 }
                 None => {
-                    weights[cand.kind] = (weights[cand.kind] * 0.99).max(0.05);
+                    weights[cand.kind] = (weights[cand.kind] * (1.0 - REACTION)).max(0.05);
                     stall += 1;
                 }
             }
@@ -368,19 +375,19 @@ struct View<'a> {
 
 impl View<'_> {
     /// Who is on `cell` at step `t`, or `NIL`.
-    #[inline]
+    #[inline(always)]
     fn who(&self, cell: u32, t: u32) -> u32 {
+        let r = self.occ.who(cell, t);
+        // Somebody present there rules out the planned paths, which avoid everyone present.
+        if r != NIL && !self.absent.contains(&(r as usize)) {
+            return r;
+        }
         for (i, p) in self.planned.iter().enumerate() {
             if pos(p, t) == cell {
                 return self.absent[i] as u32;
             }
         }
-        let r = self.occ.who(cell, t);
-        if r != NIL && self.absent.contains(&(r as usize)) {
-            NIL
-        } else {
-            r
-        }
+        NIL
     }
 
     /// The path of robot `r`, which must not be absent unless planned.
@@ -430,7 +437,7 @@ impl View<'_> {
 
     /// Whether a robot may move (or wait, when `a == b`) from `a` at step `t` to `b` at step
     /// `t + 1`: nobody is on `b` then, nobody swaps with it, nobody crosses its diagonal.
-    #[inline]
+    #[inline(always)]
     fn can_move(&self, graph: &MoveGraph, a: u32, b: u32, t: u32) -> bool {
         if self.who(b, t + 1) != NIL {
             return false;
