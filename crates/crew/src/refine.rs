@@ -22,14 +22,16 @@
 //! longer changes, so states there are merged by cell and the search is finite.
 //! Each round is O(k · T · V log(T · V)) in the worst case for k robots and horizon T.
 //!
-//! Both cores: rounds run in batches of two neighbourhoods, drawn one after the other from the
-//! seeded generator (the second apart from the first), then planned side by side (rayon) against
-//! the same plan, which neither changes: each sees the plan without its own robots, plus the
-//! paths it has planned again so far. They are committed in the order drawn. The first keeps
-//! its paths when they are cheaper, exactly as a lone round would; the second too, provided its
-//! paths, planned before the first's were kept, still avoid everyone (checked with the
-//! search's own move test). The batch size is fixed, not the number of cores, so a seed gives
-//! the same plan on one thread or many; only a deadline makes the result depend on speed.
+//! Both cores: rounds run in batches of four neighbourhoods, drawn one after the other from the
+//! seeded generator (each apart from those before it), then planned side by side (rayon)
+//! against the same plan, which none of them changes: each sees the plan without its own
+//! robots, plus the paths it has planned again so far. They are committed in the order drawn.
+//! The first keeps its paths when they are cheaper, exactly as a lone round would; each later
+//! one too, provided its paths, planned before the earlier ones were kept, still avoid everyone
+//! (checked with the search's own move test; such clashes turned out rare). Four, not two: one
+//! search often runs to its node cap while another ends at once, so two per batch would leave
+//! the second core mostly idle. The batch size is fixed, not the number of cores, so a seed
+//! gives the same plan on one thread or many; only a deadline makes the result depend on speed.
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
@@ -150,8 +152,9 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
 }
 
 /// Neighbourhoods drawn per batch and planned side by side. Fixed, not the number of cores,
-/// so that a seed gives the same plan on one core or many.
-const BATCH: usize = 2;
+/// so that a seed gives the same plan on one core or many; more than two, so that two threads
+/// share a batch's searches, whose lengths differ widely, about evenly.
+const BATCH: usize = 4;
 
 /// How fast a kind's weight follows its gains (Li et al.'s reaction factor): a kept
 /// neighbourhood moves it towards the gain per robot replanned, any other decays it.
@@ -763,7 +766,7 @@ mod tests {
 
     #[test]
     fn the_commit_check_agrees_with_the_validator() {
-        // The second neighbourhood of a batch is kept only when `fits` says its paths avoid
+        // A later neighbourhood of a batch is kept only when `fits` says its paths avoid
         // everyone; on random paths against valid plans, `fits` must say exactly what
         // `crew::validate` says of the plan with those paths in.
         let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -834,7 +837,7 @@ mod tests {
         let mut paths = first_plan(&inst).expect("a first plan");
         let first: u64 = paths.iter().map(|p| arrival(p)).sum();
         let mut soc = first;
-        let mut both_kept = 0;
+        let mut several_kept = 0;
         let one_batch = RefineConfig {
             rounds: Some(BATCH as u64),
             stall: None,
@@ -861,11 +864,14 @@ mod tests {
             .unwrap_or_else(|e| panic!("batch {seed}: {e}"));
             assert!(m.sum_of_costs <= soc, "batch {seed}: cost rose");
             soc = m.sum_of_costs;
-            if stats.improvements == 2 {
-                both_kept += 1;
+            if stats.improvements >= 2 {
+                several_kept += 1;
             }
         }
         assert!(soc < first, "no batch improved the plan ({first})");
-        assert!(both_kept > 0, "no batch kept both neighbourhoods");
+        assert!(
+            several_kept > 0,
+            "no batch kept more than one neighbourhood"
+        );
     }
 }
