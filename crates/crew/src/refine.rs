@@ -42,6 +42,7 @@ use rayon::prelude::*;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+use std::sync::Mutex;
 
 /// When refinement stops besides the deadline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -263,7 +264,9 @@ pub fn refine(
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_1a75);
     let mut occ = Occupancy::new(graph.cells(), paths);
-    let mut searches: Vec<Search> = (0..BATCH).map(|_| Search::new()).collect();
+    // Search scratch, taken by whichever thread plans a neighbourhood and given back after:
+    // as many as threads ran at once, and one thread keeps reusing the same (warm) one.
+    let scratch: Mutex<Vec<Search>> = Mutex::new(Vec::new());
     let mut weights = [1.0f64; 3];
     let mut stall = 0u64;
     let lower: u64 = (0..n)
@@ -323,12 +326,14 @@ pub fn refine(
         }
         // Plan them side by side against the same plan, read only.
         let shared = (&occ, &*paths);
-        batch
-            .par_iter_mut()
-            .zip(searches.par_iter_mut())
-            .for_each(|(cand, search)| {
-                cand.plan(search, graph, dist, goals, shared, config.node_limit);
-            });
+        batch.par_iter_mut().for_each(|cand| {
+            let taken = scratch.lock().map(|mut s| s.pop()).unwrap_or(None);
+            let mut search = taken.unwrap_or_else(Search::new);
+            cand.plan(&mut search, graph, dist, goals, shared, config.node_limit);
+            if let Ok(mut s) = scratch.lock() {
+                s.push(search);
+            }
+        });
         // Commit in the order drawn.
         let mut changed = false;
         for cand in &batch {
