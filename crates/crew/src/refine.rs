@@ -55,6 +55,9 @@ pub struct RefineConfig {
     pub stall: Option<u64>,
     /// Cap on space-time states expanded per robot replanned.
     pub node_limit: u64,
+    /// Neighbourhoods drawn per batch and planned side by side (at least 1; see the module
+    /// notes). The plan depends on it and on the seed, never on the number of cores.
+    pub batch: usize,
 }
 
 impl Default for RefineConfig {
@@ -64,6 +67,7 @@ impl Default for RefineConfig {
             rounds: None,
             stall: Some(1000),
             node_limit: 30_000,
+            batch: BATCH,
         }
     }
 }
@@ -152,9 +156,9 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
         .map_or(0, |t| t as u64 + 1)
 }
 
-/// Neighbourhoods drawn per batch and planned side by side. Fixed, not the number of cores,
-/// so that a seed gives the same plan on one core or many; more than two, so that two threads
-/// share a batch's searches, whose lengths differ widely, about evenly.
+/// Neighbourhoods drawn per batch and planned side by side, by default. Fixed, not the number
+/// of cores, so that a seed gives the same plan on one core or many; more than two, so that two
+/// threads share a batch's searches, whose lengths differ widely, about evenly.
 const BATCH: usize = 4;
 
 /// How fast a kind's weight follows its gains (Li et al.'s reaction factor): a kept
@@ -243,7 +247,7 @@ impl Candidate {
 /// Improves `paths` (valid for `goals`) in place until the budget or `config` stops it, and
 /// never makes the sum of costs worse.
 ///
-/// Rounds run in batches of [`BATCH`] neighbourhoods drawn one after another, planned in
+/// Rounds run in batches of `config.batch` neighbourhoods drawn one after another, planned in
 /// parallel on rayon's current pool against the same plan, and committed in the order drawn:
 /// an improving neighbourhood is kept when its new paths still avoid those kept before it in
 /// the batch. The plan depends on the seed alone, not on the threads or their timing (unless the
@@ -275,7 +279,7 @@ pub fn refine(
     let mut cost: Vec<u64> = paths.iter().map(|p| arrival(p)).collect();
     let mut soc: u64 = cost.iter().sum();
     let k = config.neighbourhood.min(n);
-    let mut batch: Vec<Candidate> = Vec::with_capacity(BATCH);
+    let mut batch: Vec<Candidate> = Vec::with_capacity(config.batch);
     loop {
         if soc <= lower
             || budget.out_of_time()
@@ -284,9 +288,10 @@ pub fn refine(
         {
             return stats;
         }
+        let per_batch = config.batch.max(1) as u64;
         let size = config
             .rounds
-            .map_or(BATCH as u64, |r| (r - stats.rounds).min(BATCH as u64));
+            .map_or(per_batch, |r| (r - stats.rounds).min(per_batch));
         stats.rounds += size;
         // Draw the neighbourhoods one after another, each apart from those before it.
         batch.clear();

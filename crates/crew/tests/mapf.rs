@@ -284,13 +284,15 @@ fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
         "warehouse",
     )
     .unwrap();
-    for seed in [1, 2] {
+    for (seed, batch) in [(1, 4), (2, 4), (3, 1), (4, 2)] {
+        let mut config = lacam_config(301, seed);
+        config.refine.batch = batch;
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            pool.install(|| solve(&inst, &lacam_config(301, seed), &capped()).unwrap())
+            pool.install(|| solve(&inst, &config, &capped()).unwrap())
         };
         let one = run(1);
         let two = run(2);
