@@ -283,8 +283,8 @@ struct CrewArgs {
     /// --time-limit, or 1000 rounds in a row without improvement)
     #[arg(long)]
     refine_rounds: Option<u64>,
-    /// lacam: refinement neighbourhoods planned side by side in one batch (default 4; 1: one
-    /// at a time). The plan depends on it and on the seed, not on the number of cores
+    /// lacam: refinement neighbourhoods planned side by side in one batch, on all cores
+    /// (default 1: one at a time). The plan depends on it and on the seed, not on the cores
     #[arg(long)]
     refine_batch: Option<usize>,
     /// PRM samples

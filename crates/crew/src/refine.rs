@@ -8,9 +8,7 @@
 //! lower; otherwise the old ones go back. The plan is therefore valid after every round and its
 //! sum of costs never rises; the caller stops on a deadline or a round count.
 //!
-//! Neighbourhoods, chosen by adaptive weights (a kind that improved gets chosen more; each
-//! weight follows its kind's gain per robot replanned with Li et al.'s reaction factor 0.01, so
-//! that one early lucky kind does not lock the others out):
+//! Neighbourhoods, chosen by adaptive weights (a kind that improved gets chosen more):
 //! - *delayed*: a robot that arrives later than its shortest path would allow, with the robots
 //!   that stand on the cells of its path around the same times;
 //! - *area*: the robots that pass through the cells nearest a random cell;
@@ -22,16 +20,23 @@
 //! longer changes, so states there are merged by cell and the search is finite.
 //! Each round is O(k · T · V log(T · V)) in the worst case for k robots and horizon T.
 //!
-//! Both cores: rounds run in batches of four neighbourhoods, drawn one after the other from the
-//! seeded generator (each apart from those before it), then planned side by side (rayon)
-//! against the same plan, which none of them changes: each sees the plan without its own
-//! robots, plus the paths it has planned again so far. They are committed in the order drawn.
-//! The first keeps its paths when they are cheaper, exactly as a lone round would; each later
-//! one too, provided its paths, planned before the earlier ones were kept, still avoid everyone
-//! (checked with the search's own move test; such clashes turned out rare). Four, not two: one
-//! search often runs to its node cap while another ends at once, so two per batch would leave
-//! the second core mostly idle. The batch size is fixed, not the number of cores, so a seed
-//! gives the same plan on one thread or many; only a deadline makes the result depend on speed.
+//! Several cores: rounds run in batches of `RefineConfig::batch` neighbourhoods, drawn one after
+//! the other from the seeded generator (each apart from those before it), then planned side by
+//! side (rayon) against the same plan, which none of them changes: each sees the plan without
+//! its own robots, plus the paths it has planned again so far. They are committed in the order
+//! drawn. The first keeps its paths when they are cheaper, exactly as a lone round would; each
+//! later one too, provided its paths, planned before the earlier ones were kept, still avoid
+//! everyone (checked with the search's own move test; such clashes turned out rare). The batch
+//! size is part of the configuration, never the number of cores, so a seed gives the same plan
+//! on one thread or many; only a deadline makes the result depend on speed.
+//!
+//! The default batch is 1: one round at a time, as before. On the warehouse benchmark a batch
+//! finds about a tenth fewer improvements per round, and the searches of one batch differ
+//! widely in length (one runs to its node cap while another ends at once), so two threads
+//! could take at most about 23 % of the work off the first with batches of 2 and 40 % with
+//! batches of 4. On the shared 2-core machine where this was measured, other work held the
+//! second core and batches of 4 ended worse at equal wall time (500 agents, 10 s: about +17 %
+//! over the lower bound against +12.5 %), so they are opt-in until measured on free cores.
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
@@ -156,14 +161,8 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
         .map_or(0, |t| t as u64 + 1)
 }
 
-/// Neighbourhoods drawn per batch and planned side by side, by default. Fixed, not the number
-/// of cores, so that a seed gives the same plan on one core or many; more than two, so that two
-/// threads share a batch's searches, whose lengths differ widely, about evenly.
-const BATCH: usize = 4;
-
-/// How fast a kind's weight follows its gains (Li et al.'s reaction factor): a kept
-/// neighbourhood moves it towards the gain per robot replanned, any other decays it.
-const REACTION: f64 = 0.01;
+/// Neighbourhoods drawn per batch by default: one round at a time (see the module notes).
+const BATCH: usize = 1;
 
 /// One neighbourhood of a batch: its kind, its robots in planning order, and what planning
 /// them again gave.
@@ -364,12 +363,11 @@ pub fn refine(
                     soc -= gain;
                     stats.improvements += 1;
                     stall = 0;
-                    weights[cand.kind] = REACTION * gain as f64 / cand.group.len() as f64
-                        + (1.0 - REACTION) * weights[cand.kind];
+                    weights[cand.kind] += gain as f64;
                     changed = true;
                 }
                 None => {
-                    weights[cand.kind] = (weights[cand.kind] * (1.0 - REACTION)).max(0.05);
+                    weights[cand.kind] = (weights[cand.kind] * 0.99).max(0.05);
                     stall += 1;
                 }
             }
@@ -849,8 +847,9 @@ mod tests {
         let mut soc = first;
         let mut several_kept = 0;
         let one_batch = RefineConfig {
-            rounds: Some(BATCH as u64),
+            rounds: Some(4),
             stall: None,
+            batch: 4,
             ..RefineConfig::default()
         };
         for seed in 0..80 {
@@ -863,7 +862,7 @@ mod tests {
                 &Budget::unlimited(),
                 seed,
             );
-            assert_eq!(stats.rounds, BATCH as u64);
+            assert_eq!(stats.rounds, 4);
             let m = validate(
                 &inst.grid,
                 inst.connectivity,

@@ -102,6 +102,24 @@ fn lacam_is_valid_never_beats_cbs_and_never_gives_up_on_a_solvable_instance() {
                 let got = validate(&inst.grid, conn, &inst.robots, &out.goals, &paths)
                     .expect("lacam plan valid");
                 assert!(got.sum_of_costs >= soc, "instance {k}: below the optimum");
+                // Batched refinement too: valid, never below the optimum, never above the
+                // first plan.
+                let mut batched = lacam_config(200, k as u64);
+                batched.refine.batch = 4;
+                let out4 = solve(&inst, &batched, &capped()).unwrap();
+                let m4 = validate(
+                    &inst.grid,
+                    conn,
+                    &inst.robots,
+                    &out4.goals,
+                    out4.paths.as_ref().expect("plan"),
+                )
+                .expect("batched lacam plan valid");
+                assert!(
+                    m4.sum_of_costs >= soc,
+                    "instance {k}: batched below the optimum"
+                );
+                assert!(m4.sum_of_costs <= out4.stats.first_sum_of_costs.unwrap());
                 if out.status == Status::Optimal {
                     assert_eq!(got.sum_of_costs, soc, "instance {k}: claimed optimal");
                 }
