@@ -50,7 +50,13 @@ pub struct RawChoices<'a> {
     pub seed: u64,
     /// `--refine-rounds`.
     pub refine_rounds: Option<u64>,
+    /// `--refine-batch`.
+    pub refine_batch: Option<usize>,
 }
+
+/// The largest `--refine-batch`: more neighbourhoods than that per batch would mostly be
+/// planned against a stale plan.
+const MAX_REFINE_BATCH: usize = 64;
 
 /// Parses the solver options (usage errors exit 2).
 pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliResult<CrewChoices> {
@@ -95,10 +101,21 @@ pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliRes
     if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
         return Err(input_error("--refine-rounds applies to --resolve lacam"));
     }
+    if raw.refine_batch.is_some() && resolve != Resolution::Lacam {
+        return Err(input_error("--refine-batch applies to --resolve lacam"));
+    }
     let mut refine = RefineConfig::default();
     if let Some(r) = raw.refine_rounds {
         refine.rounds = Some(r);
         refine.stall = None;
+    }
+    if let Some(b) = raw.refine_batch {
+        if !(1..=MAX_REFINE_BATCH).contains(&b) {
+            return Err(input_error(format!(
+                "--refine-batch is 1 to {MAX_REFINE_BATCH}"
+            )));
+        }
+        refine.batch = b;
     }
     Ok(CrewChoices {
         config: CrewConfig {
@@ -324,6 +341,7 @@ pub fn crew_json(
         "prm": {"samples": config.prm.samples, "neighbours": config.prm.neighbours},
         "seed": seed,
         "refine_rounds_limit": config.refine.rounds,
+        "refine_batch": config.refine.batch,
         "status": o.status,
         "reason": o.reason,
         "agents": agents,

@@ -283,6 +283,10 @@ struct CrewArgs {
     /// --time-limit, or 1000 rounds in a row without improvement)
     #[arg(long)]
     refine_rounds: Option<u64>,
+    /// lacam: refinement neighbourhoods planned side by side in one batch, on all cores
+    /// (default 1: one at a time). The plan depends on it and on the seed, not on the cores
+    #[arg(long)]
+    refine_batch: Option<usize>,
     /// PRM samples
     #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
     samples: usize,
@@ -835,6 +839,7 @@ fn crew(a: CrewArgs) -> CliResult<()> {
             connectivity: &a.connectivity,
             seed: a.seed,
             refine_rounds: a.refine_rounds,
+            refine_batch: a.refine_batch,
         },
         prm,
         a.scen.is_some(),

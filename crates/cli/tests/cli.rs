@@ -433,6 +433,25 @@ fn crew_new_flags_are_checked() {
         &["--refine-rounds applies to --resolve lacam"],
     );
     assert_input_error(
+        &mason(&["crew", &room, "--scen", &scen, "--refine-batch", "2"]),
+        &["--refine-batch applies to --resolve lacam"],
+    );
+    for bad in ["0", "65"] {
+        assert_input_error(
+            &mason(&[
+                "crew",
+                &room,
+                "--scen",
+                &scen,
+                "--resolve",
+                "lacam",
+                "--refine-batch",
+                bad,
+            ]),
+            &["--refine-batch is 1 to 64"],
+        );
+    }
+    assert_input_error(
         &mason(&["bench", "mapf", "--data", &data("missing-dir")]),
         &["not a MovingAI benchmark directory"],
     );

@@ -102,6 +102,24 @@ fn lacam_is_valid_never_beats_cbs_and_never_gives_up_on_a_solvable_instance() {
                 let got = validate(&inst.grid, conn, &inst.robots, &out.goals, &paths)
                     .expect("lacam plan valid");
                 assert!(got.sum_of_costs >= soc, "instance {k}: below the optimum");
+                // Batched refinement too: valid, never below the optimum, never above the
+                // first plan.
+                let mut batched = lacam_config(200, k as u64);
+                batched.refine.batch = 4;
+                let out4 = solve(&inst, &batched, &capped()).unwrap();
+                let m4 = validate(
+                    &inst.grid,
+                    conn,
+                    &inst.robots,
+                    &out4.goals,
+                    out4.paths.as_ref().expect("plan"),
+                )
+                .expect("batched lacam plan valid");
+                assert!(
+                    m4.sum_of_costs >= soc,
+                    "instance {k}: batched below the optimum"
+                );
+                assert!(m4.sum_of_costs <= out4.stats.first_sum_of_costs.unwrap());
                 if out.status == Status::Optimal {
                     assert_eq!(got.sum_of_costs, soc, "instance {k}: claimed optimal");
                 }
@@ -266,6 +284,53 @@ fn lacam_same_seed_same_plan() {
     )
     .unwrap();
     assert!(m.sum_of_costs <= a.stats.first_sum_of_costs.unwrap());
+}
+
+#[test]
+fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
+    // Refinement plans two neighbourhoods at a time on rayon's pool; a fixed round count must
+    // give the same plan however many threads run them.
+    let grid = mason_crew::generate::warehouse(60, 40, 0.05, 3);
+    let n = 100;
+    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, 8);
+    let inst = Instance::new(
+        grid,
+        Connectivity::Four,
+        robots,
+        goals,
+        Some((0..n).collect()),
+        "warehouse",
+    )
+    .unwrap();
+    for (seed, batch) in [(1, 4), (2, 4), (3, 1), (4, 2)] {
+        let mut config = lacam_config(301, seed);
+        config.refine.batch = batch;
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| solve(&inst, &config, &capped()).unwrap())
+        };
+        let one = run(1);
+        let two = run(2);
+        assert!(one.paths.is_some(), "seed {seed}: {:?}", one.reason);
+        assert_eq!(one.paths, two.paths, "seed {seed}");
+        assert_eq!(one.stats.refine_rounds, 301);
+        assert_eq!(two.stats.refine_rounds, 301);
+        assert_eq!(one.stats.improvements, two.stats.improvements);
+        assert_eq!(one.stats.expanded, two.stats.expanded);
+        assert!(one.stats.improvements > 0, "seed {seed}: nothing refined");
+        let m = validate(
+            &inst.grid,
+            inst.connectivity,
+            &inst.robots,
+            &one.goals,
+            one.paths.as_ref().unwrap(),
+        )
+        .unwrap();
+        assert!(m.sum_of_costs < one.stats.first_sum_of_costs.unwrap());
+    }
 }
 
 #[test]
