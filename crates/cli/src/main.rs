@@ -284,7 +284,8 @@ struct CrewArgs {
     #[arg(long)]
     refine_rounds: Option<u64>,
     /// lacam: refinement neighbourhoods planned side by side in one batch, on all cores
-    /// (default 1: one at a time). The plan depends on it and on the seed, not on the cores
+    /// (default 4; 1: one at a time, better on one core). The plan depends on it and on the
+    /// seed, not on the cores
     #[arg(long)]
     refine_batch: Option<usize>,
     /// PRM samples

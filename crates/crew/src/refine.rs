@@ -30,13 +30,14 @@
 //! size is part of the configuration, never the number of cores, so a seed gives the same plan
 //! on one thread or many; only a deadline makes the result depend on speed.
 //!
-//! The default batch is 1: one round at a time, as before. On the warehouse benchmark a batch
-//! finds about a tenth fewer improvements per round, and the searches of one batch differ
-//! widely in length (one runs to its node cap while another ends at once), so two threads
-//! could take at most about 23 % of the work off the first with batches of 2 and 40 % with
-//! batches of 4. On the shared 2-core machine where this was measured, other work held the
-//! second core and batches of 4 ended worse at equal wall time (500 agents, 10 s: about +17 %
-//! over the lower bound against +12.5 %), so they are opt-in until measured on free cores.
+//! The default batch is 4. A batch finds about a tenth fewer improvements per round, and the
+//! searches of one batch differ widely in length (one runs to its node cap while another ends
+//! at once), but with a second core free it runs about half as many rounds again in the same
+//! time. Measured on 2 free cores (warehouse-10-20-10-2-1, 4-connected, sum of costs over the
+//! lower bound, seeds 0–2): 500 agents in 10 s, batch 4 +11.7 / +11.5 / +10.1 % against batch
+//! 1's +12.3 / +12.8 / +16.1 %; 1000 agents in 30 s (seeds 0–1), +104.4 / +95.2 % against
+//! +112.8 / +111.5 %. On one core, or with the second core busy, batch 1 does better (500
+//! agents: about +12.5 % against +17 %): `RefineConfig::batch` / `--refine-batch 1`.
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
@@ -161,8 +162,8 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
         .map_or(0, |t| t as u64 + 1)
 }
 
-/// Neighbourhoods drawn per batch by default: one round at a time (see the module notes).
-const BATCH: usize = 1;
+/// Neighbourhoods drawn per batch by default (see the module notes).
+const BATCH: usize = 4;
 
 /// One neighbourhood of a batch: its kind, its robots in planning order, and what planning
 /// them again gave.
