@@ -23,6 +23,8 @@
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 /// How a TSWAP run ended.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -106,99 +108,54 @@ fn least_sum_matching(options: &[Vec<(u32, u32)>], goals: usize, limit: u32) -> 
     let n = options.len();
     let mut goal_of = vec![NIL; n];
     let mut robot_of = vec![NIL; goals];
-    let (mut robot_pot, mut goal_pot) = (vec![0i64; n], vec![0i64; goals]);
-    // Per search: each goal's distance, the robot it was reached from, and whether settled.
-    let mut reach = vec![i64::MAX; goals];
-    let mut from = vec![NIL; goals];
-    let mut settled = vec![false; goals];
-    let mut touched: Vec<u32> = Vec::new();
-    let mut heap = std::collections::BinaryHeap::new();
+    let mut search = Augment {
+        options,
+        limit,
+        robot_pot: vec![0; n],
+        goal_pot: vec![0; goals],
+        reach: vec![i64::MAX; goals],
+        from: vec![NIL; goals],
+        settled: vec![false; goals],
+        touched: Vec::new(),
+        heap: BinaryHeap::new(),
+    };
     for s in 0..n {
-        for &g in &touched {
-            reach[g as usize] = i64::MAX;
-            settled[g as usize] = false;
-        }
-        touched.clear();
-        heap.clear();
-        let relax = |a: usize,
-                     base: i64,
-                     reach: &mut Vec<i64>,
-                     from: &mut Vec<u32>,
-                     touched: &mut Vec<u32>,
-                     heap: &mut std::collections::BinaryHeap<std::cmp::Reverse<(i64, u32)>>,
-                     robot_pot: &[i64],
-                     goal_pot: &[i64],
-                     settled: &[bool]| {
-            for &(d, g) in options[a].iter().take_while(|&&(d, _)| d <= limit) {
-                let gi = g as usize;
-                if settled[gi] {
-                    continue;
-                }
-                let cost = base + i64::from(d) + robot_pot[a] - goal_pot[gi];
-                if cost < reach[gi] {
-                    if reach[gi] == i64::MAX {
-                        touched.push(g);
-                    }
-                    reach[gi] = cost;
-                    from[gi] = a as u32;
-                    heap.push(std::cmp::Reverse((cost, g)));
-                }
-            }
-        };
-        relax(
-            s,
-            0,
-            &mut reach,
-            &mut from,
-            &mut touched,
-            &mut heap,
-            &robot_pot,
-            &goal_pot,
-            &settled,
-        );
+        search.reset();
+        search.relax(s, 0);
         let mut settled_list: Vec<u32> = Vec::new();
         let mut end = None;
-        while let Some(std::cmp::Reverse((d, g))) = heap.pop() {
+        while let Some(Reverse((d, g))) = search.heap.pop() {
             let gi = g as usize;
-            if settled[gi] || d > reach[gi] {
+            if search.settled[gi] || d > search.reach[gi] {
                 continue;
             }
-            settled[gi] = true;
+            search.settled[gi] = true;
             settled_list.push(g);
-            let owner = robot_of[gi];
-            if owner == NIL {
-                end = Some((g, d));
-                break;
+            match robot_of[gi] {
+                NIL => {
+                    end = Some((g, d));
+                    break;
+                }
+                owner => search.relax(owner as usize, d),
             }
-            relax(
-                owner as usize,
-                d,
-                &mut reach,
-                &mut from,
-                &mut touched,
-                &mut heap,
-                &robot_pot,
-                &goal_pot,
-                &settled,
-            );
         }
         let (end, total) = end?;
         // New potentials (Johnson's, capped at the end's distance and shifted by it): every
         // settled node drops by how far short of the end it was, which keeps reduced costs ≥ 0
         // and makes the path's zero.
-        robot_pot[s] -= total;
+        search.robot_pot[s] -= total;
         for &g in &settled_list {
             let gi = g as usize;
-            let shift = total - reach[gi];
-            goal_pot[gi] -= shift;
+            let shift = total - search.reach[gi];
+            search.goal_pot[gi] -= shift;
             if robot_of[gi] != NIL && g != end {
-                robot_pot[robot_of[gi] as usize] -= shift;
+                search.robot_pot[robot_of[gi] as usize] -= shift;
             }
         }
         // Flip the path from the end back to s.
         let mut g = end;
         loop {
-            let a = from[g as usize];
+            let a = search.from[g as usize];
             let previous = goal_of[a as usize];
             goal_of[a as usize] = g;
             robot_of[g as usize] = a;
@@ -209,6 +166,54 @@ fn least_sum_matching(options: &[Vec<(u32, u32)>], goals: usize, limit: u32) -> 
         }
     }
     Some(goal_of.into_iter().map(|g| g as usize).collect())
+}
+
+/// The state of [`least_sum_matching`]'s searches: potentials, and per search each goal's
+/// distance, the robot it was reached from and whether it is settled.
+struct Augment<'a> {
+    options: &'a [Vec<(u32, u32)>],
+    limit: u32,
+    robot_pot: Vec<i64>,
+    goal_pot: Vec<i64>,
+    reach: Vec<i64>,
+    from: Vec<u32>,
+    settled: Vec<bool>,
+    touched: Vec<u32>,
+    heap: BinaryHeap<Reverse<(i64, u32)>>,
+}
+
+impl Augment<'_> {
+    /// Forgets the last search's distances.
+    fn reset(&mut self) {
+        for &g in &self.touched {
+            self.reach[g as usize] = i64::MAX;
+            self.settled[g as usize] = false;
+        }
+        self.touched.clear();
+        self.heap.clear();
+    }
+
+    /// Offers robot `a`'s goals within the limit, robot `a` being `base` away from the start.
+    fn relax(&mut self, a: usize, base: i64) {
+        for &(d, g) in self.options[a]
+            .iter()
+            .take_while(|&&(d, _)| d <= self.limit)
+        {
+            let gi = g as usize;
+            if self.settled[gi] {
+                continue;
+            }
+            let cost = base + i64::from(d) + self.robot_pot[a] - self.goal_pot[gi];
+            if cost < self.reach[gi] {
+                if self.reach[gi] == i64::MAX {
+                    self.touched.push(g);
+                }
+                self.reach[gi] = cost;
+                self.from[gi] = a as u32;
+                self.heap.push(Reverse((cost, g)));
+            }
+        }
+    }
 }
 
 /// A maximum matching of robots to goals using pairs no longer than `limit` (Kuhn's augmenting
