@@ -610,3 +610,15 @@ fn crew_and_team_schedules_keep_their_time_limit_or_report_the_overrun() {
         0.01,
     );
 }
+
+#[test]
+fn a_damaged_png_palette_is_refused_by_both_image_readers() {
+    // A palette of 5 bytes (not whole colours), every CRC right: the png crate panicked on it
+    // when expanding the palette (found by fuzzing the wall reader; the crew's reader, then on
+    // the image crate, panicked too).
+    let p = data("palette-5-bytes.png");
+    for args in [vec!["wall", "show", &p], vec!["crew", "--image", &p]] {
+        let o = mason(&args);
+        assert_input_error(&o, &["palette-5-bytes.png", "PLTE) is 5 bytes"]);
+    }
+}

@@ -21,43 +21,21 @@ pub struct BirdsEye {
     pub goals: Vec<Cell>,
 }
 
+/// Decodes with the wall reader's PNG decoder (straight to 8-bit RGB, the size checked from
+/// the header first, damaged palettes refused).
 fn decode(bytes: &[u8], source_name: &str) -> Result<RgbImage, CrewError> {
-    let cannot = |e: image::ImageError| {
-        CrewError::new(
-            source_name,
-            Location::Whole,
-            format!("cannot decode the image: {e}"),
-        )
-    };
-    let (w, h) = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| cannot(e.into()))?
-        .into_dimensions()
-        .map_err(cannot)?;
-    if u64::from(w) * u64::from(h) > crate::limits::MAX_CELLS {
-        return Err(CrewError::new(
-            source_name,
-            Location::Whole,
-            format!(
-                "{w}×{h} is more than the {} cells a map may have (mason_crew::limits::MAX_CELLS)",
-                crate::limits::MAX_CELLS
-            ),
-        ));
-    }
-    let img = image::load_from_memory(bytes).map_err(|e| {
-        CrewError::new(
-            source_name,
-            Location::Whole,
-            format!("cannot decode the image: {e}"),
-        )
+    let fail = |reason: String| CrewError::new(source_name, Location::Whole, reason);
+    let rgb = mason_wall::decode_png_rgb(bytes, crate::limits::MAX_CELLS).map_err(|e| match e {
+        mason_wall::PngDecodeError::TooLarge { width, height } => fail(format!(
+            "{width}×{height} is more than the {} cells a map may have (mason_crew::limits::MAX_CELLS)",
+            crate::limits::MAX_CELLS
+        )),
+        mason_wall::PngDecodeError::Malformed(reason) => {
+            fail(format!("cannot decode the image: {reason}"))
+        }
     })?;
-    let rgb = img.to_rgb8();
     if rgb.width() == 0 || rgb.height() == 0 {
-        return Err(CrewError::new(
-            source_name,
-            Location::Whole,
-            "the image is empty",
-        ));
+        return Err(fail("the image is empty".into()));
     }
     Ok(rgb)
 }

@@ -598,6 +598,54 @@ fn an_oversized_image_is_refused_before_decoding() {
     assert!(e.to_string().contains("more than the"), "{e}");
 }
 
+/// A 2×1 palette PNG whose PLTE chunk is `palette` and, when given, whose tRNS chunk is
+/// `trns`, every CRC right: the png crate (0.18) panicked on both when it expanded them.
+fn palette_png(palette: &[u8], trns: Option<&[u8]>) -> Vec<u8> {
+    let mut valid = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut valid, 2, 1);
+        encoder.set_color(png::ColorType::Indexed);
+        encoder.set_palette(vec![255, 0, 0, 0, 255, 0]);
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(&[0, 1]).unwrap();
+    }
+    let chunk = |kind: &[u8], data: &[u8]| -> Vec<u8> {
+        let mut c = (data.len() as u32).to_be_bytes().to_vec();
+        c.extend_from_slice(kind);
+        c.extend_from_slice(data);
+        c.extend_from_slice(&crc32(&c[4..]).to_be_bytes());
+        c
+    };
+    // Signature and IHDR (8 + 25 bytes), then our chunks, then the encoder's from IDAT on.
+    let idat = valid.windows(4).position(|w| w == b"IDAT").unwrap() - 4;
+    let mut out = valid[..33].to_vec();
+    out.extend(chunk(b"PLTE", palette));
+    if let Some(t) = trns {
+        out.extend(chunk(b"tRNS", t));
+    }
+    out.extend_from_slice(&valid[idat..]);
+    out
+}
+
+#[test]
+fn malformed_palettes_are_refused_not_a_panic() {
+    // The fixture is right when its palette is: two whole colours read as an image.
+    let fine = read_png(&palette_png(&[255, 0, 0, 0, 255, 0], Some(&[255])), "p.png");
+    assert!(
+        !matches!(&fine, Err(e) if matches!(e.kind, WallErrorKind::ImageDecode { .. })),
+        "{fine:?}"
+    );
+    let e = read_png(&palette_png(&[255, 0, 0, 0, 255], None), "p.png").unwrap_err();
+    assert!(matches!(e.kind, WallErrorKind::ImageDecode { .. }), "{e}");
+    assert!(e.to_string().contains("PLTE) is 5 bytes"), "{e}");
+    let e = read_png(
+        &palette_png(&[255, 0, 0, 0, 255, 0], Some(&[1, 2, 3])),
+        "p.png",
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("tRNS) has 3 entries for 2"), "{e}");
+}
+
 /// CRC-32 (IEEE), for patching a PNG header.
 fn crc32(data: &[u8]) -> u32 {
     let mut crc = !0u32;

@@ -119,28 +119,70 @@ pub use pixels::classify_pixel;
 /// grey spread to three channels, alpha dropped), so a 50-megapixel image needs about 4 bytes
 /// per pixel at most while decoding.
 pub fn read_png(bytes: &[u8], name: &str) -> Result<Wall, WallError> {
-    let img = decode_rgb(bytes).map_err(|reason| {
+    let img = decode_png_rgb(bytes, MAX_PIXELS).map_err(|e| {
+        let reason = match e {
+            PngDecodeError::TooLarge { width, height } => format!(
+                "{width}×{height} is more than the {MAX_PIXELS} pixels a wall image may have"
+            ),
+            PngDecodeError::Malformed(reason) => reason,
+        };
         WallError::new(name, Location::Whole, WallErrorKind::ImageDecode { reason })
     })?;
     read_image(&img, name)
 }
 
-/// PNG bytes as 8-bit RGB, refusing more than [`MAX_PIXELS`] before allocating for them.
-fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
+/// Why PNG bytes could not be decoded.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PngDecodeError {
+    /// The header gives more pixels than allowed.
+    TooLarge {
+        /// Width from the header.
+        width: u32,
+        /// Height from the header.
+        height: u32,
+    },
+    /// Not a PNG, or a damaged one; the reason.
+    Malformed(String),
+}
+
+/// PNG bytes as 8-bit RGB (16-bit samples cut to 8, grey spread to three channels, alpha
+/// dropped, palettes expanded), refusing more than `max_pixels` from the header before
+/// allocating for them. Shared by the wall reader and the crew's image readers.
+pub fn decode_png_rgb(bytes: &[u8], max_pixels: u64) -> Result<RgbImage, PngDecodeError> {
+    let malformed = |e: String| PngDecodeError::Malformed(e);
     let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
     decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
-    let mut reader = decoder.read_info().map_err(|e| e.to_string())?;
-    let (w, h) = reader.info().size();
-    if u64::from(w) * u64::from(h) > MAX_PIXELS {
-        return Err(format!(
-            "{w}×{h} is more than the {MAX_PIXELS} pixels a wall image may have"
-        ));
+    let mut reader = decoder.read_info().map_err(|e| malformed(e.to_string()))?;
+    let (width, height) = reader.info().size();
+    if u64::from(width) * u64::from(height) > max_pixels {
+        return Err(PngDecodeError::TooLarge { width, height });
+    }
+    let (w, h) = (width, height);
+    // The png crate (0.18) panics on a palette that is not whole colours, or on more
+    // transparency entries than colours, when it expands them (found by fuzzing).
+    let info = reader.info();
+    if let Some(palette) = &info.palette {
+        if palette.len() % 3 != 0 {
+            return Err(malformed(format!(
+                "the palette (PLTE) is {} bytes, not a whole number of 3-byte colours",
+                palette.len()
+            )));
+        }
+        let transparent = info.trns.as_ref().map_or(0, |t| t.len());
+        if info.color_type == png::ColorType::Indexed && transparent > palette.len() / 3 {
+            return Err(malformed(format!(
+                "the transparency table (tRNS) has {transparent} entries for {} palette colours",
+                palette.len() / 3
+            )));
+        }
     }
     let size = reader
         .output_buffer_size()
-        .ok_or_else(|| format!("{w}×{h} does not fit in memory"))?;
+        .ok_or_else(|| malformed(format!("{w}×{h} does not fit in memory")))?;
     let mut buf = vec![0u8; size];
-    let frame = reader.next_frame(&mut buf).map_err(|e| e.to_string())?;
+    let frame = reader
+        .next_frame(&mut buf)
+        .map_err(|e| malformed(e.to_string()))?;
     buf.truncate(frame.buffer_size());
     let pixels = w as usize * h as usize;
     let rgb = match frame.color_type {
@@ -160,9 +202,11 @@ fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
             };
             buf.iter().step_by(step).flat_map(|&g| [g, g, g]).collect()
         }
-        png::ColorType::Indexed => return Err("an indexed image was not expanded".into()),
+        png::ColorType::Indexed => {
+            return Err(malformed("an indexed image was not expanded".into()))
+        }
     };
-    RgbImage::from_raw(w, h, rgb).ok_or_else(|| "the decoded image is short".into())
+    RgbImage::from_raw(w, h, rgb).ok_or_else(|| malformed("the decoded image is short".into()))
 }
 
 /// Reads a wall from a decoded image (see the module documentation for the steps).
@@ -250,7 +294,7 @@ mod tests {
             image::DynamicImage::ImageLumaA8(dynamic.to_luma_alpha8()),
             image::DynamicImage::ImageLuma16(dynamic.to_luma16()),
         ] {
-            let decoded = decode_rgb(&encode(&img)).unwrap();
+            let decoded = decode_png_rgb(&encode(&img), MAX_PIXELS).unwrap();
             assert!(close(&decoded, &img.to_rgb8()), "{:?}", img.color());
         }
         // A palette image, as paint programs save small drawings.
@@ -262,9 +306,17 @@ mod tests {
             let mut writer = encoder.write_header().unwrap();
             writer.write_image_data(&[2, 1, 0]).unwrap();
         }
-        let decoded = decode_rgb(&bytes).unwrap();
+        let decoded = decode_png_rgb(&bytes, MAX_PIXELS).unwrap();
         assert_eq!(decoded.as_raw(), &vec![0, 0, 255, 0, 255, 0, 255, 0, 0]);
-        assert!(decode_rgb(b"not a png").is_err());
+        assert!(decode_png_rgb(b"not a png", MAX_PIXELS).is_err());
+        let big = encode(&image::DynamicImage::ImageRgb8(RgbImage::new(20, 10)));
+        assert_eq!(
+            decode_png_rgb(&big, 199),
+            Err(PngDecodeError::TooLarge {
+                width: 20,
+                height: 10
+            })
+        );
     }
 
     fn ambiguous(fit: Result<Reading, Misfit>) -> bool {
