@@ -157,7 +157,6 @@ pub fn decode_png_rgb(bytes: &[u8], max_pixels: u64) -> Result<RgbImage, PngDeco
     if u64::from(width) * u64::from(height) > max_pixels {
         return Err(PngDecodeError::TooLarge { width, height });
     }
-    let (w, h) = (width, height);
     // The png crate (0.18) panics on a palette that is not whole colours, or on more
     // transparency entries than colours, when it expands them (found by fuzzing).
     let info = reader.info();
@@ -178,13 +177,13 @@ pub fn decode_png_rgb(bytes: &[u8], max_pixels: u64) -> Result<RgbImage, PngDeco
     }
     let size = reader
         .output_buffer_size()
-        .ok_or_else(|| malformed(format!("{w}×{h} does not fit in memory")))?;
+        .ok_or_else(|| malformed(format!("{width}×{height} does not fit in memory")))?;
     let mut buf = vec![0u8; size];
     let frame = reader
         .next_frame(&mut buf)
         .map_err(|e| malformed(e.to_string()))?;
     buf.truncate(frame.buffer_size());
-    let pixels = w as usize * h as usize;
+    let pixels = width as usize * height as usize;
     let rgb = match frame.color_type {
         png::ColorType::Rgb => buf,
         png::ColorType::Rgba => {
@@ -206,7 +205,8 @@ pub fn decode_png_rgb(bytes: &[u8], max_pixels: u64) -> Result<RgbImage, PngDeco
             return Err(malformed("an indexed image was not expanded".into()))
         }
     };
-    RgbImage::from_raw(w, h, rgb).ok_or_else(|| malformed("the decoded image is short".into()))
+    RgbImage::from_raw(width, height, rgb)
+        .ok_or_else(|| malformed("the decoded image is short".into()))
 }
 
 /// Reads a wall from a decoded image (see the module documentation for the steps).
