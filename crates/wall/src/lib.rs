@@ -21,6 +21,7 @@
 mod brick;
 mod builtin;
 mod cmcp;
+mod decode;
 mod error;
 pub mod generate;
 pub mod limits;
@@ -35,8 +36,9 @@ pub use brick::{
 };
 pub use builtin::{builtin, BuiltinWall, BUILTIN_WALLS};
 pub use cmcp::{looks_like_cmcp, parse_cmcp, parse_cmcp_strict, CmcpSizes};
+pub use decode::{decode_png_rgb, PngDecodeError};
 pub use error::{Location, WallError, WallErrorKind};
-pub use png::{classify_pixel, decode_png_rgb, read_image, read_png, PngDecodeError, MAX_PIXELS};
+pub use png::{classify_pixel, read_image, read_png, MAX_PIXELS};
 pub use raster::{brick_rgb, render, RasterStyle};
 pub use text::{parse_layer_text, parse_mbzirc, to_layer_text};
 pub use wall::Wall;

@@ -46,31 +46,10 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run])
         let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
         // Each column's colour in each layer, and the gap between them in each column: from
         // where the upper colour ends (its share of each row, summed down to the middle) to
-        // where the lower one starts. Where two colours blend straight into each other (every
-        // row between them on the line from one to the other, each pixel averaged with its
-        // left and right neighbours against noise, and no grey on that line) there is no
-        // border at all.
+        // where the lower one starts.
         let upper_colours = column_means(px, upper);
         let lower_colours = column_means(px, lower);
-        let smoothed = |x: usize, y: usize| -> [f32; 3] {
-            let near = x.saturating_sub(1)..(x + 2).min(px.width);
-            let n = near.len() as f32;
-            let mut sum = [0f32; 3];
-            for xx in near {
-                let p = px.rgb(y * px.width + xx);
-                (0..3).for_each(|c| sum[c] += p[c]);
-            }
-            sum.map(|v| v / n)
-        };
         let column_gap = |x: usize| -> f64 {
-            let blends = two_colours
-                && Blend::new(upper_colours[x], lower_colours[x]).is_some_and(|blend| {
-                    blend.keeps_colour()
-                        && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)))
-                });
-            if blends {
-                return 0.0;
-            }
             let share =
                 |y: usize, colours: &[[f32; 3]]| share_of(px.rgb(y * px.width + x), colours[x]);
             let colour_bottom = upper_inner as f64

@@ -99,18 +99,11 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
             hinted = true;
         }
     }
-    // A reading at a whole fraction of another's unit with the same border only cuts that
-    // one's bricks in pieces with no border between them: keep the coarser.
+    // One wall read at two units is one reading.
     readings.sort_by(|a, b| b.unit.total_cmp(&a.unit));
     let mut distinct: Vec<Reading> = Vec::new();
     for r in readings {
-        let finer = |k: &Reading| {
-            let ratio = k.unit / r.unit;
-            ratio > 1.5
-                && (ratio - ratio.round()).abs() < 0.02 * ratio
-                && (k.border - r.border).abs() <= BORDER_AGREEMENT_PX
-        };
-        if !distinct.iter().any(|k| k.places == r.places || finer(k)) {
+        if !distinct.iter().any(|k| k.places == r.places) {
             distinct.push(r);
         }
     }
