@@ -22,31 +22,16 @@ pub(super) struct Misfit {
 
 impl Misfit {
     pub(super) fn layout(run: &Run, reason: String) -> Misfit {
+        let kind = WallErrorKind::ImageLayout { reason };
         Misfit {
             pixel: run.pixel,
-            kind: WallErrorKind::ImageLayout { reason },
-        }
-    }
-
-    /// A run that is not a whole number of its colour's length (`units` long).
-    pub(super) fn length(run: &Run, unit: f64, units: f64) -> Misfit {
-        Misfit {
-            pixel: run.pixel,
-            kind: WallErrorKind::LengthMismatch {
-                kind: run.kind,
-                measured: units * UNIT_LENGTH,
-                pixels: run.width().round() as u32,
-                unit,
-                expected: run.kind.length(),
-            },
+            kind,
         }
     }
 
     pub(super) fn no_unit(run: &Run) -> Misfit {
-        Misfit::layout(
-            run,
-            format!("no unit of at least {MIN_UNIT_PX} px per 0.30 m fits the bricks"),
-        )
+        let reason = format!("no unit of at least {MIN_UNIT_PX} px per 0.30 m fits the bricks");
+        Misfit::layout(run, reason)
     }
 
     pub(super) fn into_error(self, name: &str) -> WallError {
@@ -159,41 +144,22 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
 /// with no such distance, by the narrowest run's width over its colour's length.
 pub(super) fn candidate_units(runs: &[Run]) -> Vec<f64> {
     let mut distances = Vec::new();
-    let mut by_position: Vec<&Run> = runs.iter().collect();
-    by_position.sort_by(|a, b| a.left.total_cmp(&b.left));
-    for pair in by_position.windows(2) {
-        let d = pair[1].left - pair[0].left;
-        if d >= MIN_UNIT_PX / 2.0 {
-            distances.push(d);
-        }
-    }
-    by_position.sort_by(|a, b| a.right.total_cmp(&b.right));
-    for pair in by_position.windows(2) {
-        let d = pair[1].right - pair[0].right;
-        if d >= MIN_UNIT_PX / 2.0 {
-            distances.push(d);
-        }
+    let edges: [fn(&Run) -> f64; 2] = [|r| r.left, |r| r.right];
+    for edge in edges {
+        let mut at: Vec<f64> = runs.iter().map(edge).collect();
+        at.sort_by(f64::total_cmp);
+        let steps = at.windows(2).map(|w| w[1] - w[0]);
+        distances.extend(steps.filter(|&d| d >= MIN_UNIT_PX / 2.0));
     }
     distances.sort_by(f64::total_cmp);
     distances.dedup_by(|a, b| (*a - *b).abs() < 0.5);
     let mut units = Vec::new();
     for &d in distances.iter().take(MAX_DISTANCES) {
-        for m in 1..=MAX_DIVISIONS {
-            let u = d / m as f64;
-            if u < MIN_UNIT_PX {
-                break;
-            }
-            units.push(u);
-        }
+        let divisions = (1..=MAX_DIVISIONS).map(|m| d / m as f64);
+        units.extend(divisions.take_while(|&u| u >= MIN_UNIT_PX));
     }
-    let narrowest = runs
-        .iter()
-        .min_by(|a, b| {
-            (a.width() / f64::from(a.kind.units()))
-                .total_cmp(&(b.width() / f64::from(b.kind.units())))
-        })
-        .expect("at least one run");
-    units.push(narrowest.width() / f64::from(narrowest.kind.units()));
+    let per_unit = |r: &Run| r.width() / f64::from(r.kind.units());
+    units.push(runs.iter().map(per_unit).fold(f64::INFINITY, f64::min));
     units.sort_by(f64::total_cmp);
     units.dedup_by(|a, b| (*a - *b).abs() < 0.005 * *b);
     units
@@ -298,7 +264,17 @@ pub(super) fn read_with(
             || n % length != 0
             || !seams_show_the_border(r, places[i].0, n, length, (offset, unit), border)
         {
-            Some(Misfit::length(r, unit, (r.width() + border) / unit))
+            let kind = WallErrorKind::LengthMismatch {
+                kind: r.kind,
+                measured: (r.width() + border) / unit * UNIT_LENGTH,
+                pixels: r.width().round() as u32,
+                unit,
+                expected: r.kind.length(),
+            };
+            Some(Misfit {
+                pixel: r.pixel,
+                kind,
+            })
         } else {
             None
         };
@@ -411,62 +387,47 @@ impl Grid {
 /// cannot be negative: where the free fit says so, the best fit has none.
 pub(super) fn fit_edges(
     edges: &[(f64, i64, f64)],
-    keep: impl Fn(usize) -> bool,
+    keep: impl Fn(usize) -> bool + Copy,
     fixed_border: Option<f64>,
 ) -> Option<Grid> {
-    // Normal equations of position = offset + k · unit + side · border.
-    let mut ata = [[0f64; 3]; 3];
-    let mut aty = [0f64; 3];
-    for (i, &(position, k, side)) in edges.iter().enumerate() {
-        if !keep(i) {
-            continue;
-        }
-        let row = [1.0, k as f64, side];
-        let y = position - side * fixed_border.unwrap_or(0.0);
-        for a in 0..3 {
-            for b in 0..3 {
-                ata[a][b] += row[a] * row[b];
+    // Normal equations of position = offset + k · unit + side · border, as an augmented
+    // matrix (right-hand side in the last column), solved by Gaussian elimination.
+    let n = if fixed_border.is_some() { 2 } else { 3 };
+    let mut m = [[0f64; 4]; 3];
+    for (_, &(position, k, side)) in edges.iter().enumerate().filter(|(i, _)| keep(*i)) {
+        let row = [
+            1.0,
+            k as f64,
+            side,
+            position - side * fixed_border.unwrap_or(0.0),
+        ];
+        for a in 0..n {
+            for b in (0..n).chain([3]) {
+                m[a][b] += row[a] * row[b];
             }
-            aty[a] += row[a] * y;
         }
     }
-    // Offset and unit with the border given.
-    let two = |border: f64| {
-        let (n, sk, skk) = (ata[0][0], ata[0][1], ata[1][1]);
-        let d = n * skk - sk * sk;
-        (d.abs() >= 1e-9).then(|| Grid {
-            offset: (aty[0] * skk - sk * aty[1]) / d,
-            unit: (n * aty[1] - sk * aty[0]) / d,
-            border,
-        })
-    };
-    if let Some(border) = fixed_border {
-        return two(border);
-    }
-    let det = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(&ata);
-    if d.abs() < 1e-9 {
-        return None;
-    }
-    // Cramer's rule.
-    let solve = |column: usize| {
-        let mut m = ata;
-        for (r, row) in m.iter_mut().enumerate() {
-            row[column] = aty[r];
+    for col in 0..n {
+        let pivot = (col..n).max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))?;
+        m.swap(col, pivot);
+        if m[col][col].abs() < 1e-9 {
+            return None;
         }
-        det(&m) / d
-    };
-    let border = solve(2);
+        for r in (0..n).filter(|&r| r != col) {
+            let (f, pivot_row) = (m[r][col] / m[col][col], m[col]);
+            for (value, p) in m[r].iter_mut().zip(pivot_row).skip(col) {
+                *value -= f * p;
+            }
+        }
+    }
+    let solution = |i: usize| m[i][3] / m[i][i];
+    let border = fixed_border.unwrap_or_else(|| solution(2));
     if border < 0.0 {
-        return two(0.0);
+        return fit_edges(edges, keep, Some(0.0));
     }
     Some(Grid {
-        offset: solve(0),
-        unit: solve(1),
+        offset: solution(0),
+        unit: solution(1),
         border,
     })
 }
