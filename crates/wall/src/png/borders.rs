@@ -3,25 +3,30 @@
 
 use super::*;
 
-/// How much of a reference colour a pixel holds.
-pub(super) type ShareOf = fn([f32; 3], [f32; 3]) -> f64;
+/// How far past a colour's edge the border around the wall is looked for (px).
+const RING_REACH: usize = 8;
+/// A border around the wall differs from the paper by at least this much (RGB distance).
+const MIN_RING_CONTRAST: f32 = 40.0;
+/// Layers farther apart than this (px) do not sit on each other.
+const MAX_LAYER_GAP: usize = 4 * EDGE_REACH;
 
 /// The border between layers (px), where layers touch: the median gap between the colour of
 /// a layer and of the layer below it, over columns where both have colour. `None` for a
 /// single layer or layers that never sit on each other.
-pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64> {
+pub(super) fn border_between_layers(px: &Pixels, layers: &[Rows], runs: &[Run]) -> Option<f64> {
     let mut gaps = Vec::new();
     for pair in 0..layers.len().saturating_sub(1) {
         let (upper, lower) = (layers[pair], layers[pair + 1]);
-        if lower.top - upper.bottom > 4 * EDGE_REACH {
+        if lower.top - upper.bottom > MAX_LAYER_GAP {
             continue;
         }
         // Where one colour sits on the same colour, no blend of two colours blurs the gap.
-        let all = inside_runs(px, runs, &[pair, pair + 1]);
         let (above, below) = (
             colour_inside(px, runs, pair),
             colour_inside(px, runs, pair + 1),
         );
+        let both = |x: &usize| above[*x].is_some() && below[*x].is_some();
+        let all: Vec<usize> = (0..px.width).filter(both).collect();
         let alike: Vec<usize> = all
             .iter()
             .copied()
@@ -30,11 +35,12 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run])
         // Over two colours blending into each other, faint shares count (they add up to the
         // whole); over a border, a faint tint is the paper's.
         let two_colours = alike.is_empty();
-        let (columns, share_of): (Vec<usize>, ShareOf) = if two_colours {
-            (all, colour_share)
+        let share_of = if two_colours {
+            coverage_with_tints
         } else {
-            (alike, coverage)
+            coverage
         };
+        let columns = if two_colours { all } else { alike };
         if columns.is_empty() {
             continue;
         }
@@ -75,11 +81,12 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Layer], runs: &[Run])
 /// colour's edge and the paper, each counted by how far it is from the paper's colour
 /// relative to the farthest. `None` where the border looks like the paper, or the paper is
 /// not in view.
-pub(super) fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) -> Option<f64> {
+pub(super) fn border_around_wall(px: &Pixels, layers: &[Rows], runs: &[Run]) -> Option<f64> {
     let sides = [(0, true), (layers.len() - 1, false)];
     sides.into_iter().find_map(|(index, above)| {
         let layer = layers[index];
-        let columns = inside_runs(px, runs, &[index]);
+        let inside = colour_inside(px, runs, index);
+        let columns: Vec<usize> = (0..px.width).filter(|&x| inside[x].is_some()).collect();
         if columns.is_empty() {
             return None;
         }
@@ -98,23 +105,15 @@ pub(super) fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) ->
         if outward.len() < 2 * EDGE_REACH + 2 {
             return None;
         }
-        let n = columns.len() as f32;
-        let mean_of = |f: &dyn Fn(usize) -> [f32; 3]| -> [f32; 3] {
-            let mut sum = [0f32; 3];
-            for &x in &columns {
-                let p = f(x);
-                (0..3).for_each(|c| sum[c] += p[c]);
-            }
-            sum.map(|v| v / n)
-        };
-        let colour = mean_of(&|x| colours[x]);
-        let paper = mean_of(&|x| px.rgb(outward[outward.len() - 1] * px.width + x));
+        let row_mean = |y: usize| mean_colour(columns.iter().map(|&x| px.rgb(y * px.width + x)));
+        let colour = mean_colour(columns.iter().map(|&x| colours[x]));
+        let paper = row_mean(outward[outward.len() - 1]);
         // Each row: its share of colour, and what is left once the colour is taken out.
         let rows: Vec<(f64, f32)> = outward
             .iter()
             .map(|&y| {
-                let p = mean_of(&|x| px.rgb(y * px.width + x));
-                let c = colour_share(p, colour);
+                let p = row_mean(y);
+                let c = coverage_with_tints(p, colour);
                 let rest: [f32; 3] = std::array::from_fn(|k| {
                     (p[k] - c as f32 * colour[k]) / (1.0 - c as f32).max(0.05)
                 });
@@ -142,20 +141,14 @@ pub(super) fn border_around_wall(px: &Pixels, layers: &[Layer], runs: &[Run]) ->
     })
 }
 
-/// The columns well inside the runs of every listed layer.
-pub(super) fn inside_runs(px: &Pixels, runs: &[Run], layers: &[usize]) -> Vec<usize> {
-    let maps: Vec<Vec<Option<BrickType>>> =
-        layers.iter().map(|&l| colour_inside(px, runs, l)).collect();
-    (0..px.width)
-        .filter(|&x| maps.iter().all(|m| m[x].is_some()))
-        .collect()
-}
-
 /// Per column, the colour of the layer's run that covers the whole pixel, if any: one pass
 /// over the layer's runs.
 pub(super) fn colour_inside(px: &Pixels, runs: &[Run], layer: usize) -> Vec<Option<BrickType>> {
     let mut map = vec![None; px.width];
-    for r in runs.iter().filter(|r| r.layer == layer) {
+    // Runs come layer by layer.
+    let first = runs.partition_point(|r| r.layer < layer);
+    let end = runs.partition_point(|r| r.layer <= layer);
+    for r in &runs[first..end] {
         let first = r.left.max(0.0).ceil() as usize;
         let end = (r.right.max(0.0).floor() as usize).min(px.width);
         for slot in map.iter_mut().take(end).skip(first) {

@@ -2,12 +2,13 @@
 
 use super::*;
 
-/// A brick found in the image: layer (top = 0), colour, first unit and a pixel inside it.
+/// A brick found in the image: layer (top = 0), colour, first unit on the grid and a pixel
+/// inside it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Found {
     pub(super) layer: usize,
     pub(super) kind: BrickType,
-    pub(super) x: u32,
+    pub(super) first_unit: u32,
     pub(super) pixel: (u32, u32),
 }
 
@@ -23,7 +24,7 @@ pub(super) fn cut_bricks(runs: &[Run], reading: &Reading) -> Vec<Found> {
             found.push(Found {
                 layer: r.layer,
                 kind: r.kind,
-                x: first,
+                first_unit: first,
                 pixel: (middle.max(0.0) as u32, r.pixel.1),
             });
         }
@@ -31,20 +32,20 @@ pub(super) fn cut_bricks(runs: &[Run], reading: &Reading) -> Vec<Found> {
     found
 }
 
-/// Step 6: levels (the bottom layer is level 1), labels, segments and footprints.
-pub(super) fn assemble(name: &str, found: Vec<Found>) -> Result<Wall, WallError> {
-    let layers = found.iter().map(|f| f.layer).max().unwrap_or(0) + 1;
+/// Step 6: levels (the bottom of the `layers` layers is level 1), labels, segments and
+/// footprints.
+pub(super) fn assemble(name: &str, layers: usize, found: Vec<Found>) -> Result<Wall, WallError> {
     let level = |f: &Found| (layers - f.layer) as u32;
     let mut placed = found;
-    placed.sort_by_key(|f| (level(f), f.x));
+    placed.sort_by_key(|f| (level(f), f.first_unit));
     let width = placed
         .iter()
-        .map(|f| f.x + f.kind.units())
+        .map(|f| f.first_unit + f.kind.units())
         .max()
         .unwrap_or(0) as usize;
     let mut used = vec![false; width];
     for f in &placed {
-        for u in f.x..f.x + f.kind.units() {
+        for u in f.first_unit..f.first_unit + f.kind.units() {
             used[u as usize] = true;
         }
     }
@@ -76,10 +77,10 @@ pub(super) fn assemble(name: &str, found: Vec<Found>) -> Result<Wall, WallError>
             label: base * l + position,
             kind: f.kind,
             level: l,
-            segment: segment_of[f.x as usize],
+            segment: segment_of[f.first_unit as usize],
             footprint: Footprint {
-                x0: f64::from(f.x) * UNIT_LENGTH,
-                x1: f64::from(f.x + f.kind.units()) * UNIT_LENGTH,
+                x0: f64::from(f.first_unit) * UNIT_LENGTH,
+                x1: f64::from(f.first_unit + f.kind.units()) * UNIT_LENGTH,
                 y0: 0.0,
                 y1: BRICK_DEPTH,
             },

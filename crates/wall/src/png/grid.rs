@@ -2,6 +2,23 @@
 
 use super::*;
 
+/// Touching bricks show the border between them within this many pixels.
+const GAP_AGREEMENT_PX: f64 = 1.25;
+/// A reading whose edges are this much farther (px) from its grid than the best reading's
+/// does not explain the drawing.
+const FIT_SLACK_PX: f64 = 0.75;
+/// Borders up to this share of a unit are thin.
+const THIN_BORDER_SHARE: f64 = 0.2;
+/// A reading whose edges are this much closer (px) to its grid than any other's is preferred.
+const CLEARLY_BETTER_PX: f64 = 0.5;
+/// A reading's border agrees with the border seen (between layers or around the wall)
+/// within this many pixels.
+const BORDER_AGREEMENT_PX: f64 = 1.0;
+/// The most distances between edges used to propose units.
+const MAX_DISTANCES: usize = 24;
+/// The most divisions of one distance tried as a unit.
+const MAX_DIVISIONS: usize = 64;
+
 /// A fitted grid: pixels per unit, border width and every run's place on it.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Reading {
@@ -51,7 +68,7 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
     // unit among equals) leaves out.
     let mut best_misfit: Option<(usize, f64, Misfit)> = None;
     for unit in candidate_units(runs) {
-        // With a border seen between layers, the grid with that border is tried as well: where
+        // With a border seen (`borders.rs`), the grid with that border is tried as well: where
         // few edges show the border (touching colours blend, with none), the free fit can
         // drift to another border that the seen one would then wrongly rule out.
         if let Some(Ok(r)) = border_seen.map(|b| read_with(runs, unit, Some(b))) {
@@ -75,13 +92,13 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
             .map(|(_, _, m)| m)
             .unwrap_or_else(|| Misfit::no_unit(&runs[0])));
     }
-    // The border seen between layers is the border between bricks.
-    let mut hinted = false;
+    // The border seen between layers or around the wall is the border between bricks.
+    let mut border_confirmed = false;
     if let Some(seen) = border_seen {
         let matching = |r: &Reading| (r.border - seen).abs() <= BORDER_AGREEMENT_PX;
         if readings.iter().any(matching) {
             readings.retain(matching);
-            hinted = true;
+            border_confirmed = true;
         }
     }
     // One wall read at two units is one reading.
@@ -129,9 +146,9 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
     }
     let chosen = best.remove(0);
     // A thick border explains gaps that whole units with thin borders explain as well; with
-    // no border seen between layers to tell, the drawing is ambiguous.
+    // no border seen to tell, the drawing is ambiguous.
     let thin = |r: &Reading| r.border <= THIN_BORDER_SHARE * r.unit;
-    if !hinted && !thin(&chosen) {
+    if !border_confirmed && !thin(&chosen) {
         if let Some(other) = others.iter().find(|r| thin(r)) {
             return Err(ambiguous(&chosen, other));
         }

@@ -2,188 +2,209 @@
 
 use super::*;
 
-/// A stretch of columns `[start, end)` of one colour.
+/// Rows differ where a span of one has this many pixels without the same colour in the other.
+const ROW_CHANGE_PX: usize = 3;
+/// A band's row whose colour is below this share of the strongest rows above and below it
+/// is a faint border line.
+const FAINT_ROW: f32 = 0.75;
+
+/// A stretch `[start, end)` of one kind: columns of one colour, or rows of a band.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Span {
-    pub(super) kind: BrickType,
+pub(super) struct Span<K = BrickType> {
+    pub(super) kind: K,
     pub(super) start: usize,
     pub(super) end: usize,
 }
 
-/// Runs of one class at least `shortest` long in a sequence of classes.
-pub(super) fn spans(
-    classes: impl Iterator<Item = Option<BrickType>>,
+/// The stretches of one kind at least `shortest` long in a sequence (`None` is no kind).
+pub(super) fn spans<K: Copy + PartialEq>(
+    items: impl Iterator<Item = Option<K>>,
     shortest: usize,
-) -> Vec<Span> {
+) -> Vec<Span<K>> {
     let mut out = Vec::new();
-    let mut open: Option<Span> = None;
-    for (x, c) in classes.chain(std::iter::once(None)).enumerate() {
-        match (open, c) {
-            (Some(s), Some(k)) if s.kind == k => {}
-            _ => {
-                if let Some(mut s) = open.take() {
-                    s.end = x;
-                    if s.end - s.start >= shortest {
-                        out.push(s);
-                    }
-                }
-                open = c.map(|kind| Span {
-                    kind,
-                    start: x,
-                    end: x,
-                });
+    let mut open: Option<Span<K>> = None;
+    for (i, item) in items.chain(std::iter::once(None)).enumerate() {
+        if open.is_some_and(|s| Some(s.kind) == item) {
+            continue;
+        }
+        if let Some(mut s) = open.take() {
+            s.end = i;
+            if s.end - s.start >= shortest {
+                out.push(s);
             }
         }
+        open = item.map(|kind| Span {
+            kind,
+            start: i,
+            end: i,
+        });
     }
     out
 }
 
-/// Whether some span of `a` has a stretch of [`ROW_CHANGE_PX`] pixels without its colour in
-/// `b` (an edge that flickers by a pixel or two is the same row).
-pub(super) fn uncovered(a: &[Span], b: &[Span]) -> bool {
-    a.iter().any(|s| {
-        let mut reached = s.start;
-        for t in b
-            .iter()
-            .filter(|t| t.kind == s.kind && t.end > s.start && t.start < s.end)
-        {
-            if t.start >= reached + ROW_CHANGE_PX {
-                return true;
-            }
-            reached = reached.max(t.end);
-        }
-        s.end >= reached + ROW_CHANGE_PX
-    })
-}
-
+/// Whether rows with spans `a` and rows with spans `b` show different bricks: some span of
+/// one has a stretch of [`ROW_CHANGE_PX`] pixels without its colour in the other (an edge
+/// that flickers by a pixel or two is the same row).
 pub(super) fn rows_differ(a: &[Span], b: &[Span]) -> bool {
+    let uncovered = |a: &[Span], b: &[Span]| {
+        a.iter().any(|s| {
+            let mut reached = s.start;
+            let same = |t: &&Span| t.kind == s.kind && t.end > s.start && t.start < s.end;
+            for t in b.iter().filter(same) {
+                if t.start >= reached + ROW_CHANGE_PX {
+                    return true;
+                }
+                reached = reached.max(t.end);
+            }
+            s.end >= reached + ROW_CHANGE_PX
+        })
+    };
     uncovered(a, b) || uncovered(b, a)
 }
 
-/// A layer: rows `[top, bottom)` of the image.
+/// Rows `[top, bottom)` of the image: a segment, a band, and in the end a layer.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Layer {
+pub(super) struct Rows {
     pub(super) top: usize,
     pub(super) bottom: usize,
 }
 
+impl Rows {
+    /// At least [`MIN_COLOUR_PX`] rows: tall enough for a layer.
+    fn tall(&self) -> bool {
+        self.bottom - self.top >= MIN_COLOUR_PX
+    }
+}
+
 /// Step 2: the layers, top to bottom.
 ///
-/// Consecutive rows whose runs agree form a segment. A segment at least [`MIN_COLOUR_PX`]
-/// rows tall is a layer; a thinner one touching a layer is that layer's blurred edge (or the
-/// blend between two layers) and is dropped; a thinner one standing alone is an error.
-/// Touching layers whose runs agree are one layer drawn with no border.
-pub(super) fn find_layers(px: &Pixels) -> Result<Vec<Layer>, Failure> {
-    let row_spans: Vec<Vec<Span>> = (0..px.height)
-        .map(|y| {
-            spans(
-                px.class[y * px.width..(y + 1) * px.width].iter().copied(),
-                MIN_COLOUR_PX,
-            )
-        })
-        .collect();
-    let mut segments: Vec<Layer> = Vec::new();
+/// Consecutive rows whose spans agree form a segment. Touching tall segments that agree are
+/// one band (noise cut it, or two layers are drawn alike with no border line); thin ones
+/// between them do not keep them apart. A thin segment is checked: the blurred edge of a band
+/// or a speck of noise is dropped, a stray mark is an error. Last, a band is split where a
+/// faint border line dims its colour; its tall parts are the layers.
+pub(super) fn find_layers(px: &Pixels) -> Result<Vec<Rows>, Failure> {
+    let mut segments: Vec<Rows> = Vec::new();
+    let mut above: Vec<Span> = Vec::new();
     for y in 0..px.height {
-        if row_spans[y].is_empty() {
-            continue;
-        }
+        let row = row_spans(px, y);
         match segments.last_mut() {
-            Some(s) if s.bottom == y && !rows_differ(&row_spans[y - 1], &row_spans[y]) => {
+            Some(s) if !row.is_empty() && s.bottom == y && !rows_differ(&above, &row) => {
                 s.bottom = y + 1
             }
-            _ => segments.push(Layer {
+            _ if !row.is_empty() => segments.push(Rows {
                 top: y,
                 bottom: y + 1,
             }),
+            _ => {}
         }
+        above = row;
     }
-    // Touching segments that agree are one band (noise cut it, or two layers are drawn alike
-    // with no border line).
-    let tall = |s: &Layer| s.bottom - s.top >= MIN_COLOUR_PX;
-    // Thin segments between them (a flickering row) do not keep them apart.
-    let mut bands: Vec<Layer> = Vec::new();
+    let bands = join_segments(px, &segments);
+    check_thin_segments(px, &segments, &bands)?;
+    Ok(bands
+        .iter()
+        .flat_map(|&b| split_at_faint_borders(px, b))
+        .filter(Rows::tall)
+        .collect())
+}
+
+/// A row's spans of one colour at least [`MIN_COLOUR_PX`] long.
+fn row_spans(px: &Pixels, y: usize) -> Vec<Span> {
+    let classes = px.class[y * px.width..(y + 1) * px.width].iter().copied();
+    spans(classes, MIN_COLOUR_PX)
+}
+
+/// Touching tall segments whose spans agree, joined into bands. Each band's colour counts
+/// are kept as it grows, so that joining costs one pass over the image.
+fn join_segments(px: &Pixels, segments: &[Rows]) -> Vec<Rows> {
+    let mut bands: Vec<Rows> = Vec::new();
+    let mut counts = Vec::new(); // the last band's, per column
     let mut unbroken = false; // every row since the last band is in some segment
     let mut previous_end = 0;
-    for s in &segments {
+    for s in segments {
         unbroken &= s.top == previous_end;
         previous_end = s.bottom;
-        if !tall(s) {
+        if !s.tall() {
             continue;
         }
+        let own = column_counts(px, *s);
         match bands.last_mut() {
-            Some(l) if unbroken && !rows_differ(&band_spans(px, *l), &band_spans(px, *s)) => {
-                l.bottom = s.bottom
+            Some(band)
+                if unbroken
+                    && !rows_differ(&majority_spans(&counts, *band), &majority_spans(&own, *s)) =>
+            {
+                // The thin segments between them are rows of the band as well.
+                let between = Rows {
+                    top: band.bottom,
+                    bottom: s.top,
+                };
+                for (total, add) in counts.iter_mut().zip(column_counts(px, between)) {
+                    (0..4).for_each(|k| total[k] += add[k]);
+                }
+                for (total, add) in counts.iter_mut().zip(&own) {
+                    (0..4).for_each(|k| total[k] += add[k]);
+                }
+                band.bottom = s.bottom;
             }
-            _ => bands.push(*s),
+            _ => {
+                bands.push(*s);
+                counts = own;
+            }
         }
         unbroken = true;
     }
-    // A faint border line that leaves the colours' classes alone still dims them.
-    let layers: Vec<Layer> = bands
-        .iter()
-        .flat_map(|&b| split_at_faint_borders(px, b))
-        .filter(tall)
-        .collect();
-    // A thin segment is the blurred edge of a layer (at most two rows away, or joined to it
-    // by coloured rows all the way), a speck of noise (no run as long as two bricks' least
-    // colour), or a stray mark.
-    let mut block = vec![0usize; segments.len()]; // stacks of segments with no row between
-    for i in 1..segments.len() {
-        block[i] = block[i - 1] + usize::from(segments[i].top != segments[i - 1].bottom);
-    }
-    let mut has_layer = vec![false; block.last().map_or(0, |b| b + 1)];
-    for (s, &b) in segments.iter().zip(&block) {
-        has_layer[b] |= tall(s);
-    }
-    let solid: Vec<bool> = block.iter().map(|&b| has_layer[b]).collect();
-    for (i, s) in segments.iter().enumerate().filter(|(_, s)| !tall(s)) {
-        let near = solid[i]
-            || bands
-                .iter()
-                .any(|l| l.bottom + 2 >= s.top && s.bottom + 2 >= l.top);
-        let speck = (s.top..s.bottom)
-            .flat_map(|y| &row_spans[y])
-            .all(|r| r.end - r.start < 2 * MIN_COLOUR_PX);
-        if !near && !speck {
-            let first = row_spans[s.top][0];
-            return Err((
-                Location::Pixel(first.start as u32, s.top as u32),
-                format!(
-                    "a coloured mark {} px tall stands alone: a layer needs at least \
-                     {MIN_COLOUR_PX} px of brick colour",
-                    s.bottom - s.top
-                ),
-            ));
-        }
-    }
-    Ok(layers)
+    bands
 }
 
-/// How saturated each row of a band is, over the columns coloured in the band.
-pub(super) fn row_strength(px: &Pixels, band: Layer) -> Vec<f32> {
+/// A thin segment is the blurred edge of a band (in a stack of touching segments with a tall
+/// one, or at most two rows from a band), a speck of noise (no span as long as two bricks'
+/// least colour), or a stray mark: an error naming it.
+fn check_thin_segments(px: &Pixels, segments: &[Rows], bands: &[Rows]) -> Result<(), Failure> {
+    for stack in segments.chunk_by(|a, b| a.bottom == b.top) {
+        let solid = stack.iter().any(Rows::tall);
+        for s in stack.iter().filter(|s| !s.tall()) {
+            let near = solid
+                || bands
+                    .iter()
+                    .any(|b| b.bottom + 2 >= s.top && s.bottom + 2 >= b.top);
+            let speck = (s.top..s.bottom)
+                .flat_map(|y| row_spans(px, y))
+                .all(|r| r.end - r.start < 2 * MIN_COLOUR_PX);
+            if !near && !speck {
+                let first = row_spans(px, s.top)[0];
+                return Err((
+                    Location::Pixel(first.start as u32, s.top as u32),
+                    format!(
+                        "a coloured mark {} px tall stands alone: a layer needs at least \
+                         {MIN_COLOUR_PX} px of brick colour",
+                        s.bottom - s.top
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Splits a band where its colour dips below [`FAINT_ROW`] of the strongest rows above and
+/// below: a border line between two layers drawn alike, too faint to change the colours'
+/// classes.
+fn split_at_faint_borders(px: &Pixels, band: Rows) -> Vec<Rows> {
+    // Each row's mean saturation over the columns coloured in the band.
     let columns: Vec<usize> = band_spans(px, band)
         .iter()
         .flat_map(|s| s.start + 1..s.end.saturating_sub(1))
         .collect();
-    (band.top..band.bottom)
+    let strength: Vec<f32> = (band.top..band.bottom)
         .map(|y| {
-            columns
-                .iter()
-                .map(|&x| {
-                    colour_part(px.rgb(y * px.width + x))
-                        .into_iter()
-                        .fold(0f32, f32::max)
-                })
-                .sum::<f32>()
-                / columns.len().max(1) as f32
+            let saturation = |x: &usize| {
+                let part = colour_part(px.rgb(y * px.width + x));
+                part.into_iter().fold(0f32, f32::max)
+            };
+            columns.iter().map(saturation).sum::<f32>() / columns.len().max(1) as f32
         })
-        .collect()
-}
-
-/// Splits a band where its colour dips below three quarters of the rows above and below it:
-/// a border line between two layers drawn alike.
-pub(super) fn split_at_faint_borders(px: &Pixels, band: Layer) -> Vec<Layer> {
-    let strength = row_strength(px, band);
+        .collect();
     let n = strength.len();
     let mut peak_above = vec![0f32; n];
     let mut peak_below = vec![0f32; n];
@@ -191,47 +212,47 @@ pub(super) fn split_at_faint_borders(px: &Pixels, band: Layer) -> Vec<Layer> {
         peak_above[i] = peak_above[i - 1].max(strength[i - 1]);
         peak_below[n - 1 - i] = peak_below[n - i].max(strength[n - i]);
     }
-    let dip = |i: usize| strength[i] < 0.75 * peak_above[i].min(peak_below[i]);
-    let mut parts = Vec::new();
-    let mut start = None;
-    for i in 0..=n {
-        match (i < n && !dip(i), start) {
-            (true, None) => start = Some(i),
-            (false, Some(s)) => {
-                parts.push(Layer {
-                    top: band.top + s,
-                    bottom: band.top + i,
-                });
-                start = None;
-            }
-            _ => {}
-        }
-    }
-    parts
-}
-
-/// The runs of a layer, from its columns' majority colours.
-pub(super) fn band_spans(px: &Pixels, layer: Layer) -> Vec<Span> {
-    spans(column_classes(px, layer).into_iter(), MIN_COLOUR_PX)
-}
-
-/// Each column's majority class over the layer's rows (no class wins ties with a colour).
-pub(super) fn column_classes(px: &Pixels, layer: Layer) -> Vec<Option<BrickType>> {
-    let rows = layer.bottom - layer.top;
-    (0..px.width)
-        .map(|x| {
-            let mut counts = [0usize; 4];
-            for y in layer.top..layer.bottom {
-                if let Some(k) = px.class[y * px.width + x] {
-                    counts[k.index()] += 1;
-                }
-            }
-            let (best, &n) = counts
-                .iter()
-                .enumerate()
-                .max_by_key(|&(i, n)| (*n, std::cmp::Reverse(i)))
-                .expect("four colours");
-            (2 * n > rows).then(|| BrickType::ALL[best])
+    let dip = |i: usize| strength[i] < FAINT_ROW * peak_above[i].min(peak_below[i]);
+    spans((0..n).map(|i| (!dip(i)).then_some(())), 1)
+        .iter()
+        .map(|s| Rows {
+            top: band.top + s.start,
+            bottom: band.top + s.end,
         })
         .collect()
+}
+
+/// The spans of a band, from its columns' majority colours.
+pub(super) fn band_spans(px: &Pixels, band: Rows) -> Vec<Span> {
+    majority_spans(&column_counts(px, band), band)
+}
+
+/// Each column's majority colour over the band's rows (`None` where no colour has more than
+/// half of them).
+pub(super) fn column_classes(px: &Pixels, band: Rows) -> Vec<Option<BrickType>> {
+    majority(&column_counts(px, band), band)
+}
+
+/// How many of the band's pixels in each column are of each colour.
+fn column_counts(px: &Pixels, band: Rows) -> Vec<[u32; 4]> {
+    let mut counts = vec![[0u32; 4]; px.width];
+    for y in band.top..band.bottom {
+        let row = &px.class[y * px.width..(y + 1) * px.width];
+        for (count, class) in counts.iter_mut().zip(row) {
+            if let Some(k) = class {
+                count[k.index()] += 1;
+            }
+        }
+    }
+    counts
+}
+
+fn majority(counts: &[[u32; 4]], band: Rows) -> Vec<Option<BrickType>> {
+    let rows = (band.bottom - band.top) as u32;
+    let winner = |c: &[u32; 4]| (0..4).find(|&k| 2 * c[k] > rows).map(|k| BrickType::ALL[k]);
+    counts.iter().map(winner).collect()
+}
+
+fn majority_spans(counts: &[[u32; 4]], band: Rows) -> Vec<Span> {
+    spans(majority(counts, band).into_iter(), MIN_COLOUR_PX)
 }

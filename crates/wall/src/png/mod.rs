@@ -50,52 +50,22 @@
 use crate::brick::{Brick, BrickType, Footprint, Origin, BRICK_DEPTH, UNIT_LENGTH};
 use crate::decode::{decode_png_rgb, PngDecodeError};
 use crate::error::{Location, WallError, WallErrorKind};
+use crate::limits::MAX_BRICKS;
 use crate::text::label_base;
 use crate::wall::Wall;
 use image::RgbImage;
 use std::collections::BTreeMap;
 
-/// Minimum saturation (max − min channel) of a brick pixel: ±20 noise on any grey stays
-/// below it.
-const MIN_SATURATION: f32 = 60.0;
 /// The fewest pixels of colour a brick shows along and across the wall.
 pub const MIN_COLOUR_PX: usize = 3;
-/// Rows differ where a run of one has this many pixels without the same colour in the other.
-const ROW_CHANGE_PX: usize = 3;
 /// The smallest unit (pixels per 0.30 m) the reader looks for.
 pub const MIN_UNIT_PX: f64 = 4.0;
 /// Borders are narrower than this share of a unit.
 pub const MAX_BORDER_SHARE: f64 = 0.6;
-/// Touching bricks show the border between them within this many pixels.
-const GAP_AGREEMENT_PX: f64 = 1.25;
-/// A reading whose edges are this much farther (px) from its grid than the best reading's
-/// does not explain the drawing.
-const FIT_SLACK_PX: f64 = 0.75;
-/// Borders up to this share of a unit are thin.
-const THIN_BORDER_SHARE: f64 = 0.2;
-/// A reading whose edges are this much closer (px) to its grid than any other's is preferred.
-const CLEARLY_BETTER_PX: f64 = 0.5;
-/// A reading's border agrees with the border seen between layers within this many pixels.
-const BORDER_AGREEMENT_PX: f64 = 1.0;
 /// The largest image read, in pixels (about 7 000 × 7 000).
 pub const MAX_PIXELS: u64 = 50_000_000;
-/// A column inside a run holding less than this share of its colour is a faint border.
-const DIP_COVERAGE: f64 = 0.75;
-/// A share of a brick's colour below this is a tint of the paper or noise, not colour.
-const FAINT_SHARE: f64 = 0.15;
-/// A column where two colours meet is their blend when it lies this close to the line
-/// between them (RGB distance).
-const BLEND_DISTANCE: f32 = 40.0;
 /// How far past a run's last coloured column its blurred edge is summed (px).
 const EDGE_REACH: usize = 3;
-/// How far past a colour's edge the border around the wall is looked for (px).
-const RING_REACH: usize = 8;
-/// A border around the wall differs from the paper by at least this much (RGB distance).
-const MIN_RING_CONTRAST: f32 = 40.0;
-/// The most distances between edges used to propose units.
-const MAX_DISTANCES: usize = 24;
-/// The most divisions of one distance tried as a unit.
-const MAX_DIVISIONS: usize = 64;
 
 mod borders;
 mod bricks;
@@ -113,6 +83,9 @@ use runs::*;
 
 pub use pixels::classify_pixel;
 
+/// Why a step failed: where, and why.
+type Failure = (Location, String);
+
 /// Decodes PNG bytes and reads the wall.
 ///
 /// The image's size is checked from its header before it is decoded: more than
@@ -120,16 +93,19 @@ pub use pixels::classify_pixel;
 /// grey spread to three channels, alpha dropped), so a 50-megapixel image needs about 4 bytes
 /// per pixel at most while decoding.
 pub fn read_png(bytes: &[u8], name: &str) -> Result<Wall, WallError> {
-    let img = decode_png_rgb(bytes, MAX_PIXELS).map_err(|e| {
-        let reason = match e {
-            PngDecodeError::TooLarge { width, height } => format!(
-                "{width}×{height} is more than the {MAX_PIXELS} pixels a wall image may have"
-            ),
-            PngDecodeError::Malformed(reason) => reason,
-        };
-        WallError::new(name, Location::Whole, WallErrorKind::ImageDecode { reason })
+    let img = decode_png_rgb(bytes, MAX_PIXELS).map_err(|e| match e {
+        PngDecodeError::TooLarge { width, height } => too_many_pixels(name, width, height),
+        PngDecodeError::Malformed(reason) => {
+            WallError::new(name, Location::Whole, WallErrorKind::ImageDecode { reason })
+        }
     })?;
     read_image(&img, name)
+}
+
+fn too_many_pixels(name: &str, width: u32, height: u32) -> WallError {
+    let reason =
+        format!("{width}×{height} is more than the {MAX_PIXELS} pixels a wall image may have");
+    WallError::new(name, Location::Whole, WallErrorKind::ImageDecode { reason })
 }
 
 /// Reads a wall from a decoded image (see the module documentation for the steps).
@@ -147,10 +123,7 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
         ));
     }
     if u64::from(img.width()) * u64::from(img.height()) > MAX_PIXELS {
-        return Err(fail(
-            Location::Whole,
-            format!("the image has more than {MAX_PIXELS} pixels"),
-        ));
+        return Err(too_many_pixels(name, img.width(), img.height()));
     }
     let pixels = classify(img);
     let layers = find_layers(&pixels).map_err(|(at, reason)| fail(at, reason))?;
@@ -162,9 +135,20 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
         ));
     }
     let runs = find_runs(&pixels, &layers).map_err(|(at, reason)| fail(at, reason))?;
-    if runs.is_empty() {
-        // Every mark of colour is a sliver between two others (found by fuzzing).
-        let top = layers[0].top;
+    if runs.len() > MAX_BRICKS {
+        let (what, limit, name_of_limit) = ("bricks", MAX_BRICKS as u64, "MAX_BRICKS");
+        let kind = WallErrorKind::TooLarge {
+            what,
+            limit,
+            name: name_of_limit,
+        };
+        return Err(WallError::new(name, Location::Whole, kind));
+    }
+    let mut has_runs = vec![false; layers.len()];
+    runs.iter().for_each(|r| has_runs[r.layer] = true);
+    if let Some(empty) = has_runs.iter().position(|&has| !has) {
+        // Every mark of colour in the layer is a sliver between two others (found by fuzzing).
+        let top = layers[empty].top;
         let x = (0..pixels.width)
             .find(|&x| pixels.class[top * pixels.width + x].is_some())
             .unwrap_or(0);
@@ -179,10 +163,8 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
     let border_seen = border_between_layers(&pixels, &layers, &runs)
         .or_else(|| border_around_wall(&pixels, &layers, &runs));
     let reading = fit_grid(&runs, border_seen).map_err(|misfit| misfit.into_error(name))?;
-    assemble(name, cut_bricks(&runs, &reading))
+    assemble(name, layers.len(), cut_bricks(&runs, &reading))
 }
-
-type Failure = (Location, String);
 
 #[cfg(test)]
 mod tests {
@@ -337,7 +319,10 @@ mod tests {
         assert_eq!(reading.places, vec![(0, 2), (4, 1)]);
         assert!(reading.border.abs() < 1e-9, "{}", reading.border);
         let found = cut_bricks(&runs, &reading);
-        assert_eq!(found.iter().map(|f| f.x).collect::<Vec<_>>(), vec![0, 1, 4]);
+        assert_eq!(
+            found.iter().map(|f| f.first_unit).collect::<Vec<_>>(),
+            vec![0, 1, 4]
+        );
     }
 
     #[test]

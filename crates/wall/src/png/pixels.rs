@@ -4,6 +4,15 @@
 
 use super::*;
 
+/// Minimum saturation (max − min channel) of a brick pixel: ±20 noise on any grey stays
+/// below it.
+const MIN_SATURATION: f32 = 60.0;
+/// A share of a brick's colour below this is a tint of the paper or noise, not colour.
+pub(super) const FAINT_SHARE: f64 = 0.15;
+/// A column where two colours meet is their blend when it lies this close to the line
+/// between them (RGB distance).
+const BLEND_DISTANCE: f32 = 40.0;
+
 /// Classifies one pixel; returns its colour and saturation (max − min channel).
 ///
 /// The thesis rule (red if r > 2g and r > 1.5b; green if g > 1.5r and g > 1.5b; blue if
@@ -11,8 +20,7 @@ use super::*;
 /// the pixel minus its smallest channel, its colour part: blending a brick colour with any
 /// grey changes only the grey part, so anti-aliased edges keep their class.
 pub fn classify_pixel(p: [u8; 3]) -> Option<(BrickType, f32)> {
-    let lowest = p[0].min(p[1]).min(p[2]);
-    let [r, g, b] = p.map(|c| f32::from(c - lowest));
+    let [r, g, b] = colour_part(p.map(f32::from));
     let sat = r.max(g).max(b);
     if sat < MIN_SATURATION {
         return None;
@@ -73,15 +81,26 @@ pub(super) fn classify(img: &RgbImage) -> Pixels<'_> {
     }
 }
 
+/// The mean of some colours (black for none).
+pub(super) fn mean_colour(colours: impl Iterator<Item = [f32; 3]>) -> [f32; 3] {
+    let (mut sum, mut n) = ([0f32; 3], 0usize);
+    for p in colours {
+        (0..3).for_each(|c| sum[c] += p[c]);
+        n += 1;
+    }
+    sum.map(|v| v / n.max(1) as f32)
+}
+
 /// The colour part of a colour: minus its smallest channel.
 pub(super) fn colour_part(p: [f32; 3]) -> [f32; 3] {
     let lowest = p[0].min(p[1]).min(p[2]);
     p.map(|c| c - lowest)
 }
 
-/// How much of `reference`'s colour part `p` holds, in [0, 1]; a faint tint counts as none.
+/// How much of `reference`'s colour part `p` holds, in [0, 1], a faint tint counting as
+/// none: how much of the pixel the brick covers.
 pub(super) fn coverage(p: [f32; 3], reference: [f32; 3]) -> f64 {
-    let share = colour_share(p, reference);
+    let share = coverage_with_tints(p, reference);
     if share < FAINT_SHARE {
         0.0
     } else {
@@ -89,8 +108,8 @@ pub(super) fn coverage(p: [f32; 3], reference: [f32; 3]) -> f64 {
     }
 }
 
-/// How much of `reference`'s colour part `p` holds, in [0, 1].
-pub(super) fn colour_share(p: [f32; 3], reference: [f32; 3]) -> f64 {
+/// How much of `reference`'s colour part `p` holds, in [0, 1], faint tints included.
+pub(super) fn coverage_with_tints(p: [f32; 3], reference: [f32; 3]) -> f64 {
     let (p, k) = (colour_part(p), colour_part(reference));
     let dot: f32 = (0..3).map(|c| p[c] * k[c]).sum();
     let norm: f32 = (0..3).map(|c| k[c] * k[c]).sum();

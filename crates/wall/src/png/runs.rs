@@ -2,6 +2,13 @@
 
 use super::*;
 
+/// A column inside a run holding less than this share of its colour is a faint border.
+const DIP_COVERAGE: f64 = 0.75;
+/// A column holding this share of a run's colour is full colour.
+const FULL_COVERAGE: f64 = 0.9;
+/// Two colours blend into each other across at most this many unclassified columns.
+const BLEND_GAP_PX: usize = 2;
+
 /// A run of one colour in one layer, with sub-pixel edges.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Run {
@@ -30,20 +37,9 @@ impl Run {
 }
 
 /// The mean colour of each column over the layer's rows.
-pub(super) fn column_means(px: &Pixels, layer: Layer) -> Vec<[f32; 3]> {
-    let n = (layer.bottom - layer.top) as f32;
-    (0..px.width)
-        .map(|x| {
-            let mut sum = [0f32; 3];
-            for y in layer.top..layer.bottom {
-                let p = px.rgb(y * px.width + x);
-                for c in 0..3 {
-                    sum[c] += p[c];
-                }
-            }
-            sum.map(|s| s / n)
-        })
-        .collect()
+pub(super) fn column_means(px: &Pixels, layer: Rows) -> Vec<[f32; 3]> {
+    let column = |x| mean_colour((layer.top..layer.bottom).map(|y| px.rgb(y * px.width + x)));
+    (0..px.width).map(column).collect()
 }
 
 /// Step 3: the runs of every layer with sub-pixel edges.
@@ -52,7 +48,7 @@ pub(super) fn column_means(px: &Pixels, layer: Layer) -> Vec<[f32; 3]> {
 /// meet and belongs to the gap between them; alone, it is an error. Each run owns the columns
 /// up to half-way to its neighbours (at most [`EDGE_REACH`] past its last coloured column),
 /// and its width and centre are the area and centroid of its colour over them.
-pub(super) fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failure> {
+pub(super) fn find_runs(px: &Pixels, layers: &[Rows]) -> Result<Vec<Run>, Failure> {
     let mut runs = Vec::new();
     for (index, &layer) in layers.iter().enumerate() {
         let means = column_means(px, layer);
@@ -85,28 +81,26 @@ pub(super) fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failu
             let area = |columns: std::ops::Range<usize>| -> f64 {
                 columns.map(|x| coverage(means[x], k)).sum()
             };
-            // Towards a border or the background, the edge is where the colour's area ends;
-            // gap columns are shared half-way with the neighbour.
-            let left = match i.checked_sub(1) {
-                Some(j) if junction[j].is_some() => junction[j].expect("checked"),
-                previous => {
-                    let mut limit = s.start.saturating_sub(EDGE_REACH);
-                    if let Some(j) = previous {
-                        limit = limit.max((kept[j].end + s.start).div_ceil(2));
-                    }
-                    inner_left as f64 - area(limit..inner_left)
+            // Where the run blends into a touching one, the edge is their junction. Towards a
+            // border or the background, it is where the colour's area ends; the gap's columns
+            // are shared half-way with the neighbour (the middle column of an odd gap, which
+            // is border, with neither).
+            let blend_left = i.checked_sub(1).and_then(|j| junction[j]);
+            let blend_right = junction.get(i).copied().flatten();
+            let left = blend_left.unwrap_or_else(|| {
+                let mut limit = s.start.saturating_sub(EDGE_REACH);
+                if let Some(previous) = i.checked_sub(1).map(|j| kept[j]) {
+                    limit = limit.max((previous.end + s.start).div_ceil(2));
                 }
-            };
-            let right = match junction.get(i) {
-                Some(Some(edge)) => *edge,
-                _ => {
-                    let mut limit = (s.end + EDGE_REACH).min(px.width);
-                    if let Some(next) = kept.get(i + 1) {
-                        limit = limit.min((s.end + next.start) / 2);
-                    }
-                    inner_right as f64 + area(inner_right..limit)
+                inner_left as f64 - area(limit..inner_left)
+            });
+            let right = blend_right.unwrap_or_else(|| {
+                let mut limit = (s.end + EDGE_REACH).min(px.width);
+                if let Some(next) = kept.get(i + 1) {
+                    limit = limit.min((s.end + next.start) / 2);
                 }
-            };
+                inner_right as f64 + area(inner_right..limit)
+            });
             if right - left < MIN_COLOUR_PX as f64 - 0.5 {
                 return Err((
                     Location::Pixel(s.start as u32, middle),
@@ -124,10 +118,7 @@ pub(super) fn find_runs(px: &Pixels, layers: &[Layer]) -> Result<Vec<Run>, Failu
                 left,
                 right,
                 pixel: (middle_column as u32, middle),
-                blended: (
-                    i > 0 && junction[i - 1].is_some(),
-                    junction.get(i).is_some_and(|j| j.is_some()),
-                ),
+                blended: (blend_left.is_some(), blend_right.is_some()),
                 first_column: s.start,
                 coverage: (s.start..s.end)
                     .map(|x| coverage(means[x], k) as f32)
@@ -145,7 +136,7 @@ pub(super) fn split_at_dips(means: &[[f32; 3]], run: Span) -> Vec<Span> {
     let c: Vec<f64> = (run.start..run.end)
         .map(|x| coverage(means[x], k))
         .collect();
-    let full = |range: std::ops::Range<usize>| range.into_iter().any(|i| c[i] >= 0.9);
+    let full = |range: std::ops::Range<usize>| range.into_iter().any(|i| c[i] >= FULL_COVERAGE);
     let mut pieces = Vec::new();
     let mut start = 0;
     for i in MIN_COLOUR_PX..c.len().saturating_sub(MIN_COLOUR_PX) {
@@ -181,8 +172,12 @@ pub(super) fn colour_junction(
     colours: &[[f32; 3]],
 ) -> Option<f64> {
     let (a, b) = (pair[0], pair[1]);
+    // Two pieces of one colour (split at a faint border) do not blend.
+    if a.kind == b.kind || b.start - a.end > BLEND_GAP_PX {
+        return None;
+    }
     let blend = Blend::new(colours[0], colours[1])?;
-    if b.start - a.end > 2 || (a.end - 1..b.start + 1).any(|x| !blend.holds(means[x])) {
+    if (a.end - 1..b.start + 1).any(|x| !blend.holds(means[x])) {
         return None;
     }
     let from = a.end.saturating_sub(EDGE_REACH).max((a.start + a.end) / 2);
