@@ -518,6 +518,27 @@ fn slivers_of_colour_with_no_run_are_named() {
 }
 
 #[test]
+fn a_layer_of_slivers_under_bricks_is_named_not_dropped() {
+    // Bricks on top of the slivers that crashed the reader once: dropping that layer would
+    // make the bricks above it level 1.
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data");
+    let slivers = read_png_rgb(&data.join("fuzz-slivers.png"));
+    let (w, h) = slivers.dimensions();
+    let mut img = rectangles(w, h + 30, &[(0, 4, 60, 20, RED), (62, 4, 120, 20, GREEN)]);
+    image::imageops::replace(&mut img, &slivers, 0, 30);
+    let (message, location) = layout_error(&img);
+    assert!(message.contains("changes every pixel or two"), "{message}");
+    assert!(
+        matches!(location, Location::Pixel(_, y) if y >= 30),
+        "{location:?}"
+    );
+}
+
+fn read_png_rgb(path: &std::path::Path) -> RgbImage {
+    image::open(path).unwrap().to_rgb8()
+}
+
+#[test]
 fn a_mark_too_narrow_for_a_brick_is_named() {
     let img = rectangles(
         80,

@@ -49,8 +49,10 @@ pub(super) fn rows_differ(a: &[Span], b: &[Span]) -> bool {
     let uncovered = |a: &[Span], b: &[Span]| {
         a.iter().any(|s| {
             let mut reached = s.start;
-            let same = |t: &&Span| t.kind == s.kind && t.end > s.start && t.start < s.end;
-            for t in b.iter().filter(same) {
+            // Spans are in order and apart: those over `s` follow the last that ends before it.
+            let over = &b[b.partition_point(|t| t.end <= s.start)..];
+            let over = over.iter().take_while(|t| t.start < s.end);
+            for t in over.filter(|t| t.kind == s.kind) {
                 if t.start >= reached + ROW_CHANGE_PX {
                     return true;
                 }

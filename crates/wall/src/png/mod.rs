@@ -249,6 +249,22 @@ mod tests {
     }
 
     #[test]
+    fn two_pieces_of_one_colour_do_not_blend() {
+        // A red run split at a faint grey border: the two pieces' colours differ by a grey
+        // level, and the border column lies near the line between them, yet it is a border,
+        // not a blend of two colours.
+        let (red, also_red) = ([230.0, 30.0, 30.0], [231.0, 30.0, 30.0]);
+        let means = [red, red, red, [215.0, 45.0, 45.0], red, red, red];
+        let piece = |start, end| Span {
+            kind: BrickType::Red,
+            start,
+            end,
+        };
+        let junction = colour_junction(&means, &[piece(0, 3), piece(4, 7)], &[red, also_red]);
+        assert_eq!(junction, None);
+    }
+
+    #[test]
     fn blended_pixels_keep_their_colour() {
         let red = [235u8, 20, 20];
         let with = |other: u8, share: f32| {
