@@ -1,5 +1,5 @@
-//! Between steps 3 and 4, *the border seen*: how wide the border is where it can be measured
-//! apart from the bricks (between layers, or around the wall), to choose among grids.
+//! Step 4, *see the border*: how wide the border is where it can be measured apart from the
+//! bricks (between layers, or around the wall), to choose among grids.
 
 use super::*;
 

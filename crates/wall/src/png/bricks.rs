@@ -1,4 +1,4 @@
-//! Steps 5 and 6, *cut bricks* and *assemble*: runs into bricks, bricks into a wall.
+//! Step 7, *cut bricks* and *assemble*: runs into bricks, bricks into a wall.
 
 use super::*;
 
@@ -12,7 +12,7 @@ pub(super) struct Found {
     pub(super) pixel: (u32, u32),
 }
 
-/// Step 5: a run `k` times its colour's length is `k` bricks, side by side.
+/// Step 7: a run `k` times its colour's length is `k` bricks, side by side.
 pub(super) fn cut_bricks(runs: &[Run], reading: &Reading) -> Vec<Found> {
     let mut found = Vec::new();
     for (r, &(x, n)) in runs.iter().zip(&reading.places) {
@@ -32,7 +32,7 @@ pub(super) fn cut_bricks(runs: &[Run], reading: &Reading) -> Vec<Found> {
     found
 }
 
-/// Step 6: levels (the bottom of the `layers` layers is level 1), labels, segments and
+/// Step 7, continued: levels (the bottom of the `layers` layers is level 1), labels, segments and
 /// footprints.
 pub(super) fn assemble(name: &str, layers: usize, found: Vec<Found>) -> Result<Wall, WallError> {
     let level = |f: &Found| (layers - f.layer) as u32;

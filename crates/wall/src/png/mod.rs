@@ -5,37 +5,39 @@
 //! colours' lengths are red : green : blue : orange = 1 : 2 : 4 : 6. Borders between bricks
 //! may be 0 to a few pixels wide, in any grey, on a white or pale background. The height of a
 //! band says nothing about the bricks: the MBZIRC sheets, the thesis's figures and sketches are
-//! not drawn to scale in height. The reader goes through six steps, one function each, in
-//! files read in this order: `pixels.rs`, `layers.rs`, `runs.rs`, `borders.rs`, `grid.rs`,
-//! `bricks.rs`; [`read_image`] below calls them:
+//! not drawn to scale in height. The reader goes through seven steps, one file each, read in
+//! this order; [`read_image`] below calls them:
 //!
-//! 1. [`classify`] (`pixels.rs`): each pixel is red, green, blue, orange or nothing, by the thesis
-//!    rule (DESIGN §2) plus our orange rule, applied to the pixel's colour part (the pixel minus
-//!    its grey part, so that a brick colour blended with a white, grey or black border keeps its
-//!    class), and only where the pixel is saturated (max − min ≥ 60). Against noise, a pixel is
-//!    classified by its mean with its left and right neighbours.
-//! 2. [`find_layers`] (`layers.rs`): rows whose coloured runs agree form a band; a border line or a
-//!    change of colour between rows ends it. Bands thinner than [`MIN_COLOUR_PX`] are the blurred
-//!    edges of their neighbours; touching bands that agree are one, split again where their colour
-//!    dips (a faint border line between two layers drawn alike).
-//! 3. [`find_runs`] (`runs.rs`): in each band, columns take their rows' majority colour, and runs
-//!    of one colour are found (and split where their colour dips). Each run's sub-pixel edges come
-//!    from its colour's area (a blurred or anti-aliased edge keeps it); where two colours blend
-//!    into each other, the edge is where they blend half and half, which is their grid line.
-//! 4. [`fit_grid`] (`grid.rs`): the unit (pixels per 0.30 m) and the border width are the ones that
-//!    put every run's edges on one grid of whole units (least squares over all edges) and make
-//!    every run a whole number of its colour's length; touching bricks must show the border, and so
-//!    must the seams of a run read as several bricks. Candidate units come from the distances
-//!    between edges. Of the readings that fit, one at a whole fraction of another's unit only cuts
-//!    bricks into seamless pieces and is dropped; the border seen between layers (or around the
-//!    wall, `borders.rs`) picks among the rest; then the fewest bricks win, a clearly better fit
-//!    settles a tie, and what is still tied, or rests on a thick border where thin borders and more
-//!    bricks fit as well, is reported as ambiguous.
-//! 5. [`cut_bricks`] (`bricks.rs`): a run `k` times its colour's length is `k` bricks (two touching
-//!    reds with no border between them are two reds).
-//! 6. [`assemble`] (`bricks.rs`): bricks get levels (bottom band = level 1), grid positions, labels
-//!    and segments (a column range empty on every layer starts a new segment), and
-//!    [`Wall::from_bricks`] checks that nothing floats.
+//! 1. *classify* ([`classify`], `pixels.rs`): each pixel is red, green, blue, orange or
+//!    nothing, by the thesis rule (DESIGN §2) plus our orange rule, applied to the pixel's
+//!    colour part (the pixel minus its grey part, so that a brick colour blended with a white,
+//!    grey or black border keeps its class), and only where the pixel is saturated (max − min
+//!    ≥ 60). Against noise, a pixel is classified by its mean with its left and right
+//!    neighbours.
+//! 2. *find layers* ([`find_layers`], `layers.rs`): rows whose spans of colour agree form a
+//!    segment; touching segments that agree are one band, and thin ones are blurred edges,
+//!    noise or an error; a band is split where its colour dips (a faint border line between
+//!    two layers drawn alike). Each band is a layer, of any height.
+//! 3. *find runs* ([`find_runs`], `runs.rs`): in each layer, columns take their rows' majority
+//!    colour, and runs of one colour are found (and split where their colour dips). Each run's
+//!    sub-pixel edges come from its colour's area (a blurred or anti-aliased edge keeps it);
+//!    where two colours blend into each other, the edge is where they blend half and half,
+//!    which is their grid line.
+//! 4. *see the border* ([`border_between_layers`], [`border_around_wall`], `borders.rs`): how
+//!    wide the border is where it shows apart from the bricks, to choose among grids.
+//! 5. *read at one unit* ([`read_at`], `fit.rs`): near a given unit (pixels per 0.30 m), the
+//!    border and grid that put every run's edges on whole units (least squares over all
+//!    edges), with every run a whole number of its colour's length; touching bricks must show
+//!    the border, and so must the seams of a run read as several bricks.
+//! 6. *choose the grid* ([`fit_grid`], `grid.rs`): units are proposed by the distances between
+//!    edges and read at; the border seen picks among the readings that fit, then the fewest
+//!    bricks win, a clearly better fit settles a tie, and what is still tied, or rests on a
+//!    thick border where thin borders and more bricks fit as well, is reported as ambiguous.
+//! 7. *cut bricks and assemble* ([`cut_bricks`], [`assemble`], `bricks.rs`): a run `k` times
+//!    its colour's length is `k` bricks (two touching reds with no border between them are two
+//!    reds); bricks get levels (bottom layer = level 1), grid positions, labels and segments (a
+//!    column range empty on every layer starts a new segment), and [`Wall::from_bricks`]
+//!    checks that nothing floats.
 //!
 //! Limits, each a clear error: at most [`MAX_PIXELS`] pixels; every brick shows at least
 //! [`MIN_COLOUR_PX`] pixels of its colour each way (5 px across when blurred with no border,
@@ -69,6 +71,7 @@ const EDGE_REACH: usize = 3;
 
 mod borders;
 mod bricks;
+mod fit;
 mod grid;
 mod layers;
 mod pixels;
@@ -76,6 +79,7 @@ mod runs;
 
 use borders::*;
 use bricks::*;
+use fit::*;
 use grid::*;
 use layers::*;
 use pixels::*;
