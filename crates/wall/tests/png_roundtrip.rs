@@ -337,6 +337,10 @@ fn drawings_the_stress_run_once_misread() {
         // seen between layers is tried as the grid's border even where the free fit drifts.
         ("R\nG R R R", 32.0, 1.25, 0.0, grey, 3, 0, 0),
         ("B R B\nB O", 8.4514, 3.0, 0.0, grey, 8, 0, 0),
+        // Borderless, blurred and noisy, touching the image's edge: the red on green between
+        // the layers blends straight, so no border is seen there (the stress run's seed
+        // 187 161 misread this when that rule was dropped).
+        ("R\nG R R R R", 12.0, 3.0, 0.0, grey, 0, 20, 1),
     ];
     for (text, unit_px, layer_units, border_px, border, margin_px, noise, seed) in cases {
         let wall = parse_layer_text(text, "t").unwrap();

@@ -8,11 +8,12 @@ const RING_REACH: usize = 8;
 /// A border around the wall differs from the paper by at least this much (RGB distance).
 const MIN_RING_CONTRAST: f32 = 40.0;
 /// Layers farther apart than this (px) do not sit on each other.
-const MAX_LAYER_GAP: usize = 4 * EDGE_REACH;
+const MAX_LAYER_GAP: usize = 12;
 
-/// The border between layers (px), where layers touch: the median gap between the colour of
-/// a layer and of the layer below it, over columns where both have colour. `None` for a
-/// single layer or layers that never sit on each other.
+/// The border between layers (px), where layers touch: for each layer and the layer below it,
+/// the mean gap between their colours over the columns where both have colour; the median
+/// of that over the pairs of layers. `None` for a single layer or layers that never sit on
+/// each other.
 pub(super) fn border_between_layers(px: &Pixels, layers: &[Rows], runs: &[Run]) -> Option<f64> {
     let mut gaps = Vec::new();
     for pair in 0..layers.len().saturating_sub(1) {
@@ -52,10 +53,25 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Rows], runs: &[Run]) 
         let lower_inner = (lower.top + 2 * EDGE_REACH).min((lower.top + lower.bottom) / 2);
         // Each column's colour in each layer, and the gap between them in each column: from
         // where the upper colour ends (its share of each row, summed down to the middle) to
-        // where the lower one starts.
+        // where the lower one starts. Where two colours blend straight into each other (every
+        // row between them on the line from one to the other, each pixel averaged with its
+        // left and right neighbours against noise, and no grey on that line) there is no
+        // border at all.
         let upper_colours = column_means(px, upper);
         let lower_colours = column_means(px, lower);
+        let smoothed = |x: usize, y: usize| {
+            let near = x.saturating_sub(1)..(x + 2).min(px.width);
+            mean_colour(near.map(|xx| px.rgb(y * px.width + xx)))
+        };
         let column_gap = |x: usize| -> f64 {
+            let blends = two_colours
+                && Blend::new(upper_colours[x], lower_colours[x]).is_some_and(|blend| {
+                    blend.keeps_colour()
+                        && (upper_inner..lower_inner).all(|y| blend.holds(smoothed(x, y)))
+                });
+            if blends {
+                return 0.0;
+            }
             let share =
                 |y: usize, colours: &[[f32; 3]]| share_of(px.rgb(y * px.width + x), colours[x]);
             let colour_bottom = upper_inner as f64

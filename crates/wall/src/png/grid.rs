@@ -81,7 +81,7 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
             .sum()
     };
     let fewest = distinct.iter().map(bricks).min().expect("some reading");
-    let (mut best, others): (Vec<Reading>, Vec<Reading>) =
+    let (mut best, more_bricks): (Vec<Reading>, Vec<Reading>) =
         distinct.into_iter().partition(|r| bricks(r) == fewest);
     best.sort_by(|a, b| a.residual.total_cmp(&b.residual));
     let ambiguous = |a: &Reading, b: &Reading| {
@@ -98,15 +98,16 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading
             ),
         )
     };
+    // Ambiguous, 1: two walls with as few bricks fit about as well.
     if best.len() > 1 && best[0].residual + CLEARLY_BETTER_PX >= best[1].residual {
         return Err(ambiguous(&best[0], &best[1]));
     }
     let chosen = best.remove(0);
-    // A thick border explains gaps that whole units with thin borders explain as well; with
-    // no border seen to tell, the drawing is ambiguous.
+    // Ambiguous, 2: a thick border explains gaps that whole units with thin borders (and more
+    // bricks) explain as well, and no border seen tells which.
     let thin = |r: &Reading| r.border <= THIN_BORDER_SHARE * r.unit;
     if !border_confirmed && !thin(&chosen) {
-        if let Some(other) = others.iter().find(|r| thin(r)) {
+        if let Some(other) = more_bricks.iter().find(|r| thin(r)) {
             return Err(ambiguous(&chosen, other));
         }
     }

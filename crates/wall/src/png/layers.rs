@@ -166,10 +166,10 @@ fn check_thin_segments(px: &Pixels, segments: &[Rows], bands: &[Rows]) -> Result
     for stack in segments.chunk_by(|a, b| a.bottom == b.top) {
         let solid = stack.iter().any(Rows::tall);
         for s in stack.iter().filter(|s| !s.tall()) {
-            let near = solid
-                || bands
-                    .iter()
-                    .any(|b| b.bottom + 2 >= s.top && s.bottom + 2 >= b.top);
+            // Bands are in order: the first that ends near or below the segment is the one
+            // that may be near it.
+            let next = bands.get(bands.partition_point(|b| b.bottom + 2 < s.top));
+            let near = solid || next.is_some_and(|b| b.top <= s.bottom + 2);
             let speck = (s.top..s.bottom)
                 .flat_map(|y| row_spans(px, y))
                 .all(|r| r.end - r.start < 2 * MIN_COLOUR_PX);
@@ -194,7 +194,7 @@ fn check_thin_segments(px: &Pixels, segments: &[Rows], bands: &[Rows]) -> Result
 /// classes.
 fn split_at_faint_borders(px: &Pixels, band: Rows) -> Vec<Rows> {
     // Each row's mean saturation over the columns coloured in the band.
-    let columns: Vec<usize> = band_spans(px, band)
+    let columns: Vec<usize> = majority_spans(&column_counts(px, band), band)
         .iter()
         .flat_map(|s| s.start + 1..s.end.saturating_sub(1))
         .collect();
@@ -222,11 +222,6 @@ fn split_at_faint_borders(px: &Pixels, band: Rows) -> Vec<Rows> {
             bottom: band.top + s.end,
         })
         .collect()
-}
-
-/// The spans of a band, from its columns' majority colours.
-pub(super) fn band_spans(px: &Pixels, band: Rows) -> Vec<Span> {
-    majority_spans(&column_counts(px, band), band)
 }
 
 /// Each column's majority colour over the band's rows (`None` where no colour has more than

@@ -42,7 +42,10 @@
 //! Limits, each a clear error: at most [`MAX_PIXELS`] pixels; every brick shows at least
 //! [`MIN_COLOUR_PX`] pixels of its colour each way (5 px across when blurred with no border,
 //! as tested); the unit is at least [`MIN_UNIT_PX`] pixels; borders are narrower than
-//! [`MAX_BORDER_SHARE`] of a unit.
+//! [`MAX_BORDER_SHARE`] of a unit; more runs than [`MAX_BRICKS`] is refused before the grid is
+//! fitted. Touching layers drawn alike with no border line between them read as one layer
+//! (nothing in the drawing tells them apart), and paler rows across such a band as a faint
+//! border line between two layers.
 //!
 //! Tested by drawing random walls over a grid of proportions (layer height 0.3–3 units,
 //! borders 0–4 px, unit 8–40 px, blur, noise, white, grey and black borders, white and pale
@@ -140,11 +143,11 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
     }
     let runs = find_runs(&pixels, &layers).map_err(|(at, reason)| fail(at, reason))?;
     if runs.len() > MAX_BRICKS {
-        let (what, limit, name_of_limit) = ("bricks", MAX_BRICKS as u64, "MAX_BRICKS");
+        // Each run is at least one brick.
         let kind = WallErrorKind::TooLarge {
-            what,
-            limit,
-            name: name_of_limit,
+            what: "bricks",
+            limit: MAX_BRICKS as u64,
+            name: "MAX_BRICKS",
         };
         return Err(WallError::new(name, Location::Whole, kind));
     }
@@ -254,9 +257,10 @@ mod tests {
 
     #[test]
     fn two_pieces_of_one_colour_do_not_blend() {
-        // A red run split at a faint grey border: the two pieces' colours differ by a grey
-        // level, and the border column lies near the line between them, yet it is a border,
-        // not a blend of two colours.
+        // A red run split at a faint grey border: the border column lies near the line
+        // between the two pieces' colours (they differ by a grey level), but two pieces of
+        // one colour never blend: their edges are measured by their colour's area, and the
+        // border between them is checked.
         let (red, also_red) = ([230.0, 30.0, 30.0], [231.0, 30.0, 30.0]);
         let means = [red, red, red, [215.0, 45.0, 45.0], red, red, red];
         let piece = |start, end| Span {

@@ -141,6 +141,15 @@ impl Blend {
         (along / self.norm).clamp(0.0, 1.0)
     }
 
+    /// Whether every blend of the two is a colour: orange and blue blend through grey, and
+    /// there a grey border between them would look like their blend.
+    pub(super) fn keeps_colour(&self) -> bool {
+        [0.25f32, 0.5, 0.75].into_iter().all(|t| {
+            let p: [f32; 3] = std::array::from_fn(|c| self.first[c] + t * self.step[c]);
+            colour_part(p).into_iter().fold(0f32, f32::max) >= MIN_SATURATION
+        })
+    }
+
     /// Whether `p` lies on the line, within [`BLEND_DISTANCE`].
     pub(super) fn holds(&self, p: [f32; 3]) -> bool {
         let t = self.share_of_second(p);
