@@ -150,33 +150,38 @@ pub(super) fn read_with(
             starts[e.run] = e.line;
         }
     }
-    let mut first_misfit = None;
+    // The first run that does not fit is named (its message is written only for it).
+    let mut first_misfit: Option<Misfit> = None;
     let mut fits: usize = 0;
     for (i, r) in runs.iter().enumerate() {
         let n = ends[i] - starts[i];
         let length = i64::from(r.kind.units());
         if off[i] > tol {
-            let reason = format!(
-                "this {} brick's edge is {:.2} units off the 0.30 m grid ({unit:.1} px per \
-                 unit): bricks and gaps must be whole units",
-                r.kind,
-                off[i] / unit
-            );
-            first_misfit.get_or_insert(Misfit::layout(r, reason));
+            first_misfit.get_or_insert_with(|| {
+                let reason = format!(
+                    "this {} brick's edge is {:.2} units off the 0.30 m grid ({unit:.1} px per \
+                     unit): bricks and gaps must be whole units",
+                    r.kind,
+                    off[i] / unit
+                );
+                Misfit::layout(r, reason)
+            });
         } else if n < length
             || n % length != 0
             || !seams_show_the_border(r, starts[i], n / length, &grid)
         {
-            let kind = WallErrorKind::LengthMismatch {
-                kind: r.kind,
-                measured: (r.width() + border) / unit * UNIT_LENGTH,
-                pixels: r.width().round() as u32,
-                unit,
-                expected: r.kind.length(),
-            };
-            first_misfit.get_or_insert(Misfit {
-                pixel: r.pixel,
-                kind,
+            first_misfit.get_or_insert_with(|| {
+                let kind = WallErrorKind::LengthMismatch {
+                    kind: r.kind,
+                    measured: (r.width() + border) / unit * UNIT_LENGTH,
+                    pixels: r.width().round() as u32,
+                    unit,
+                    expected: r.kind.length(),
+                };
+                Misfit {
+                    pixel: r.pixel,
+                    kind,
+                }
             });
         } else {
             fits += 1;
@@ -187,13 +192,15 @@ pub(super) fn read_with(
         let (a, b) = (&runs[i - 1], &runs[i]);
         let touching = a.layer == b.layer && ends[i - 1] == starts[i] && !b.blended.0;
         if touching && (b.left - a.right - border).abs() > GAP_AGREEMENT_PX {
-            let reason = format!(
-                "this {} brick touches the brick before it across {:.1} px, but borders \
-                 elsewhere are {border:.1} px",
-                b.kind,
-                b.left - a.right
-            );
-            first_misfit.get_or_insert(Misfit::layout(b, reason));
+            first_misfit.get_or_insert_with(|| {
+                let reason = format!(
+                    "this {} brick touches the brick before it across {:.1} px, but borders \
+                     elsewhere are {border:.1} px",
+                    b.kind,
+                    b.left - a.right
+                );
+                Misfit::layout(b, reason)
+            });
             fits = fits.saturating_sub(1);
         }
     }
