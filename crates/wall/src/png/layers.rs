@@ -122,39 +122,40 @@ fn row_spans(px: &Pixels, y: usize) -> Vec<Span> {
 fn join_segments(px: &Pixels, segments: &[Rows]) -> Vec<Rows> {
     let mut bands: Vec<Rows> = Vec::new();
     let mut counts = Vec::new(); // the last band's, per column
-    let mut unbroken = false; // every row since the last band is in some segment
-    let mut previous_end = 0;
-    for s in segments {
-        unbroken &= s.top == previous_end;
-        previous_end = s.bottom;
-        if !s.tall() {
-            continue;
+    let add = |counts: &mut Vec<[u32; 4]>, more: &[[u32; 4]]| {
+        for (total, add) in counts.iter_mut().zip(more) {
+            (0..4).for_each(|k| total[k] += add[k]);
         }
-        let own = column_counts(px, *s);
-        match bands.last_mut() {
-            Some(band)
-                if unbroken
-                    && !rows_differ(&majority_spans(&counts, *band), &majority_spans(&own, *s)) =>
-            {
-                // The thin segments between them are rows of the band as well.
-                let between = Rows {
-                    top: band.bottom,
-                    bottom: s.top,
-                };
-                for (total, add) in counts.iter_mut().zip(column_counts(px, between)) {
-                    (0..4).for_each(|k| total[k] += add[k]);
+    };
+    // A band never reaches across a row with no colour: it joins segments of one stack.
+    for stack in segments.chunk_by(|a, b| a.bottom == b.top) {
+        let stack_start = bands.len();
+        for s in stack.iter().filter(|s| s.tall()) {
+            let own = column_counts(px, *s);
+            let joinable = bands.len() > stack_start;
+            match bands.last_mut() {
+                Some(band)
+                    if joinable
+                        && !rows_differ(
+                            &majority_spans(&counts, *band),
+                            &majority_spans(&own, *s),
+                        ) =>
+                {
+                    // The thin segments between them are rows of the band as well.
+                    let between = Rows {
+                        top: band.bottom,
+                        bottom: s.top,
+                    };
+                    add(&mut counts, &column_counts(px, between));
+                    add(&mut counts, &own);
+                    band.bottom = s.bottom;
                 }
-                for (total, add) in counts.iter_mut().zip(&own) {
-                    (0..4).for_each(|k| total[k] += add[k]);
+                _ => {
+                    bands.push(*s);
+                    counts = own;
                 }
-                band.bottom = s.bottom;
-            }
-            _ => {
-                bands.push(*s);
-                counts = own;
             }
         }
-        unbroken = true;
     }
     bands
 }
