@@ -1,5 +1,6 @@
 //! Walls drawn by a renderer that is not Mason's: headless Chromium lays random walls out as
-//! HTML boxes (fractional CSS pixels, outlines centred on the bricks' edges, several palettes)
+//! HTML boxes (fractional CSS pixels, outlines centred on the bricks' edges or inside them,
+//! several palettes)
 //! and screenshots them at device scale factors 1, 1.25, 1.5 and 2, so that its own
 //! anti-aliasing and resampling make the edges. Each wall is cut out of the screenshot and read
 //! back. `.ci/run` installs Debian's chromium (scripts/install-chromium.sh) and sets
@@ -42,6 +43,17 @@ const OUTLINES: [&str; 3] = ["#000000", "#808080", "#ffffff"];
 const PAPERS: [&str; 2] = ["#ffffff", "#eee8d6"];
 const SCALES: [f64; 4] = [1.0, 1.25, 1.5, 2.0];
 
+/// Where a brick's outline lies: centred on its edge (as vector tools stroke) or inside it (a
+/// CSS border: touching bricks show a line twice as wide as around the wall). Outlines outside
+/// the bricks are not drawn: the reader does not read them (see the README's limits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Stroke {
+    Centred,
+    Inside,
+}
+
+const STROKES: [Stroke; 2] = [Stroke::Centred, Stroke::Inside];
+
 /// One wall as laid out on a page, in CSS pixels.
 struct Cell {
     wall: Wall,
@@ -53,6 +65,7 @@ struct Cell {
     unit: f64,
     layer: f64,
     outline: f64,
+    stroke: Stroke,
     /// Paper shown around the wall in the cut-out (CSS px).
     margin: f64,
 }
@@ -77,6 +90,7 @@ fn random_page(rng: &mut ChaCha8Rng, count: usize) -> (Vec<Cell>, String) {
         let layer = (unit * rng.gen_range(0.3..3.0f64) * 100.0).round() / 100.0;
         let outline = f64::from(rng.gen_range(0..=4u8));
         let colour = OUTLINES[rng.gen_range(0..OUTLINES.len())];
+        let stroke = STROKES[rng.gen_range(0..STROKES.len())];
         let left = GAP + (rng.gen_range(0.0..1.0f64) * 100.0).round() / 100.0;
         let units = wall
             .bricks()
@@ -95,11 +109,17 @@ fn random_page(rng: &mut ChaCha8Rng, count: usize) -> (Vec<Cell>, String) {
                  background:{fill}"
             );
             if outline > 0.0 {
-                let _ = write!(
-                    html,
-                    ";outline:{outline}px solid {colour};outline-offset:-{:.1}px",
-                    outline / 2.0
-                );
+                let _ = match stroke {
+                    Stroke::Centred => write!(
+                        html,
+                        ";outline:{outline}px solid {colour};outline-offset:-{:.1}px",
+                        outline / 2.0
+                    ),
+                    Stroke::Inside => write!(
+                        html,
+                        ";box-sizing:border-box;border:{outline}px solid {colour}"
+                    ),
+                };
             }
             html.push_str("\"></div>");
         }
@@ -115,6 +135,7 @@ fn random_page(rng: &mut ChaCha8Rng, count: usize) -> (Vec<Cell>, String) {
             unit,
             layer,
             outline,
+            stroke,
             margin,
         });
         top += height + GAP;
@@ -162,8 +183,12 @@ fn screenshot(browser: &Path, html: &str, size: (f64, f64), scale: f64, dir: &Pa
 /// Whether the reader's documented limits allow the cell at `scale` (in device pixels): 3 px
 /// of colour along the wall and 5 px across, borders under 0.6 units.
 fn within_limits(cell: &Cell, scale: f64) -> bool {
-    let (unit, layer, outline) = (cell.unit * scale, cell.layer * scale, cell.outline * scale);
-    unit - outline >= 3.0 && layer - outline >= 5.0 && outline < 0.6 * unit
+    let line = match cell.stroke {
+        Stroke::Centred => cell.outline,
+        Stroke::Inside => 2.0 * cell.outline,
+    };
+    let (unit, layer, line) = (cell.unit * scale, cell.layer * scale, line * scale);
+    unit - line >= 3.0 && layer - line >= 5.0 && line < 0.6 * unit
 }
 
 #[derive(Debug, Default)]
@@ -195,21 +220,27 @@ fn run(browser: &Path, pages: usize, per_page: usize, seed: u64) -> Tally {
                 continue;
             }
             let px = |css: f64| (css * scale).round().max(0.0) as u32;
-            let reach = cell.margin + cell.outline / 2.0;
+            let reach = cell.margin + cell.outline;
             let (x0, y0) = (px(cell.left - reach), px(cell.top - reach));
             let (x1, y1) = (
                 px(cell.left + cell.width + reach).min(shot.width()),
                 px(cell.top + cell.height + reach).min(shot.height()),
             );
             let img = image::imageops::crop_imm(&shot, x0, y0, x1 - x0, y1 - y0).to_image();
-            let context =
-                || {
-                    format!(
+            let context = || {
+                format!(
                     "page {page} (scale {scale}), wall at {:.2},{:.2}: unit {} px, layer {} px, \
-                     outline {} px, margin {}\n{}",
-                    cell.left, cell.top, cell.unit, cell.layer, cell.outline, cell.margin, cell.text
+                     outline {} px {:?}, margin {}\n{}",
+                    cell.left,
+                    cell.top,
+                    cell.unit,
+                    cell.layer,
+                    cell.outline,
+                    cell.stroke,
+                    cell.margin,
+                    cell.text
                 )
-                };
+            };
             match read_image(&img, "chromium.png") {
                 Ok(read) if canonical(&read) == canonical(&cell.wall) => tally.exact += 1,
                 Ok(read) => tally.wrong.push(format!(
