@@ -7,18 +7,35 @@ use super::*;
 const RING_REACH: usize = 8;
 /// A border around the wall differs from the paper by at least this much (RGB distance).
 const MIN_RING_CONTRAST: f32 = 40.0;
-/// Layers farther apart than this (px) do not sit on each other.
+/// Layers up to this far apart (px) may sit on each other, whatever the bricks' size.
 const MAX_LAYER_GAP: usize = 12;
+
+/// The border seen apart from the bricks: its width (px), and whether it is the ring around
+/// the wall (where an outline drawn inside the bricks is half as wide as the lines between
+/// them) rather than the line between layers.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct BorderSeen {
+    pub(super) width: f64,
+    pub(super) ring: bool,
+}
 
 /// The border between layers (px), where layers touch: for each layer and the layer below it,
 /// the mean gap between their colours over the columns where both have colour; the median
 /// of that over the pairs of layers. `None` for a single layer or layers that never sit on
 /// each other.
 pub(super) fn border_between_layers(px: &Pixels, layers: &[Rows], runs: &[Run]) -> Option<f64> {
+    // A border is narrower than MAX_BORDER_SHARE of a unit, and a brick of colour length k
+    // shows at least k units less one border: so a border is at most 1.5 times (for a share
+    // of 0.6) the narrowest run's width per unit of its colour. Layers farther apart than
+    // that do not sit on each other.
+    let per_unit = |r: &Run| r.width() / f64::from(r.kind.units());
+    let narrowest = runs.iter().map(per_unit).fold(f64::INFINITY, f64::min);
+    let widest_border = MAX_BORDER_SHARE / (1.0 - MAX_BORDER_SHARE) * narrowest;
+    let max_gap = (widest_border as usize).max(MAX_LAYER_GAP);
     let mut gaps = Vec::new();
     for pair in 0..layers.len().saturating_sub(1) {
         let (upper, lower) = (layers[pair], layers[pair + 1]);
-        if lower.top - upper.bottom > MAX_LAYER_GAP {
+        if lower.top - upper.bottom > max_gap {
             continue;
         }
         // Where one colour sits on the same colour, no blend of two colours blurs the gap.

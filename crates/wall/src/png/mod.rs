@@ -169,8 +169,11 @@ pub fn read_image(img: &RgbImage, name: &str) -> Result<Wall, WallError> {
             ),
         ));
     }
-    let border_seen = border_between_layers(&pixels, &layers, &runs)
-        .or_else(|| border_around_wall(&pixels, &layers, &runs));
+    let border_seen = match border_between_layers(&pixels, &layers, &runs) {
+        Some(width) => Some(BorderSeen { width, ring: false }),
+        None => border_around_wall(&pixels, &layers, &runs)
+            .map(|width| BorderSeen { width, ring: true }),
+    };
     let reading = fit_grid(&runs, border_seen).map_err(|misfit| misfit.into_error(name))?;
     assemble(name, layers.len(), cut_bricks(&runs, &reading))
 }
@@ -360,7 +363,11 @@ mod tests {
             run(0, BrickType::Red, 51.5, 58.5),
         ];
         assert!(ambiguous(fit_grid(&runs, None)));
-        let reading = fit_grid(&runs, Some(3.0)).unwrap();
+        let seen = BorderSeen {
+            width: 3.0,
+            ring: false,
+        };
+        let reading = fit_grid(&runs, Some(seen)).unwrap();
         assert_eq!(reading.places, vec![(0, 1), (5, 1)]);
     }
 
@@ -386,7 +393,11 @@ mod tests {
                 run(0, BrickType::Red, x + 0.5, x + 9.2)
             })
             .collect();
-        let reading = fit_grid(&runs, Some(1.0)).unwrap();
+        let seen = BorderSeen {
+            width: 1.0,
+            ring: false,
+        };
+        let reading = fit_grid(&runs, Some(seen)).unwrap();
         let expected: Vec<(i64, u32)> = (0..200).map(|i| (2 * i, 1)).collect();
         assert_eq!(reading.places, expected);
     }
