@@ -10,15 +10,6 @@ const MIN_RING_CONTRAST: f32 = 40.0;
 /// Layers up to this far apart (px) may sit on each other, whatever the bricks' size.
 const MAX_LAYER_GAP: usize = 12;
 
-/// The border seen apart from the bricks: its width (px), and whether it is the ring around
-/// the wall (where an outline drawn inside the bricks is half as wide as the lines between
-/// them) rather than the line between layers.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct BorderSeen {
-    pub(super) width: f64,
-    pub(super) ring: bool,
-}
-
 /// The border between layers (px), where layers touch: for each layer and the layer below it,
 /// the mean gap between their colours over the columns where both have colour; the median
 /// of that over the pairs of layers. `None` for a single layer or layers that never sit on

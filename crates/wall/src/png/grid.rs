@@ -19,7 +19,7 @@ const MAX_DISTANCES: usize = 24;
 const MAX_DIVISIONS: usize = 64;
 
 /// Step 6: the unit and border that put every run on one grid of whole units.
-pub(super) fn fit_grid(runs: &[Run], border_seen: Option<BorderSeen>) -> Result<Reading, Misfit> {
+pub(super) fn fit_grid(runs: &[Run], border_seen: Option<f64>) -> Result<Reading, Misfit> {
     let mut readings: Vec<Reading> = Vec::new();
     // Without a fit, the message names a run that the grid fitting most runs (at the largest
     // unit among equals) leaves out.
@@ -28,7 +28,7 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<BorderSeen>) -> Result<
         // With a border seen (`borders.rs`), the grid with that border is tried as well: where
         // few edges show the border (touching colours blend, with none), the free fit can
         // drift to another border that the seen one would then wrongly rule out.
-        if let Some(Ok(r)) = border_seen.map(|b| read_with(runs, unit, Some(b.width))) {
+        if let Some(Ok(r)) = border_seen.map(|b| read_with(runs, unit, Some(b))) {
             readings.push(r);
         }
         let result = read_at(runs, unit);
@@ -52,11 +52,7 @@ pub(super) fn fit_grid(runs: &[Run], border_seen: Option<BorderSeen>) -> Result<
     // The border seen between layers or around the wall is the border between bricks.
     let mut border_confirmed = false;
     if let Some(seen) = border_seen {
-        // An outline drawn inside the bricks makes the ring around the wall half as wide as the
-        // lines between bricks.
-        let agrees = |r: &Reading, width: f64| (r.border - width).abs() <= BORDER_AGREEMENT_PX;
-        let matching =
-            |r: &Reading| agrees(r, seen.width) || (seen.ring && agrees(r, 2.0 * seen.width));
+        let matching = |r: &Reading| (r.border - seen).abs() <= BORDER_AGREEMENT_PX;
         if readings.iter().any(matching) {
             readings.retain(matching);
             border_confirmed = true;
