@@ -7,8 +7,9 @@
 //! MASON_REQUIRE_BROWSER=1; elsewhere the test is skipped when no browser is found.
 //!
 //! The stress run (ignored): `MASON_CHROMIUM_PAGES=200 cargo test --release -p mason-wall
-//! --test png_chromium -- --ignored --nocapture`; MASON_CHROMIUM_KEEP=1 keeps the last page
-//! and its screenshot in the temporary directory.
+//! --test png_chromium -- --ignored --nocapture`; MASON_CHROMIUM_SEED=N draws other walls,
+//! and MASON_CHROMIUM_KEEP=1 keeps the last page and its screenshot in the temporary
+//! directory.
 
 use image::RgbImage;
 use mason_wall::generate::{random_layer_text, WallShape};
@@ -294,7 +295,11 @@ fn stress_walls_drawn_by_chromium() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(40);
-    let tally = run(&browser, pages, 25, 0x5eed_c0de);
+    let seed = std::env::var("MASON_CHROMIUM_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0x5eed_c0de);
+    let tally = run(&browser, pages, 25, seed);
     let drawn = tally.exact + tally.ambiguous + tally.wrong.len();
     println!(
         "{} pages: {drawn} walls drawn, {} read back exactly ({:.2} %), {} reported ambiguous \
