@@ -203,7 +203,9 @@ struct Tally {
 /// Draws `pages` pages of `per_page` walls, one page per scale factor in turn, and reads
 /// every wall back.
 fn run(browser: &Path, pages: usize, per_page: usize, seed: u64) -> Tally {
-    let dir = std::env::temp_dir().join(format!("mason-png-chromium-{}", std::process::id()));
+    // One directory per run: the tests of this file may run side by side.
+    let name = format!("mason-png-chromium-{}-{seed:x}", std::process::id());
+    let dir = std::env::temp_dir().join(name);
     std::fs::create_dir_all(&dir).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();

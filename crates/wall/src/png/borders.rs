@@ -19,9 +19,7 @@ pub(super) fn border_between_layers(px: &Pixels, layers: &[Rows], runs: &[Run]) 
     // shows at least k units less one border: so a border is at most 1.5 times (for a share
     // of 0.6) the narrowest run's width per unit of its colour. Layers farther apart than
     // that do not sit on each other.
-    let per_unit = |r: &Run| r.width() / f64::from(r.kind.units());
-    let narrowest = runs.iter().map(per_unit).fold(f64::INFINITY, f64::min);
-    let widest_border = MAX_BORDER_SHARE / (1.0 - MAX_BORDER_SHARE) * narrowest;
+    let widest_border = MAX_BORDER_SHARE / (1.0 - MAX_BORDER_SHARE) * narrowest_per_unit(runs);
     let max_gap = (widest_border as usize).max(MAX_LAYER_GAP);
     let mut gaps = Vec::new();
     for pair in 0..layers.len().saturating_sub(1) {

@@ -133,8 +133,7 @@ pub(super) fn candidate_units(runs: &[Run]) -> Vec<f64> {
         let divisions = (1..=MAX_DIVISIONS).map(|m| d / m as f64);
         units.extend(divisions.take_while(|&u| u >= MIN_UNIT_PX));
     }
-    let per_unit = |r: &Run| r.width() / f64::from(r.kind.units());
-    units.push(runs.iter().map(per_unit).fold(f64::INFINITY, f64::min));
+    units.push(narrowest_per_unit(runs));
     units.sort_by(f64::total_cmp);
     units.dedup_by(|a, b| (*a - *b).abs() < 0.005 * *b);
     units

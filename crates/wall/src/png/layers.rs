@@ -90,15 +90,14 @@ pub(super) fn find_layers(px: &Pixels) -> Result<Vec<Rows>, Failure> {
     let mut above: Vec<Span> = Vec::new();
     for y in 0..px.height {
         let row = row_spans(px, y);
-        match segments.last_mut() {
-            Some(s) if !row.is_empty() && s.bottom == y && !rows_differ(&above, &row) => {
-                s.bottom = y + 1
+        if !row.is_empty() {
+            match segments.last_mut() {
+                Some(s) if s.bottom == y && !rows_differ(&above, &row) => s.bottom = y + 1,
+                _ => segments.push(Rows {
+                    top: y,
+                    bottom: y + 1,
+                }),
             }
-            _ if !row.is_empty() => segments.push(Rows {
-                top: y,
-                bottom: y + 1,
-            }),
-            _ => {}
         }
         above = row;
     }

@@ -36,6 +36,13 @@ impl Run {
     }
 }
 
+/// The narrowest run's width per unit of its colour's length (px): the unit less at most a
+/// border, or more where a run is several bricks.
+pub(super) fn narrowest_per_unit(runs: &[Run]) -> f64 {
+    let per_unit = |r: &Run| r.width() / f64::from(r.kind.units());
+    runs.iter().map(per_unit).fold(f64::INFINITY, f64::min)
+}
+
 /// The mean colour of each column over the layer's rows.
 pub(super) fn column_means(px: &Pixels, layer: Rows) -> Vec<[f32; 3]> {
     let column = |x| mean_colour((layer.top..layer.bottom).map(|y| px.rgb(y * px.width + x)));
