@@ -775,3 +775,21 @@ fn one_drawing() {
         Err(e) => println!("{e}"),
     }
 }
+
+/// A hostile image of more marks than a wall may have bricks is refused as too large (the
+/// reader counts its runs before fitting a grid, which keeps a 49 MP image of them to 2 s:
+/// README, "Limits and bad input").
+#[test]
+fn more_marks_than_bricks_allowed_are_refused_as_too_many_bricks() {
+    // 3 × 3 px marks 1 px apart: 1 000 000 runs and one more.
+    let (w, h) = (4000u32, 4004u32);
+    let img = RgbImage::from_fn(w, h, |x, y| {
+        let mark = x % 4 != 3 && y % 4 != 3 && (y < 4000 || x < 4);
+        Rgb(if mark { RED } else { [255, 255, 255] })
+    });
+    let e = read_image(&img, "marks.png").unwrap_err();
+    assert!(
+        matches!(e.kind, WallErrorKind::TooLarge { what: "bricks", .. }),
+        "{e}"
+    );
+}
