@@ -42,6 +42,7 @@
 pub mod assign;
 pub mod astar;
 pub mod cbs;
+pub mod checked;
 pub mod distance;
 pub mod error;
 pub mod generate;
@@ -69,6 +70,7 @@ pub mod tswap;
 pub mod validate;
 
 pub use assign::{AssignError, AssignMethod};
+pub use checked::{shortest_steps, solve_checked, CheckedCrewPlan, CheckedSolveError};
 pub use error::{CrewError, Location};
 pub use grid::{Cell, Connectivity, Grid};
 pub use instance::Instance;

@@ -30,9 +30,11 @@ pub mod arena;
 pub mod auto;
 pub mod channel;
 pub mod check;
+mod checked;
 pub mod comm;
 pub mod config;
 pub mod coord;
+pub mod link;
 pub mod core;
 pub mod metrics;
 pub mod montecarlo;
@@ -44,12 +46,15 @@ pub mod team;
 pub mod windows;
 
 pub use arena::{Arena, Point};
+pub use checked::fly_checked;
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use config::{
     ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,
     MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
+pub use link::{Fate, LinkFaults};
+pub use team::killed_events;
 pub use metrics::Metrics;
 pub use montecarlo::{
     for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,

@@ -9,7 +9,8 @@
 //! * [`improved`] — the thesis's improved greedy `improved:n,k`;
 //! * [`exact`] — provably optimal, linear time on layer walls.
 //!
-//! [`validate()`] knows nothing of the planners: it checks an order and recomputes its cost.
+//! [`validate()`] knows nothing of the planners: it checks an order and recomputes its cost;
+//! [`plan_checked`] runs a planner and the validator together.
 //!
 //! ```
 //! use mason_order::{validate, Budget, BuildProblem, CostModel, PlannerSpec, Status};
@@ -26,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod brute;
+mod checked;
 pub mod exact;
 mod frontier;
 pub mod greedy;
@@ -38,6 +40,7 @@ pub mod team;
 mod tree_search;
 mod validate;
 
+pub use checked::{plan_checked, CheckedPlan, InvalidPlan};
 pub use model::{CostModel, ModelError, TypeTimes};
 pub use outcome::{Budget, Outcome, Stats, Status};
 pub use planner::{PlannerParseError, PlannerSpec};

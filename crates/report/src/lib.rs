@@ -4,6 +4,8 @@
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
 //! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
+//! The JSON of a mission's events and metrics ([`event_json`], [`metrics_json`]) and plain-text
+//! clocks for tables ([`text`]).
 //! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink.
 //!
 //! ```
@@ -15,12 +17,14 @@
 
 mod crew_svg;
 mod gantt;
+mod json;
 mod mcap;
 mod page;
 mod replay;
 mod reward;
 mod schedule_svg;
 mod svg;
+pub mod text;
 mod wall_svg;
 
 pub use self::mcap::{
@@ -29,6 +33,7 @@ pub use self::mcap::{
 };
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
+pub use json::{event_json, metrics_json};
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
 pub use reward::{reward_svg, Series};

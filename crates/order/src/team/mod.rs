@@ -19,6 +19,7 @@
 //! ```
 
 pub mod bounds;
+mod checked;
 mod closure;
 pub mod exhaustive;
 mod model;
@@ -27,6 +28,7 @@ pub mod search;
 pub mod sgs;
 mod validate;
 
+pub use checked::{schedule_checked, CheckedSchedule};
 pub use exhaustive::exhaustive_schedule;
 pub use model::{Concurrency, TeamModel, TeamModelError, TeamModelPatch, TypePatch, TypeSchedule};
 pub use problem::{

@@ -1,0 +1,461 @@
+//! Launching a team on one machine: one agent process per UAV over Zenoh on 127.0.0.1, kills
+//! (`SIGKILL`) and restarts at given mission times, then the agents' trace files merged into
+//! one trace (with the events of the agents it killed) and checked by
+//! [`mason_mission::check_trace`].
+
+use crate::clock::unix_now;
+use crate::error::{FleetError, FleetResult};
+use crate::network::DEFAULT_PREFIX;
+use crate::setting::FleetSetting;
+use crate::trace::{append_death, merge};
+use mason_mission::{check_trace, CommMode, Event, EventKind, TraceError, TraceSummary};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// What happens to an agent at a mission time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    /// Killed (SIGKILL: no last word).
+    Kill,
+    /// Started again as a new incarnation.
+    Restart,
+}
+
+/// How to launch a team.
+#[derive(Clone, Debug)]
+pub struct LaunchOptions {
+    /// The `mason` program: each agent runs `EXE agent AGENT_ARGS --uav U …`.
+    pub exe: PathBuf,
+    /// The team's options as `mason agent` arguments (the same for every agent).
+    pub agent_args: Vec<String>,
+    /// Output folder: the agents' traces, MCAP logs and stderr.
+    pub out: PathBuf,
+    /// Agent U listens on tcp/127.0.0.1:P+U (default: free ports).
+    pub base_port: Option<u32>,
+    /// The mission id (default: a fresh one).
+    pub mission: Option<String>,
+    /// Key prefix (default [`DEFAULT_PREFIX`]).
+    pub prefix: Option<String>,
+    /// Wall seconds between the launch and mission time 0, in [0, 60].
+    pub lead: f64,
+    /// `(uav, t)`: kill the agent at mission time t.
+    pub kills: Vec<(usize, f64)>,
+    /// `(uav, t)`: start the killed agent again at mission time t.
+    pub restarts: Vec<(usize, f64)>,
+}
+
+/// One agent process and how it ended.
+#[derive(Debug)]
+pub struct AgentRun {
+    /// The UAV.
+    pub uav: usize,
+    /// Its incarnation.
+    pub incarnation: u64,
+    /// Its trace file.
+    pub trace: PathBuf,
+    /// Its stdout and stderr.
+    pub log: PathBuf,
+    /// How it ended: an exit code, `killed`, `timed out`, `interrupted`.
+    pub exit: Option<String>,
+    /// The mission time its death's events were written at, if it was killed.
+    pub killed_at: Option<f64>,
+    child: Option<Child>,
+}
+
+/// A finished launch.
+#[derive(Debug)]
+pub struct Launch {
+    /// The mission id.
+    pub mission: String,
+    /// Mission time 0 (Unix s).
+    pub start_at: f64,
+    /// Each agent's endpoint.
+    pub endpoints: Vec<String>,
+    /// Every agent process, in start order.
+    pub runs: Vec<AgentRun>,
+    /// The merged trace.
+    pub events: Vec<Event>,
+    /// [`check_trace`] on the merged trace.
+    pub verdict: Result<TraceSummary, TraceError>,
+    /// Wall time (s).
+    pub wall_s: f64,
+    /// Agents were still running past the mission's time limit and were killed.
+    pub timed_out: bool,
+    /// Stopped by `interrupted`.
+    pub interrupted: bool,
+}
+
+impl Launch {
+    /// Bricks placed.
+    pub fn placed(&self) -> usize {
+        self.events
+            .iter()
+            .filter(|e| matches!(e.kind, EventKind::Place { .. }))
+            .count()
+    }
+
+    /// The time of the last placement, when all `total` bricks were placed.
+    pub fn makespan(&self, total: usize) -> Option<f64> {
+        (self.placed() == total).then(|| {
+            self.events
+                .iter()
+                .filter(|e| matches!(e.kind, EventKind::Place { .. }))
+                .map(|e| e.t)
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// The time of the last event.
+    pub fn end(&self) -> f64 {
+        self.events.iter().map(|e| e.t).fold(0.0, f64::max)
+    }
+
+    /// How many times an agent switched to `mode`.
+    pub fn switches(&self, mode: CommMode) -> usize {
+        self.events
+            .iter()
+            .filter(|e| e.kind == EventKind::Comm { mode })
+            .count()
+    }
+
+    /// The merged trace with the launch's facts, as JSON (`trace.json`).
+    pub fn to_json(&self, s: &FleetSetting) -> serde_json::Value {
+        let total = s.wall.len();
+        let placed = self.placed();
+        let violation = self.verdict.as_ref().err().map(|e| e.to_string());
+        let agents: Vec<serde_json::Value> = self
+            .runs
+            .iter()
+            .map(|r| {
+                serde_json::json!({
+                    "uav": r.uav, "incarnation": r.incarnation,
+                    "exit": r.exit, "killed_at": r.killed_at,
+                    "trace": r.trace.file_name().map(|f| f.to_string_lossy().into_owned()),
+                })
+            })
+            .collect();
+        let summary = serde_json::json!({
+            "bricks_placed": placed, "bricks_total": total, "finished": placed == total,
+            "makespan_s": self.makespan(total), "end_s": self.end(),
+            "check_trace": violation.unwrap_or_else(|| "passed".into()),
+            "to_windows": self.switches(CommMode::Windows), "to_comm": self.switches(CommMode::Comm),
+            "wall_time_s": self.wall_s, "timed_out": self.timed_out,
+        });
+        serde_json::json!({
+            "wall": s.wall.name(), "uavs": s.config.uavs, "coord": s.coord,
+            "mission": self.mission, "speed": s.speed, "seed": s.seed, "start_at": self.start_at,
+            "endpoints": self.endpoints,
+            "order": s.order.iter().map(|b| s.wall.brick(*b).label).collect::<Vec<_>>(),
+            "agents": agents, "summary": summary,
+            "events": self.events.iter().map(|e| mason_report::event_json(&s.wall, e)).collect::<Vec<_>>(),
+        })
+    }
+}
+
+/// The kills and restarts, by time; each restart must follow a kill of its UAV and each kill a
+/// running agent (errors name the flag).
+pub fn schedule(
+    kills: &[(usize, f64)],
+    restarts: &[(usize, f64)],
+    uavs: usize,
+) -> FleetResult<Vec<(f64, usize, Action)>> {
+    let mut plan: Vec<(f64, usize, Action)> = kills
+        .iter()
+        .map(|&(u, t)| (t, u, Action::Kill))
+        .chain(restarts.iter().map(|&(u, t)| (t, u, Action::Restart)))
+        .collect();
+    plan.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut down = vec![false; uavs];
+    for &(t, u, what) in &plan {
+        let Some(d) = down.get_mut(u) else {
+            return Err(FleetError::bad(format!(
+                "UAV {u} is not in a team of {uavs} (0..{})",
+                uavs.saturating_sub(1)
+            )));
+        };
+        match what {
+            Action::Kill if *d => {
+                return Err(FleetError::bad(format!(
+                    "--kill {u}@{t}: UAV {u} is already killed then (add a --restart before)"
+                )))
+            }
+            Action::Restart if !*d => {
+                return Err(FleetError::bad(format!(
+                    "--restart {u}@{t}: UAV {u} is not killed before (add a --kill {u}@T with T < {t})"
+                )))
+            }
+            Action::Kill => *d = true,
+            Action::Restart => *d = false,
+        }
+    }
+    Ok(plan)
+}
+
+fn free_port() -> FleetResult<u16> {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .map_err(|e| FleetError::Network(format!("cannot find a free port on 127.0.0.1: {e}")))
+}
+
+fn ports(base: Option<u32>, n: usize) -> FleetResult<Vec<u16>> {
+    match base {
+        Some(p) if p >= 1 && p as usize + n - 1 <= 65535 => {
+            Ok((0..n).map(|u| (p as usize + u) as u16).collect())
+        }
+        Some(p) => Err(FleetError::bad(format!(
+            "--base-port {p}: ports {p}..{} must lie in 1..65535",
+            p as usize + n - 1
+        ))),
+        None => (0..n).map(|_| free_port()).collect(),
+    }
+}
+
+/// Removes an earlier launch's agent files from `out` (the cameras read every trace there).
+fn clear(out: &Path) -> FleetResult<()> {
+    std::fs::create_dir_all(out).map_err(|source| FleetError::Io {
+        path: out.to_path_buf(),
+        source,
+    })?;
+    if let Ok(entries) = std::fs::read_dir(out) {
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with("uav-") && (name.ends_with(".jsonl") || name.ends_with(".log")) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What every agent process of one launch shares.
+struct Spawner<'a> {
+    opts: &'a LaunchOptions,
+    mission: String,
+    start_at: f64,
+    endpoints: Vec<String>,
+}
+
+impl Spawner<'_> {
+    fn spawn(&self, uav: usize, incarnation: u64, earlier: &[PathBuf]) -> FleetResult<AgentRun> {
+        let out = &self.opts.out;
+        let trace = out.join(format!("uav-{uav}-{incarnation}.jsonl"));
+        let log_path = out.join(format!("uav-{uav}-{incarnation}.log"));
+        let io = |source| FleetError::Io {
+            path: log_path.clone(),
+            source,
+        };
+        let log = std::fs::File::create(&log_path).map_err(io)?;
+        let err = log.try_clone().map_err(io)?;
+        let mut cmd = Command::new(&self.opts.exe);
+        cmd.arg("agent").args(&self.opts.agent_args);
+        cmd.args(["--uav", &uav.to_string(), "--mission", &self.mission]);
+        cmd.args(["--start-at", &format!("{:.6}", self.start_at)]);
+        cmd.args(["--incarnation", &incarnation.to_string()]);
+        cmd.args(["--listen", &self.endpoints[uav]]);
+        for (v, e) in self.endpoints.iter().enumerate() {
+            if v != uav {
+                cmd.args(["--connect", e]);
+            }
+        }
+        if let Some(p) = &self.opts.prefix {
+            cmd.args(["--prefix", p]);
+        }
+        cmd.arg("--trace").arg(&trace);
+        cmd.arg("--mcap")
+            .arg(out.join(format!("uav-{uav}-{incarnation}.mcap")));
+        cmd.arg("--world").arg(out);
+        for p in earlier {
+            cmd.arg("--remember").arg(p);
+        }
+        cmd.stdin(Stdio::null()).stdout(log).stderr(err);
+        let child = cmd.spawn().map_err(|source| FleetError::Io {
+            path: self.opts.exe.clone(),
+            source,
+        })?;
+        Ok(AgentRun {
+            uav,
+            incarnation,
+            trace,
+            log: log_path,
+            exit: None,
+            killed_at: None,
+            child: Some(child),
+        })
+    }
+}
+
+/// Launches the team of `setting`, carries out the kills and restarts, waits for every agent
+/// (or `interrupted`, or the mission's time limit plus 10 wall seconds), then merges and
+/// checks the traces. `started` hears one line once the agents are running.
+pub fn launch(
+    setting: &FleetSetting,
+    opts: &LaunchOptions,
+    interrupted: &AtomicBool,
+    started: &mut dyn FnMut(String),
+) -> FleetResult<Launch> {
+    let wall_started = Instant::now();
+    let n = setting.config.uavs;
+    let plan = schedule(&opts.kills, &opts.restarts, n)?;
+    if !(opts.lead.is_finite() && (0.0..=60.0).contains(&opts.lead)) {
+        return Err(FleetError::bad(format!(
+            "--lead {}: expected wall seconds in [0, 60]",
+            opts.lead
+        )));
+    }
+    let ports = ports(opts.base_port, n)?;
+    let mission = opts
+        .mission
+        .clone()
+        .unwrap_or_else(|| format!("launch-{}-{}", unix_now() as u64, std::process::id()));
+    crate::network::check_chunks("--mission", &mission, true)?;
+    clear(&opts.out)?;
+    let start_at = unix_now() + opts.lead;
+    let spawner = Spawner {
+        opts,
+        mission,
+        start_at,
+        endpoints: ports.iter().map(|p| format!("tcp/127.0.0.1:{p}")).collect(),
+    };
+    let mut runs: Vec<AgentRun> = (0..n)
+        .map(|u| spawner.spawn(u, 1, &[]))
+        .collect::<FleetResult<_>>()?;
+    started(format!(
+        "mission {}, {n} agents on {}, key {}/{}/UAV/KIND, speed {}",
+        spawner.mission,
+        spawner.endpoints.join(" "),
+        opts.prefix.as_deref().unwrap_or(DEFAULT_PREFIX),
+        spawner.mission,
+        setting.speed
+    ));
+    let mission_now = || (unix_now() - start_at) * setting.speed;
+    // Past max_time_s every agent stops by itself; give it a few wall seconds more.
+    let give_up = start_at + setting.config.max_time_s / setting.speed + 10.0;
+    let mut next = 0;
+    let mut timed_out = false;
+    loop {
+        while next < plan.len() && plan[next].0 <= mission_now() {
+            let (_, u, what) = plan[next];
+            next += 1;
+            match what {
+                Action::Kill => kill(&mut runs, u, mission_now())?,
+                Action::Restart => {
+                    let earlier: Vec<PathBuf> = runs
+                        .iter()
+                        .filter(|r| r.uav == u)
+                        .map(|r| r.trace.clone())
+                        .collect();
+                    let inc = 1 + earlier.len() as u64;
+                    runs.push(spawner.spawn(u, inc, &earlier)?);
+                }
+            }
+        }
+        reap(&mut runs);
+        if runs.iter().all(|r| r.child.is_none()) && next >= plan.len() {
+            break;
+        }
+        let stop = interrupted.load(Ordering::Relaxed);
+        if stop || unix_now() > give_up {
+            timed_out = !stop;
+            for r in runs.iter_mut() {
+                if let Some(mut c) = r.child.take() {
+                    let _ = c.kill();
+                    let _ = c.wait();
+                    r.exit = Some(if stop { "interrupted" } else { "timed out" }.into());
+                }
+            }
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    // An agent that refused its input (which the launch checked already) is a bad launch.
+    if let Some(r) = runs.iter().find(|r| r.exit.as_deref() == Some("2")) {
+        let text = std::fs::read_to_string(&r.log).unwrap_or_default();
+        let why = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+        return Err(FleetError::bad(format!(
+            "agent of UAV {} refused its input ({}): {why}",
+            r.uav,
+            r.log.display()
+        )));
+    }
+    let files: Vec<(PathBuf, bool)> = runs
+        .iter()
+        .map(|r| (r.trace.clone(), r.killed_at.is_some()))
+        .collect();
+    let events = merge(&files)?;
+    let verdict = check_trace(&setting.wall, n, &events);
+    Ok(Launch {
+        mission: spawner.mission,
+        start_at,
+        endpoints: spawner.endpoints,
+        runs,
+        events,
+        verdict,
+        wall_s: wall_started.elapsed().as_secs_f64(),
+        timed_out,
+        interrupted: interrupted.load(Ordering::Relaxed),
+    })
+}
+
+/// Kills UAV `u`'s running agent and writes the events of its death into its trace.
+fn kill(runs: &mut [AgentRun], u: usize, now: f64) -> FleetResult<()> {
+    let Some(r) = runs
+        .iter_mut()
+        .rev()
+        .find(|r| r.uav == u && r.child.is_some())
+    else {
+        return Ok(());
+    };
+    let Some(mut child) = r.child.take() else {
+        return Ok(());
+    };
+    let _ = child.kill();
+    let status = child.wait();
+    r.killed_at = Some(append_death(&r.trace, u, now)?);
+    r.exit = Some(match status.ok().and_then(|s| s.code()) {
+        Some(code) => format!("exited {code} before the kill"),
+        None => "killed".into(),
+    });
+    Ok(())
+}
+
+/// Notes the agents that have exited.
+fn reap(runs: &mut [AgentRun]) {
+    for r in runs.iter_mut() {
+        if let Some(c) = r.child.as_mut() {
+            if let Ok(Some(status)) = c.try_wait() {
+                r.exit = Some(match status.code() {
+                    Some(code) => code.to_string(),
+                    None => format!("{status}"),
+                });
+                r.child = None;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kills_and_restarts_must_alternate() {
+        let plan = schedule(&[(1, 10.0)], &[(1, 20.0)], 3).unwrap();
+        assert_eq!(plan, vec![(10.0, 1, Action::Kill), (20.0, 1, Action::Restart)]);
+        let e = schedule(&[(1, 10.0), (1, 12.0)], &[], 3).unwrap_err().to_string();
+        assert!(e.contains("already killed"), "{e}");
+        let e = schedule(&[], &[(0, 5.0)], 3).unwrap_err().to_string();
+        assert!(e.contains("not killed before"), "{e}");
+        assert!(schedule(&[(3, 1.0)], &[], 3).is_err());
+    }
+
+    #[test]
+    fn ports_stay_in_range() {
+        assert_eq!(ports(Some(7000), 3).unwrap(), vec![7000, 7001, 7002]);
+        assert!(ports(Some(65535), 2).is_err());
+        assert!(ports(Some(0), 1).is_err());
+        assert_eq!(ports(None, 2).unwrap().len(), 2);
+    }
+}

@@ -1,0 +1,74 @@
+//! The agent runtime: everything a UAV agent process needs except argument parsing, for the
+//! `mason` command, the Python package and the ROS 2 bridge alike.
+//!
+//! - [`clock`]: mission time ([`Clock`], the real [`MissionClock`]);
+//! - [`transport`]: how messages reach the team ([`Transport`]; [`Hub`], an in-memory bus;
+//!   `ZenohLink` over Zenoh with the `zenoh` feature);
+//! - [`faults`]: the [`FaultLayer`], faults on purpose drawn from the same model as the
+//!   simulator's virtual bus ([`mason_mission::LinkFaults`]);
+//! - [`drive`]: the loop that runs one [`mason_mission::agent::Agent`] ([`drive()`]);
+//! - [`log`]: where an agent writes what it does ([`AgentLog`], [`JsonLines`],
+//!   [`McapAgentLog`]); [`trace`]: the one strict reader of those trace files;
+//! - [`world`]: the simulated camera's view of the wall across processes ([`TraceWorld`]);
+//! - [`network`]: mission id, key prefix and endpoints, checked ([`Network`]);
+//! - [`setting`]: what a team shares ([`FleetSetting`]); [`agent`]: one agent process
+//!   ([`fly_agent`]); [`launch`]: a team of processes, merged and checked ([`launch()`]).
+//!
+//! ```
+//! use mason_fleet::{fly_agent, AgentOptions, FleetSetting, Hub, Network};
+//! use mason_mission::{Coord, LinkFaults, MissionConfig};
+//! # let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+//! # let model = mason_order::CostModel::default();
+//! let order: Vec<_> = wall.ids().collect(); // level by level: a valid order
+//! let config = MissionConfig::with_uavs(1);
+//! let slot = mason_mission::slot_length(&wall, &model, &config).unwrap();
+//! let setting = FleetSetting {
+//!     wall, model, order, config, coord: Coord::Comm, slot, speed: 1000.0, seed: 7,
+//!     dead_after: 30.0, link: LinkFaults::default(),
+//! };
+//! let net = Network::resolve(None, Some("demo".into()), None, &[], &[]).unwrap();
+//! let opts = AgentOptions { uav: 0, incarnation: 1, ..AgentOptions::default() };
+//! let mut link = Hub::new(1).links().pop().unwrap();
+//! let stop = std::sync::atomic::AtomicBool::new(false);
+//! let report = fly_agent(&setting, &net, &opts, &mut link, &stop).unwrap();
+//! assert_eq!(report.placed_known, 10);
+//! ```
+
+#![deny(missing_docs)]
+
+pub mod agent;
+pub mod clock;
+pub mod drive;
+pub mod error;
+pub mod faults;
+pub mod launch;
+pub mod log;
+pub mod network;
+mod pose_tmp;
+pub mod setting;
+pub mod trace;
+pub mod transport;
+pub mod world;
+#[cfg(feature = "zenoh")]
+pub mod zenoh_link;
+
+pub use agent::{fly_agent, AgentOptions, AgentReport, MAX_START_AHEAD_S};
+pub use clock::{unix_now, Clock, MissionClock, MAX_SPEED};
+pub use drive::{drive, Ending, LAST_WORD_REPEATS};
+pub use error::{FleetError, FleetResult};
+pub use faults::{FaultLayer, FaultStats};
+pub use launch::{launch, schedule, Action, AgentRun, Launch, LaunchOptions};
+pub use log::{AgentLog, JsonLines, McapAgentLog};
+pub use network::{check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX};
+pub use setting::FleetSetting;
+pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};
+pub use transport::{Hub, HubLink, Transport};
+pub use world::TraceWorld;
+#[cfg(feature = "zenoh")]
+pub use zenoh_link::ZenohLink;
+
+/// The seed of UAV `uav`'s vehicle and fault layer in incarnation `incarnation`.
+pub fn agent_seed(seed: u64, uav: usize, incarnation: u64) -> u64 {
+    seed ^ (uav as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+        ^ incarnation.wrapping_mul(0x2545_f491_4f6c_dd1d)
+}

@@ -1,0 +1,156 @@
+//! Where an agent writes what it does: the [`AgentLog`] sink, its trace file ([`JsonLines`])
+//! and its MCAP log for Foxglove ([`McapAgentLog`]).
+
+use mason_mission::agent::Message;
+use mason_mission::Event;
+use std::io::Write;
+
+/// Where an agent's events, messages and poses go.
+pub trait AgentLog {
+    /// One trace event.
+    fn event(&mut self, e: &Event) -> std::io::Result<()>;
+    /// A message sent (`sent`) or heard.
+    fn message(&mut self, _t: f64, _m: &Message, _sent: bool) -> std::io::Result<()> {
+        Ok(())
+    }
+    /// The UAV's pose at mission time `t` (m), after every tick.
+    fn pose(&mut self, _t: f64, _pose: (f64, f64, f64)) -> std::io::Result<()> {
+        Ok(())
+    }
+    /// The agent stopped: complete the log.
+    fn finish(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Keeps the events in memory.
+impl AgentLog for Vec<Event> {
+    fn event(&mut self, e: &Event) -> std::io::Result<()> {
+        self.push(*e);
+        Ok(())
+    }
+}
+
+/// Logs to none, one or several logs.
+impl AgentLog for Vec<Box<dyn AgentLog + '_>> {
+    fn event(&mut self, e: &Event) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.event(e))
+    }
+    fn message(&mut self, t: f64, m: &Message, sent: bool) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.message(t, m, sent))
+    }
+    fn pose(&mut self, t: f64, p: (f64, f64, f64)) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.pose(t, p))
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.finish())
+    }
+}
+
+/// The trace file: one [`Event`] as JSON per line, written and flushed line by line so that
+/// an agent killed mid-mission leaves every event but at most a truncated last line
+/// ([`crate::trace::read_trace`] reads it back).
+pub struct JsonLines<W: Write>(pub W);
+
+impl<W: Write> AgentLog for JsonLines<W> {
+    fn event(&mut self, e: &Event) -> std::io::Result<()> {
+        let mut line = serde_json::to_vec(e).map_err(std::io::Error::other)?;
+        line.push(b'\n');
+        self.0.write_all(&line)?;
+        self.0.flush()
+    }
+}
+
+type Mcap<'a, W> = mason_report::McapLog<'a, std::io::BufWriter<W>>;
+
+/// The agent's MCAP log (the topics of `simulate --mcap`): poses as
+/// [`mason_report::PoseSampler`] samples them (at every event, else at
+/// [`mason_report::POSE_RATE_HZ`], heading along the last move); every event; every message
+/// sent or heard on `/messages` (`kind` is `sent/KIND` or `heard/KIND`, `body` the whole
+/// message).
+pub struct McapAgentLog<'a, W: Write + std::io::Seek> {
+    log: Option<Mcap<'a, W>>,
+    sampler: crate::pose_tmp::PoseSampler,
+}
+
+impl<'a, W: Write + std::io::Seek> McapAgentLog<'a, W> {
+    /// A log into `out` for UAV `uav` of the mission `meta` describes.
+    pub fn new(out: W, meta: &mason_report::LogMeta<'a>, uav: usize) -> std::io::Result<Self> {
+        let log = mason_report::McapLog::new(std::io::BufWriter::new(out), meta)
+            .map_err(std::io::Error::other)?;
+        Ok(McapAgentLog {
+            log: Some(log),
+            sampler: crate::pose_tmp::PoseSampler::new(uav as u32),
+        })
+    }
+
+    fn log(&mut self) -> std::io::Result<&mut Mcap<'a, W>> {
+        self.log
+            .as_mut()
+            .ok_or_else(|| std::io::Error::other("the MCAP log is finished"))
+    }
+}
+
+impl<W: Write + std::io::Seek> AgentLog for McapAgentLog<'_, W> {
+    fn event(&mut self, e: &Event) -> std::io::Result<()> {
+        self.sampler.mark_due();
+        self.log()?.event(e).map_err(std::io::Error::other)
+    }
+
+    fn message(&mut self, t: f64, m: &Message, sent: bool) -> std::io::Result<()> {
+        let body = serde_json::to_value(m).map_err(std::io::Error::other)?;
+        let kind = format!("{}/{}", if sent { "sent" } else { "heard" }, m.kind.key());
+        self.log()?
+            .message(t, m.uav, &kind, &body)
+            .map_err(std::io::Error::other)
+    }
+
+    fn pose(&mut self, t: f64, p: (f64, f64, f64)) -> std::io::Result<()> {
+        let Some(pose) = self.sampler.sample(t, p) else {
+            return Ok(());
+        };
+        let uav = self.sampler.uav();
+        self.log()?.pose(t, uav, pose).map_err(std::io::Error::other)
+    }
+
+    fn finish(&mut self) -> std::io::Result<()> {
+        match self.log.take() {
+            Some(log) => {
+                let mut out = log.finish().map_err(std::io::Error::other)?;
+                out.flush()
+            }
+            None => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mason_mission::EventKind;
+
+    #[test]
+    fn trace_lines_read_back_as_the_events_written() {
+        let events = [
+            Event {
+                t: 1.5,
+                uav: 2,
+                kind: EventKind::ZoneEnter,
+            },
+            Event {
+                t: 2.0,
+                uav: 2,
+                kind: EventKind::Place {
+                    brick: mason_wall::BrickId(3),
+                },
+            },
+        ];
+        let mut log = JsonLines(Vec::new());
+        for e in &events {
+            log.event(e).unwrap();
+        }
+        let text = String::from_utf8(log.0).unwrap();
+        let back = crate::trace::parse_trace(&text, std::path::Path::new("t.jsonl"), false).unwrap();
+        assert_eq!(back, events);
+    }
+}

@@ -1,0 +1,132 @@
+//! A fleet's setting: what every agent of a team shares besides its own number and network.
+
+use crate::clock::MAX_SPEED;
+use crate::error::{FleetError, FleetResult};
+use mason_mission::agent::{AgentSetup, DEFAULT_LEASE_S};
+use mason_mission::{Coord, LinkFaults, MissionConfig};
+use mason_order::CostModel;
+use mason_wall::{BrickId, Wall};
+
+/// What every agent of a team shares, checked ([`FleetSetting::check`]).
+#[derive(Clone, Debug)]
+pub struct FleetSetting {
+    /// The wall.
+    pub wall: Wall,
+    /// The cost model.
+    pub model: CostModel,
+    /// The shared build order (every agent plans the same one).
+    pub order: Vec<BrickId>,
+    /// Team, arena, UAV model, coordination timings (vehicle faults only).
+    pub config: MissionConfig,
+    /// The coordination policy.
+    pub coord: Coord,
+    /// The windows slot (s).
+    pub slot: f64,
+    /// Clock speed: mission seconds per wall second.
+    pub speed: f64,
+    /// Seed of the vehicles and fault layers (mixed per UAV and incarnation by
+    /// [`crate::agent_seed`]).
+    pub seed: u64,
+    /// A teammate unheard this long (mission s) is declared out by a majority.
+    pub dead_after: f64,
+    /// Faults put on purpose between each agent and its transport.
+    pub link: LinkFaults,
+}
+
+impl FleetSetting {
+    /// Checks the settings a mission configuration does not cover: clock speed, declaration
+    /// time and link faults (errors name the flag).
+    pub fn check(&self) -> FleetResult<()> {
+        if !(self.speed.is_finite() && self.speed > 0.0 && self.speed <= MAX_SPEED) {
+            return Err(FleetError::bad(format!(
+                "--speed {}: expected a factor in (0, {MAX_SPEED}]",
+                self.speed
+            )));
+        }
+        if !(self.dead_after.is_finite() && self.dead_after > 0.0) {
+            return Err(FleetError::bad(format!(
+                "--dead-after {}: expected seconds > 0",
+                self.dead_after
+            )));
+        }
+        let l = &self.link;
+        for (flag, p) in [("--drop", l.loss), ("--duplicate", l.duplicate)] {
+            if !(0.0..=1.0).contains(&p) {
+                return Err(FleetError::bad(format!(
+                    "{flag} {p}: a probability must lie in [0, 1]"
+                )));
+            }
+        }
+        for (flag, s) in [("--latency", l.latency), ("--delay-jitter", l.jitter)] {
+            if !(s.is_finite() && s >= 0.0) {
+                return Err(FleetError::bad(format!("{flag} {s}: expected seconds ≥ 0")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The agent setup of UAV `uav` in incarnation `incarnation` of mission `mission`.
+    pub fn setup<'a>(&'a self, uav: usize, mission: &'a str, incarnation: u64) -> AgentSetup<'a> {
+        AgentSetup {
+            wall: &self.wall,
+            order: &self.order,
+            assignment: None,
+            model: &self.model,
+            config: &self.config,
+            coord: self.coord,
+            slot_s: self.slot,
+            uav,
+            mission,
+            incarnation,
+            dead_after_s: self.dead_after,
+            lease_s: DEFAULT_LEASE_S,
+        }
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use mason_mission::agent::DEFAULT_DEAD_AFTER_S;
+
+    /// A checked setting for three UAVs on a built-in wall.
+    pub fn setting(name: &str, coord: Coord, speed: f64) -> FleetSetting {
+        let wall = mason_wall::builtin(name).unwrap().wall();
+        let model = CostModel::default();
+        let problem = mason_order::BuildProblem::new(&wall, model.clone()).unwrap();
+        let order = mason_order::PlannerSpec::Exact
+            .plan(&problem, &mason_order::Budget::unlimited())
+            .order
+            .unwrap();
+        let config = MissionConfig::with_uavs(3);
+        let slot = mason_mission::slot_length(&wall, &model, &config).unwrap();
+        let s = FleetSetting {
+            wall,
+            model,
+            order,
+            config,
+            coord,
+            slot,
+            speed,
+            seed: 1,
+            dead_after: DEFAULT_DEAD_AFTER_S,
+            link: LinkFaults::default(),
+        };
+        s.check().unwrap();
+        s
+    }
+
+    #[test]
+    fn out_of_range_settings_name_their_flag() {
+        let good = setting("thesis-2x5", Coord::Auto, 1.0);
+        let mut s = good.clone();
+        s.speed = 0.0;
+        assert!(s.check().unwrap_err().to_string().starts_with("--speed"));
+        let mut s = good.clone();
+        s.link.loss = 1.5;
+        assert!(s.check().unwrap_err().to_string().starts_with("--drop"));
+        let mut s = good;
+        s.link.jitter = f64::NAN;
+        assert!(s.check().unwrap_err().to_string().starts_with("--delay-jitter"));
+    }
+}

@@ -1,0 +1,142 @@
+//! The Zenoh transport of an agent (feature `zenoh`): a peer-mode session with
+//! multicast scouting off and explicit listen/connect endpoints. Each message goes out as
+//! JSON (encoding `application/json`) on `PREFIX/MISSION/UAV/KIND`; the agent subscribes to
+//! `PREFIX/MISSION/*/*` and skips its own key. Anything that does not decode as a
+//! [`Message`] is counted and ignored.
+
+use crate::error::{FleetError, FleetResult};
+use crate::network::Network;
+use crate::transport::Transport;
+use mason_mission::agent::{Message, MessageKind};
+use std::collections::HashMap;
+use std::sync::mpsc;
+use std::time::Instant;
+use zenoh::bytes::Encoding;
+use zenoh::pubsub::{Publisher, Subscriber};
+use zenoh::{Session, Wait};
+
+/// How long a dropped connection waits before it is tried again at first, and at most (ms).
+const RETRY_MS: (u32, u32) = (100, 1000);
+
+/// One agent's Zenoh session.
+pub struct ZenohLink {
+    session: Session,
+    prefix: String,
+    publishers: HashMap<&'static str, Publisher<'static>>,
+    rx: mpsc::Receiver<Vec<u8>>,
+    _subscriber: Subscriber<()>,
+    /// Samples that did not decode as a message.
+    pub undecodable: u64,
+}
+
+fn json_list(items: &[String]) -> String {
+    serde_json::to_string(items).expect("strings")
+}
+
+/// The session's configuration: peer mode, no multicast scouting, the given endpoints.
+pub fn config(net: &Network) -> FleetResult<zenoh::Config> {
+    let mut c = zenoh::Config::default();
+    let mut set = |key: &str, value: String| {
+        c.insert_json5(key, &value)
+            .map_err(|e| FleetError::Network(format!("zenoh configuration {key} = {value}: {e}")))
+    };
+    set("mode", "\"peer\"".into())?;
+    set("scouting/multicast/enabled", "false".into())?;
+    set("listen/endpoints", json_list(&net.listen))?;
+    set("connect/endpoints", json_list(&net.connect))?;
+    set(
+        "connect/retry",
+        format!(
+            "{{\"period_init_ms\": {}, \"period_max_ms\": {}, \"period_increase_factor\": 2}}",
+            RETRY_MS.0, RETRY_MS.1
+        ),
+    )?;
+    Ok(c)
+}
+
+impl ZenohLink {
+    /// Opens the session for UAV `me` (exit 2 if an endpoint is refused, e.g. a port in use).
+    pub fn open(net: &Network, me: usize) -> FleetResult<Self> {
+        let session = zenoh::open(config(net)?).wait().map_err(|e| {
+            FleetError::Network(format!(
+                "zenoh: cannot open a session (listen {:?}, connect {:?}): {e}",
+                net.listen, net.connect
+            ))
+        })?;
+        let prefix = format!("{}/{}", net.prefix, net.mission);
+        let (tx, rx) = mpsc::channel();
+        let own = format!("{prefix}/{me}/");
+        let subscriber = session
+            .declare_subscriber(format!("{prefix}/*/*"))
+            .callback(move |sample| {
+                if !sample.key_expr().as_str().starts_with(&own) {
+                    let _ = tx.send(sample.payload().to_bytes().into_owned());
+                }
+            })
+            .wait()
+            .map_err(|e| FleetError::Network(format!("zenoh: cannot subscribe to {prefix}/*/*: {e}")))?;
+        Ok(ZenohLink {
+            session,
+            prefix: format!("{prefix}/{me}"),
+            publishers: HashMap::new(),
+            rx,
+            _subscriber: subscriber,
+            undecodable: 0,
+        })
+    }
+
+    fn publisher(&mut self, kind: MessageKind) -> Option<&Publisher<'static>> {
+        let key = kind.key();
+        if !self.publishers.contains_key(key) {
+            let p = self
+                .session
+                .declare_publisher(format!("{}/{key}", self.prefix))
+                .encoding(Encoding::APPLICATION_JSON)
+                .wait()
+                .ok()?;
+            self.publishers.insert(key, p);
+        }
+        self.publishers.get(key)
+    }
+
+    /// Closes the session (pending messages are flushed).
+    pub fn close(self) {
+        let ZenohLink {
+            session,
+            publishers,
+            _subscriber,
+            ..
+        } = self;
+        drop(_subscriber);
+        drop(publishers);
+        let _ = session.close().wait();
+    }
+
+    fn decode(&mut self, bytes: &[u8]) -> Option<Message> {
+        let m = serde_json::from_slice(bytes).ok();
+        if m.is_none() {
+            self.undecodable += 1;
+        }
+        m
+    }
+}
+
+impl Transport for ZenohLink {
+    fn send(&mut self, m: &Message) {
+        let bytes = serde_json::to_vec(m).expect("a message serialises");
+        if let Some(p) = self.publisher(m.kind) {
+            // Best effort: a message lost here is repaired by the next heartbeat.
+            let _ = p.put(bytes).wait();
+        }
+    }
+
+    fn recv(&mut self, deadline: Instant) -> Vec<Message> {
+        let wait = deadline.saturating_duration_since(Instant::now());
+        let mut raw = Vec::new();
+        if let Ok(b) = self.rx.recv_timeout(wait) {
+            raw.push(b);
+            raw.extend(self.rx.try_iter());
+        }
+        raw.iter().filter_map(|b| self.decode(b)).collect()
+    }
+}

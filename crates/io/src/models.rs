@@ -1,0 +1,49 @@
+//! Cost models: the thesis's build-order cost model and the team models of schedules.
+
+use crate::error::{InputError, InputResult};
+use crate::files::read_toml;
+use mason_order::team::{TeamModel, TeamModelPatch};
+use mason_order::CostModel;
+use std::path::Path;
+
+/// Loads a cost model from TOML, or the thesis's defaults when no file is given.
+pub fn load_model(path: Option<&Path>) -> InputResult<CostModel> {
+    let Some(path) = path else {
+        return Ok(CostModel::default());
+    };
+    let model: CostModel = read_toml(path)?;
+    model
+        .validate()
+        .map_err(|e| InputError::bad(format!("{}: {e}", path.display())))?;
+    Ok(model)
+}
+
+/// Loads a team model: `thesis` (the default), `cmcp`, or a TOML file patching one of them.
+pub fn load_team_model(spec: Option<&str>) -> InputResult<TeamModel> {
+    let spec = spec.unwrap_or("thesis");
+    if let Some(m) = TeamModel::builtin(spec) {
+        return Ok(m);
+    }
+    let path = Path::new(spec);
+    if !path.exists() {
+        return Err(InputError::bad(format!(
+            "--model {spec}: expected thesis, cmcp or a TOML file (no such file)"
+        )));
+    }
+    let patch: TeamModelPatch = read_toml(path)?;
+    TeamModel::from_patch(&patch, spec).map_err(|e| InputError::bad(format!("{spec}: {e}")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_team_models_and_a_missing_file() {
+        assert_eq!(load_team_model(None).unwrap().name, "thesis");
+        assert_eq!(load_team_model(Some("cmcp")).unwrap().name, "cmcp");
+        let e = load_team_model(Some("/nonexistent/x.toml")).unwrap_err().to_string();
+        assert!(e.contains("expected thesis, cmcp or a TOML file"), "{e}");
+        assert_eq!(load_model(None).unwrap(), CostModel::default());
+    }
+}

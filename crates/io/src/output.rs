@@ -1,0 +1,168 @@
+//! Output files: checked before any work, written all or none, atomically (a temporary name in
+//! the same folder, then a rename), and never renamed over something that is not a regular
+//! file. A character device (`/dev/null`, `/dev/stdout`) is written in place; a FIFO, socket,
+//! folder or block device is refused.
+
+use crate::error::{InputError, InputResult};
+use std::path::{Path, PathBuf};
+
+/// The folder `path` goes into (`.` for a bare file name).
+fn folder_of(path: &Path) -> &Path {
+    path.parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// What stands at an output path today.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Target {
+    /// Nothing, or a regular file: written atomically.
+    File,
+    /// A character device: written in place.
+    Device,
+}
+
+fn target(path: &Path) -> InputResult<Target> {
+    let shown = path.display();
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Target::File),
+        Err(e) => {
+            return Err(InputError::bad(format!("{shown}: cannot be written ({e})")));
+        }
+    };
+    if meta.is_file() {
+        return Ok(Target::File);
+    }
+    if meta.is_dir() {
+        return Err(InputError::bad(format!("{shown}: is a folder; give a file name")));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() {
+            return Ok(Target::Device);
+        }
+        let kind = if t.is_fifo() {
+            "a FIFO"
+        } else if t.is_socket() {
+            "a socket"
+        } else {
+            "a block device"
+        };
+        Err(InputError::bad(format!(
+            "{shown}: is {kind}, not a regular file; give a file name (it is never replaced)"
+        )))
+    }
+    #[cfg(not(unix))]
+    Err(InputError::bad(format!(
+        "{shown}: not a regular file; give a file name"
+    )))
+}
+
+/// Checks, before any work, that an output can go to `path`: its folder exists (no folder is
+/// created), and `path` is a regular file, nothing yet, or a character device.
+pub fn check_output(path: &Path) -> InputResult<()> {
+    let dir = folder_of(path);
+    if !dir.is_dir() {
+        return Err(InputError::bad(format!(
+            "{}: the folder {} does not exist (create it first)",
+            path.display(),
+            dir.display()
+        )));
+    }
+    target(path).map(|_| ())
+}
+
+/// The temporary name `path` is written under before it is renamed into place.
+fn temporary(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    folder_of(path).join(format!(".{name}.mason-{}.tmp", std::process::id()))
+}
+
+/// Writes all of a command's output files, or none of the regular ones: every path is checked
+/// first, each regular file is written to a temporary name in its own folder, and only when
+/// all are written are they renamed into place (on failure the temporary files are removed).
+/// Character devices are written in place, last.
+pub fn write_files(files: &[(&Path, &[u8])]) -> InputResult<()> {
+    let mut kinds = Vec::with_capacity(files.len());
+    for (path, _) in files {
+        check_output(path)?;
+        kinds.push(target(path)?);
+    }
+    let fail = |path: &Path, e: std::io::Error| InputError::bad(format!("{}: {e}", path.display()));
+    let mut written: Vec<(PathBuf, &Path)> = Vec::new();
+    let clean = |written: &[(PathBuf, &Path)]| {
+        for (t, _) in written {
+            let _ = std::fs::remove_file(t);
+        }
+    };
+    for ((path, contents), kind) in files.iter().zip(&kinds) {
+        if *kind == Target::Device {
+            continue;
+        }
+        let tmp = temporary(path);
+        if let Err(e) = std::fs::write(&tmp, contents) {
+            let _ = std::fs::remove_file(&tmp);
+            clean(&written);
+            return Err(fail(path, e));
+        }
+        written.push((tmp, path));
+    }
+    for (i, (tmp, path)) in written.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            clean(&written[i..]);
+            return Err(fail(path, e));
+        }
+    }
+    for ((path, contents), kind) in files.iter().zip(&kinds) {
+        if *kind == Target::Device {
+            let mut f = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(|e| fail(path, e))?;
+            std::io::Write::write_all(&mut f, contents).map_err(|e| fail(path, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes one output file (see [`write_files`]).
+pub fn write_file(path: &Path, contents: &[u8]) -> InputResult<()> {
+    write_files(&[(path, contents)])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outputs_are_written_all_or_none() {
+        let dir = std::env::temp_dir().join(format!("mason-io-out-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let a = dir.join("a.txt");
+        let missing = dir.join("nope/b.txt");
+        let e = write_files(&[(&a, b"1"), (&missing, b"2")]).unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        assert!(!a.exists());
+        write_files(&[(&a, b"1")]).unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), b"1");
+        let e = write_file(&dir, b"x").unwrap_err();
+        assert!(e.to_string().contains("is a folder"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_is_written_in_place_never_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let null = Path::new("/dev/null");
+        write_file(null, b"hello").unwrap();
+        let t = std::fs::metadata(null).unwrap().file_type();
+        assert!(t.is_char_device());
+    }
+}

@@ -1,0 +1,17 @@
+//! One mission flown and its trace checked by [`crate::check_trace`], the independent oracle.
+
+use crate::{check_trace, make_policy, simulate, Coord, Event, MissionInput, MissionResult, TraceError};
+
+/// Flies `input` once with `coord` (windows slot `slot` s) from `seed`, and checks the trace
+/// (an error is a simulator bug, never a result).
+pub fn fly_checked(
+    input: MissionInput<'_>,
+    coord: Coord,
+    slot: f64,
+    seed: u64,
+) -> Result<(MissionResult, Vec<Event>), TraceError> {
+    let mut trace = Vec::new();
+    let r = simulate(input, make_policy(coord, slot).as_mut(), seed, &mut trace);
+    check_trace(input.wall, input.config.uavs, &trace)?;
+    Ok((r, trace))
+}
