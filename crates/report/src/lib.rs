@@ -4,7 +4,8 @@
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
 //! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
-//! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink.
+//! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink,
+//! with UAV poses logged when [`PoseSampler`] says, for simulated traces and live agents alike.
 //!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
@@ -24,8 +25,8 @@ mod svg;
 mod wall_svg;
 
 pub use self::mcap::{
-    brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError, UavPose,
-    POSE_RATE_HZ,
+    brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError,
+    PoseSampler, UavPose, POSE_RATE_HZ,
 };
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
