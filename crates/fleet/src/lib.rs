@@ -44,7 +44,6 @@ pub mod faults;
 pub mod launch;
 pub mod log;
 pub mod network;
-mod pose_tmp;
 pub mod setting;
 pub mod trace;
 pub mod transport;

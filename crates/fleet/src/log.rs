@@ -70,7 +70,7 @@ type Mcap<'a, W> = mason_report::McapLog<'a, std::io::BufWriter<W>>;
 /// message).
 pub struct McapAgentLog<'a, W: Write + std::io::Seek> {
     log: Option<Mcap<'a, W>>,
-    sampler: crate::pose_tmp::PoseSampler,
+    sampler: mason_report::PoseSampler,
 }
 
 impl<'a, W: Write + std::io::Seek> McapAgentLog<'a, W> {
@@ -80,7 +80,7 @@ impl<'a, W: Write + std::io::Seek> McapAgentLog<'a, W> {
             .map_err(std::io::Error::other)?;
         Ok(McapAgentLog {
             log: Some(log),
-            sampler: crate::pose_tmp::PoseSampler::new(uav as u32),
+            sampler: mason_report::PoseSampler::new(uav as u32),
         })
     }
 

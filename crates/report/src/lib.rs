@@ -6,7 +6,8 @@
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
 //! The JSON of a mission's events and metrics ([`event_json`], [`metrics_json`]) and plain-text
 //! clocks for tables ([`text`]).
-//! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink.
+//! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink,
+//! with UAV poses logged when [`PoseSampler`] says, for simulated traces and live agents alike.
 //!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
@@ -28,8 +29,8 @@ pub mod text;
 mod wall_svg;
 
 pub use self::mcap::{
-    brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError, UavPose,
-    POSE_RATE_HZ,
+    brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError,
+    PoseSampler, UavPose, POSE_RATE_HZ,
 };
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
