@@ -1,5 +1,6 @@
 //! The TOML files: cost model (`--model`), mission (`--mission`, with its `[faults]` table) and
-//! team model (`plan --objective --model`), each parsed and then validated.
+//! team model (`plan --objective --model`), and the agents' network file (`agent --config`),
+//! each parsed and then validated.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -21,5 +22,19 @@ fuzz_target!(|data: &[u8]| {
     }
     if let Ok(patch) = toml::from_str::<mason_order::team::TeamModelPatch>(text) {
         let _ = mason_order::team::TeamModel::from_patch(&patch, "fuzz");
+    }
+    if let Ok(net) = toml::from_str::<mason_fleet::NetworkFile>(text) {
+        for e in &net.listen {
+            let _ = mason_fleet::check_endpoint("--listen", e, true);
+        }
+        for e in &net.connect {
+            let _ = mason_fleet::check_endpoint("--connect", e, false);
+        }
+        if let Some(m) = &net.mission {
+            let _ = mason_fleet::check_chunks("--mission", m, true);
+        }
+        if let Some(p) = &net.prefix {
+            let _ = mason_fleet::check_chunks("--prefix", p, false);
+        }
     }
 });

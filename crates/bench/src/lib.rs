@@ -29,6 +29,6 @@ mod thesis;
 pub use cmcp::{cmcp, data_dir as cmcp_data_dir};
 pub use mapf::mapf;
 pub use missions::{replan, thesis_mission, throughput};
-pub use paper::paper;
-pub use support::{benchmarks_dir, BenchError, BenchResult};
+pub use paper::{paper, PAPER_ROBOTS};
+pub use support::{benchmarks_dir, search_limit, BenchError, BenchResult};
 pub use thesis::{planning, thesis};

@@ -127,7 +127,10 @@ pub fn mapf(
             ));
             continue;
         }
-        progress(&format!("bench mapf: {} {} agents, {}", c.map, c.agents, c.method));
+        progress(&format!(
+            "bench mapf: {} {} agents, {}",
+            c.map, c.agents, c.method
+        ));
         let row = run_case(exe, &map, &scen, &c)?;
         text.push_str(&row);
     }

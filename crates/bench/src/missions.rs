@@ -2,9 +2,9 @@
 //! (simulator throughput).
 
 use crate::support::{fly_many, fly_once, input_error, prepare, solve, BenchResult};
-use mason_report::text::{clock, policy_table, spread_clock, PolicyRow};
 use mason_mission::{summarise, Coord, MissionConfig, MissionInput};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use mason_report::text::{clock, policy_table, spread_clock, PolicyRow};
 use std::time::Instant;
 
 /// The thesis's Table 5.1 mission times (Gazebo, 3 UAVs, the 2×5 wall of its Figure 5.5, with

@@ -8,8 +8,8 @@ use mason_crew::{
 };
 use std::path::PathBuf;
 
-/// The paper's Table 2 robot counts.
-const ROBOTS: [usize; 7] = [3, 5, 10, 15, 25, 30, 50];
+/// The paper's Table 2 robot counts (one row each).
+pub const PAPER_ROBOTS: [usize; 7] = [3, 5, 10, 15, 25, 30, 50];
 
 /// The paper's Table 2: path-planning time (s) on its 450×450 warehouse, Python 3.6 on a
 /// Core i5 at 2.3 GHz, 3-minute bound: (robots, A*, PRM); A* did not finish above 30.
@@ -154,7 +154,7 @@ pub fn paper(runs: usize, progress: &(dyn Fn() + Sync)) -> BenchResult<String> {
         text.push_str(&format!("  {:<27}", m.name));
     }
     text.push_str("  paper: PRM | A*\n");
-    for &n in &ROBOTS {
+    for &n in &PAPER_ROBOTS {
         let mut tallies: Vec<Tally> = all.iter().map(|_| Tally::default()).collect();
         for run in 0..runs {
             let seed = (n * 1000 + run) as u64;

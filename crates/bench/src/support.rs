@@ -42,7 +42,11 @@ pub fn budget(limit: Option<f64>) -> Budget {
 }
 
 /// A planner run and checked by `order::validate_claim`.
-pub fn solve(problem: &BuildProblem<'_>, spec: PlannerSpec, limit: Option<f64>) -> BenchResult<CheckedPlan> {
+pub fn solve(
+    problem: &BuildProblem<'_>,
+    spec: PlannerSpec,
+    limit: Option<f64>,
+) -> BenchResult<CheckedPlan> {
     plan_checked(problem, spec, &budget(limit)).map_err(|e| BenchError::Invalid(e.to_string()))
 }
 
@@ -61,9 +65,8 @@ pub fn fly_once(
     slot: f64,
     seed: u64,
 ) -> BenchResult<(MissionResult, Vec<mason_mission::Event>)> {
-    mason_mission::fly_checked(input, coord, slot, seed).map_err(|e| {
-        BenchError::Invalid(format!("mission trace failed check_trace: {e}"))
-    })
+    mason_mission::fly_checked(input, coord, slot, seed)
+        .map_err(|e| BenchError::Invalid(format!("mission trace failed check_trace: {e}")))
 }
 
 /// A Monte Carlo batch, every trace checked.
@@ -74,9 +77,8 @@ pub fn fly_many(
     seed: u64,
     runs: usize,
 ) -> BenchResult<Vec<MissionResult>> {
-    mason_mission::run_many(input, coord, slot, seed, runs, &|| {}).map_err(|(s, e)| {
-        BenchError::Invalid(format!("mission seed {s} failed check_trace: {e}"))
-    })
+    mason_mission::run_many(input, coord, slot, seed, runs, &|| {})
+        .map_err(|(s, e)| BenchError::Invalid(format!("mission seed {s} failed check_trace: {e}")))
 }
 
 /// Where the shared MAPF benchmarks are, if present: `$MASON_BENCHMARKS/mapf`,
@@ -134,5 +136,9 @@ pub fn flight_plan(
         order.push(pl.brick);
     }
     order.extend(base.iter().copied().filter(|b| !listed[b.index()]));
-    Ok(FlightPlan { team, order, lists: s.by_uav(uavs) })
+    Ok(FlightPlan {
+        team,
+        order,
+        lists: s.by_uav(uavs),
+    })
 }

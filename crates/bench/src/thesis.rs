@@ -2,8 +2,8 @@
 //! `mason bench planning`).
 
 use crate::support::{input_error, search_limit, solve, BenchResult};
-use mason_report::text::format_ms;
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use mason_report::text::format_ms;
 use mason_wall::generate::large_layer_text;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

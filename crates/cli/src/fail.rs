@@ -1,4 +1,6 @@
-//! Exit codes: 0 success, 1 infeasible or nothing found in the budget, 2 bad input or usage.
+//! Exit codes: 0 success, 1 infeasible or nothing found in the budget, 2 bad input or usage,
+//! 3 a launched team's merged trace fails `check_trace`, 130 interrupted. Every library error
+//! becomes one line and its code here.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -23,6 +25,12 @@ impl std::error::Error for Failure {}
 /// Result of a command.
 pub type CliResult<T> = Result<T, Failure>;
 
+/// Exit code when a launched team's merged trace fails `check_trace` (or cannot be read).
+pub const UNSAFE: u8 = 3;
+
+/// Exit code of a command interrupted by a signal (as shells report SIGINT).
+pub const INTERRUPTED: u8 = 130;
+
 /// Bad input or usage (exit 2).
 pub fn input_error(message: impl Into<String>) -> Failure {
     Failure {
@@ -39,85 +47,34 @@ pub fn no_solution(message: impl Into<String>) -> Failure {
     }
 }
 
-/// The folder `path` goes into (`.` for a bare file name).
-fn folder_of(path: &Path) -> &Path {
-    path.parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
+impl From<mason_io::InputError> for Failure {
+    fn from(e: mason_io::InputError) -> Self {
+        input_error(e.to_string())
+    }
 }
 
-/// Checks, before any work, that an output can go to `path`: its folder exists (no folder is
-/// created) and `path` is not itself a folder. Exit 2 otherwise.
+impl From<mason_fleet::FleetError> for Failure {
+    fn from(e: mason_fleet::FleetError) -> Self {
+        let code = match e {
+            mason_fleet::FleetError::Trace { .. } => UNSAFE,
+            _ => 2,
+        };
+        Failure {
+            code,
+            message: e.to_string(),
+        }
+    }
+}
+
+impl From<mason_bench::BenchError> for Failure {
+    fn from(e: mason_bench::BenchError) -> Self {
+        input_error(e.to_string())
+    }
+}
+
+/// Checks, before any work, that an output can go to `path` (exit 2 otherwise).
 pub fn check_output(path: &Path) -> CliResult<()> {
-    let dir = folder_of(path);
-    if !dir.is_dir() {
-        return Err(input_error(format!(
-            "{}: the folder {} does not exist (create it first)",
-            path.display(),
-            dir.display()
-        )));
-    }
-    if path.is_dir() {
-        return Err(input_error(format!(
-            "{}: is a folder; give a file name",
-            path.display()
-        )));
-    }
-    Ok(())
-}
-
-/// The temporary name `path` is written under before it is renamed into place.
-fn temporary(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    folder_of(path).join(format!(".{name}.mason-{}.tmp", std::process::id()))
-}
-
-/// Writes all of a command's output files, or none: every path is checked first, each file is
-/// written to a temporary name in its own folder, and only when all are written are they
-/// renamed into place. On failure the temporary files are removed (exit 2).
-pub fn write_files(files: &[(&Path, &[u8])]) -> CliResult<()> {
-    for (path, _) in files {
-        check_output(path)?;
-    }
-    let mut written: Vec<PathBuf> = Vec::new();
-    let clean = |written: &[PathBuf]| {
-        for t in written {
-            let _ = std::fs::remove_file(t);
-        }
-    };
-    for (path, contents) in files {
-        let tmp = temporary(path);
-        if let Err(e) = std::fs::write(&tmp, contents) {
-            let _ = std::fs::remove_file(&tmp);
-            clean(&written);
-            return Err(input_error(format!("{}: {e}", path.display())));
-        }
-        written.push(tmp);
-    }
-    for (i, (path, _)) in files.iter().enumerate() {
-        if let Err(e) = std::fs::rename(&written[i], path) {
-            clean(&written[i..]);
-            return Err(input_error(format!("{}: {e}", path.display())));
-        }
-    }
-    Ok(())
-}
-
-/// Writes one output file atomically (see [`write_files`]).
-pub fn write_file(path: &Path, contents: &[u8]) -> CliResult<()> {
-    write_files(&[(path, contents)])
-}
-
-/// [`write_files`] for owned paths and contents.
-pub fn write_all(files: &[(PathBuf, Vec<u8>)]) -> CliResult<()> {
-    let borrowed: Vec<(&Path, &[u8])> = files
-        .iter()
-        .map(|(p, c)| (p.as_path(), c.as_slice()))
-        .collect();
-    write_files(&borrowed)
+    Ok(mason_io::check_output(path)?)
 }
 
 /// [`check_output`] for every output path given.
@@ -126,4 +83,18 @@ pub fn check_outputs(paths: &[&Option<PathBuf>]) -> CliResult<()> {
         check_output(p)?;
     }
     Ok(())
+}
+
+/// Writes one output file atomically ([`mason_io::write_files`]).
+pub fn write_file(path: &Path, contents: &[u8]) -> CliResult<()> {
+    Ok(mason_io::write_file(path, contents)?)
+}
+
+/// Writes all of a command's output files, or none ([`mason_io::write_files`]).
+pub fn write_all(files: &[(PathBuf, Vec<u8>)]) -> CliResult<()> {
+    let borrowed: Vec<(&Path, &[u8])> = files
+        .iter()
+        .map(|(p, c)| (p.as_path(), c.as_slice()))
+        .collect();
+    Ok(mason_io::write_files(&borrowed)?)
 }

@@ -1,6 +1,8 @@
 //! A crew plan solved and checked by [`crate::validate()`], the independent oracle.
 
-use crate::{solve, validate, Budget, CrewConfig, CrewOutcome, Instance, PlanError, PlanMetrics, SetupError};
+use crate::{
+    solve, validate, Budget, CrewConfig, CrewOutcome, Instance, PlanError, PlanMetrics, SetupError,
+};
 
 /// A solve with its validation.
 #[derive(Clone, Debug)]

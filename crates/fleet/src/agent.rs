@@ -54,7 +54,9 @@ impl AgentOptions {
         }
         if let Some(s) = self.start_at {
             if !(s.is_finite() && s >= 0.0) {
-                return Err(FleetError::bad(format!("--start-at {s}: expected Unix seconds")));
+                return Err(FleetError::bad(format!(
+                    "--start-at {s}: expected Unix seconds"
+                )));
             }
             if s > unix_now() + MAX_START_AHEAD_S {
                 return Err(FleetError::bad(format!(
@@ -66,7 +68,10 @@ impl AgentOptions {
             mason_io::check_output(p)?;
         }
         if let Some(d) = self.world.as_ref().filter(|d| !d.is_dir()) {
-            return Err(FleetError::bad(format!("--world {}: not a folder", d.display())));
+            return Err(FleetError::bad(format!(
+                "--world {}: not a folder",
+                d.display()
+            )));
         }
         Ok(())
     }
@@ -217,9 +222,25 @@ mod tests {
             ..AgentOptions::default()
         };
         assert!(good.check(&s).is_ok());
-        assert!(bad(AgentOptions { uav: 3, ..good.clone() }).starts_with("--uav 3"));
-        assert!(bad(AgentOptions { incarnation: 0, ..good.clone() }).starts_with("--incarnation"));
-        assert!(bad(AgentOptions { start_at: Some(1e18), ..good.clone() }).contains("a day"));
-        assert!(bad(AgentOptions { world: Some("/nonexistent".into()), ..good }).contains("--world"));
+        assert!(bad(AgentOptions {
+            uav: 3,
+            ..good.clone()
+        })
+        .starts_with("--uav 3"));
+        assert!(bad(AgentOptions {
+            incarnation: 0,
+            ..good.clone()
+        })
+        .starts_with("--incarnation"));
+        assert!(bad(AgentOptions {
+            start_at: Some(1e18),
+            ..good.clone()
+        })
+        .contains("a day"));
+        assert!(bad(AgentOptions {
+            world: Some("/nonexistent".into()),
+            ..good
+        })
+        .contains("--world"));
     }
 }

@@ -183,8 +183,8 @@ pub fn schedule(
             }
             Action::Restart if !*d => {
                 return Err(FleetError::bad(format!(
-                    "--restart {u}@{t}: UAV {u} is not killed before (add a --kill {u}@T with T < {t})"
-                )))
+                "--restart {u}@{t}: UAV {u} is not killed before (add a --kill {u}@T with T < {t})"
+            )))
             }
             Action::Kill => *d = true,
             Action::Restart => *d = false,
@@ -373,7 +373,11 @@ pub fn launch(
     // An agent that refused its input (which the launch checked already) is a bad launch.
     if let Some(r) = runs.iter().find(|r| r.exit.as_deref() == Some("2")) {
         let text = std::fs::read_to_string(&r.log).unwrap_or_default();
-        let why = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+        let why = text
+            .lines()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .unwrap_or("");
         return Err(FleetError::bad(format!(
             "agent of UAV {} refused its input ({}): {why}",
             r.uav,
@@ -443,8 +447,13 @@ mod tests {
     #[test]
     fn kills_and_restarts_must_alternate() {
         let plan = schedule(&[(1, 10.0)], &[(1, 20.0)], 3).unwrap();
-        assert_eq!(plan, vec![(10.0, 1, Action::Kill), (20.0, 1, Action::Restart)]);
-        let e = schedule(&[(1, 10.0), (1, 12.0)], &[], 3).unwrap_err().to_string();
+        assert_eq!(
+            plan,
+            vec![(10.0, 1, Action::Kill), (20.0, 1, Action::Restart)]
+        );
+        let e = schedule(&[(1, 10.0), (1, 12.0)], &[], 3)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("already killed"), "{e}");
         let e = schedule(&[], &[(0, 5.0)], 3).unwrap_err().to_string();
         assert!(e.contains("not killed before"), "{e}");

@@ -110,7 +110,9 @@ impl<W: Write + std::io::Seek> AgentLog for McapAgentLog<'_, W> {
             return Ok(());
         };
         let uav = self.sampler.uav();
-        self.log()?.pose(t, uav, pose).map_err(std::io::Error::other)
+        self.log()?
+            .pose(t, uav, pose)
+            .map_err(std::io::Error::other)
     }
 
     fn finish(&mut self) -> std::io::Result<()> {
@@ -150,7 +152,8 @@ mod tests {
             log.event(e).unwrap();
         }
         let text = String::from_utf8(log.0).unwrap();
-        let back = crate::trace::parse_trace(&text, std::path::Path::new("t.jsonl"), false).unwrap();
+        let back =
+            crate::trace::parse_trace(&text, std::path::Path::new("t.jsonl"), false).unwrap();
         assert_eq!(back, events);
     }
 }

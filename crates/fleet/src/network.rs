@@ -57,7 +57,9 @@ impl Network {
             None => flag.to_string(),
         };
         let mission = mission.or(from_file.mission).ok_or_else(|| {
-            FleetError::bad("--mission: every agent needs the mission id (or `mission` in --config)")
+            FleetError::bad(
+                "--mission: every agent needs the mission id (or `mission` in --config)",
+            )
         })?;
         check_chunks(&shown("--mission"), &mission, true)?;
         let prefix = prefix
@@ -146,7 +148,9 @@ mod tests {
             "tcp/h:99999",
             "tcp/h:0",
         ] {
-            let e = check_endpoint("--connect", bad, false).unwrap_err().to_string();
+            let e = check_endpoint("--connect", bad, false)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains(bad), "{e}");
         }
     }
@@ -161,7 +165,9 @@ mod tests {
         assert!(check_chunks("--prefix", "a//b", false).is_err());
         let n = Network::resolve(None, Some("m".into()), None, &[], &["tcp/h:1".into()]).unwrap();
         assert_eq!(n.prefix, DEFAULT_PREFIX);
-        let e = Network::resolve(None, None, None, &[], &[]).unwrap_err().to_string();
+        let e = Network::resolve(None, None, None, &[], &[])
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("--mission"), "{e}");
     }
 }

@@ -127,6 +127,10 @@ pub(crate) mod tests {
         assert!(s.check().unwrap_err().to_string().starts_with("--drop"));
         let mut s = good;
         s.link.jitter = f64::NAN;
-        assert!(s.check().unwrap_err().to_string().starts_with("--delay-jitter"));
+        assert!(s
+            .check()
+            .unwrap_err()
+            .to_string()
+            .starts_with("--delay-jitter"));
     }
 }

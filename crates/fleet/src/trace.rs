@@ -55,7 +55,10 @@ pub fn read_trace(path: &Path, killed: bool) -> FleetResult<Vec<Event>> {
             return Err(FleetError::Trace {
                 path: path.to_path_buf(),
                 line: None,
-                reason: e.to_string().trim_start_matches(&format!("{}: ", path.display())).to_string(),
+                reason: e
+                    .to_string()
+                    .trim_start_matches(&format!("{}: ", path.display()))
+                    .to_string(),
             })
         }
     };
@@ -133,7 +136,9 @@ mod tests {
     #[test]
     fn a_bad_line_in_the_middle_is_an_error_even_for_a_killed_agent() {
         let text = format!("{GOOD}\nnot json\n{GOOD}\n");
-        let e = parse_trace(&text, Path::new("t.jsonl"), true).unwrap_err().to_string();
+        let e = parse_trace(&text, Path::new("t.jsonl"), true)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("line 2"), "{e}");
         let text = format!("{GOOD}\n{{\"t\":1.0,\"uav\":0,\"kind\":\"place\",\"brick\":-3}}\n");
         assert!(parse_trace(&text, Path::new("t.jsonl"), false).is_err());
@@ -148,9 +153,15 @@ mod tests {
         let t = append_death(&p, 1, 5.0).unwrap();
         assert_eq!(t, 5.0);
         let events = read_trace(&p, false).unwrap();
-        assert!(events.iter().any(|e| e.kind == EventKind::Fail && e.t == 5.0));
-        assert!(read_trace(&dir.join("missing.jsonl"), true).unwrap().is_empty());
-        let e = read_trace(&dir.join("missing.jsonl"), false).unwrap_err().to_string();
+        assert!(events
+            .iter()
+            .any(|e| e.kind == EventKind::Fail && e.t == 5.0));
+        assert!(read_trace(&dir.join("missing.jsonl"), true)
+            .unwrap()
+            .is_empty());
+        let e = read_trace(&dir.join("missing.jsonl"), false)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("missing.jsonl"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -74,7 +74,9 @@ impl ZenohLink {
                 }
             })
             .wait()
-            .map_err(|e| FleetError::Network(format!("zenoh: cannot subscribe to {prefix}/*/*: {e}")))?;
+            .map_err(|e| {
+                FleetError::Network(format!("zenoh: cannot subscribe to {prefix}/*/*: {e}"))
+            })?;
         Ok(ZenohLink {
             session,
             prefix: format!("{prefix}/{me}"),

@@ -47,7 +47,12 @@ pub struct LoadedWall {
 
 /// Loads `design`: a path, or `builtin:NAME`. A CMCP wall's warnings (floating bricks,
 /// overlapping same-level bricks) come back with it, or are errors when `strict`.
-pub fn load_wall(design: &str, format: Format, sizes: Sizes, strict: bool) -> InputResult<LoadedWall> {
+pub fn load_wall(
+    design: &str,
+    format: Format,
+    sizes: Sizes,
+    strict: bool,
+) -> InputResult<LoadedWall> {
     if let Some(name) = design.strip_prefix("builtin:") {
         return builtin(name)
             .map(|b| LoadedWall {
@@ -124,7 +129,10 @@ mod tests {
         let e = load_wall("builtin:nope", Format::Auto, Sizes::Yaml, false)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("builtin:nope") && e.contains("thesis-2x5"), "{e}");
+        assert!(
+            e.contains("builtin:nope") && e.contains("thesis-2x5"),
+            "{e}"
+        );
     }
 
     #[test]

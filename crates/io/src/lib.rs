@@ -5,6 +5,7 @@
 //!   text with a dropped byte-order mark ([`read_input_text`]), or TOML whose errors name the
 //!   file and the line ([`read_toml`]).
 //! - [`design`]: a wall design from a path or `builtin:NAME`, by format ([`load_wall`]).
+//! - [`crew`]: a crew instance from a map and a scenario, or a bird's-eye image ([`load_crew`]).
 //! - [`models`]: the thesis cost model ([`load_model`]) and team models ([`load_team_model`]).
 //! - [`faults`]: the one parser of `U@T` ([`parse_at`]) and of `A-B` ([`parse_window`]), fault
 //!   settings as flags or a TOML file ([`FaultSpec`]), and mission files ([`read_mission`]).
@@ -26,6 +27,7 @@
 
 #![deny(missing_docs)]
 
+pub mod crew;
 pub mod design;
 pub mod error;
 pub mod faults;
@@ -33,10 +35,11 @@ pub mod files;
 pub mod models;
 pub mod output;
 
+pub use crew::{load_crew, CrewInput};
 pub use design::{load_wall, Format, LoadedWall, Sizes};
 pub use error::InputError;
+pub use faults::check_uav;
 pub use faults::{parse_at, parse_window, read_mission, FaultSpec};
 pub use files::{read_input, read_input_text, read_toml, MAX_INPUT_BYTES, MAX_TOML_BYTES};
 pub use models::{load_model, load_team_model};
 pub use output::{check_output, write_file, write_files};
-pub use faults::check_uav;

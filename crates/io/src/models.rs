@@ -42,7 +42,9 @@ mod tests {
     fn builtin_team_models_and_a_missing_file() {
         assert_eq!(load_team_model(None).unwrap().name, "thesis");
         assert_eq!(load_team_model(Some("cmcp")).unwrap().name, "cmcp");
-        let e = load_team_model(Some("/nonexistent/x.toml")).unwrap_err().to_string();
+        let e = load_team_model(Some("/nonexistent/x.toml"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("expected thesis, cmcp or a TOML file"), "{e}");
         assert_eq!(load_model(None).unwrap(), CostModel::default());
     }

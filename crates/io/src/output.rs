@@ -35,7 +35,9 @@ fn target(path: &Path) -> InputResult<Target> {
         return Ok(Target::File);
     }
     if meta.is_dir() {
-        return Err(InputError::bad(format!("{shown}: is a folder; give a file name")));
+        return Err(InputError::bad(format!(
+            "{shown}: is a folder; give a file name"
+        )));
     }
     #[cfg(unix)]
     {

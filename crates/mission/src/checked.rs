@@ -1,6 +1,8 @@
 //! One mission flown and its trace checked by [`crate::check_trace`], the independent oracle.
 
-use crate::{check_trace, make_policy, simulate, Coord, Event, MissionInput, MissionResult, TraceError};
+use crate::{
+    check_trace, make_policy, simulate, Coord, Event, MissionInput, MissionResult, TraceError,
+};
 
 /// Flies `input` once with `coord` (windows slot `slot` s) from `seed`, and checks the trace
 /// (an error is a simulator bug, never a result).

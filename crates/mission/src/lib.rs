@@ -34,8 +34,8 @@ mod checked;
 pub mod comm;
 pub mod config;
 pub mod coord;
-pub mod link;
 pub mod core;
+pub mod link;
 pub mod metrics;
 pub mod montecarlo;
 pub mod policy;
@@ -46,15 +46,14 @@ pub mod team;
 pub mod windows;
 
 pub use arena::{Arena, Point};
-pub use checked::fly_checked;
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
+pub use checked::fly_checked;
 pub use config::{
     ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,
     MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
 pub use link::{Fate, LinkFaults};
-pub use team::killed_events;
 pub use metrics::Metrics;
 pub use montecarlo::{
     for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,
@@ -63,3 +62,4 @@ pub use policy::{Coordination, EntryQuery};
 pub use replan::{Replan, Replanner, ScheduleReplanner};
 pub use sim::{simulate, MissionInput, MissionResult, MissionStatus};
 pub use state::{CommMode, Event, EventKind, Observer, UavState};
+pub use team::killed_events;

@@ -47,7 +47,7 @@ impl LinkFaults {
             return Fate::Lost;
         }
         let twice = self.duplicate > 0.0 && rng.gen::<f64>() < self.duplicate;
-        let mut delay = |rng: &mut R| {
+        let delay = |rng: &mut R| {
             self.latency
                 + if self.jitter > 0.0 {
                     self.jitter * rng.gen::<f64>()

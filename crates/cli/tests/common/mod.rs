@@ -77,3 +77,16 @@ pub fn assert_input_error(o: &Output, needles: &[&str]) {
         assert!(err.contains(n), "`{n}` missing in: {err}");
     }
 }
+
+/// A usage error from the argument parser: exit 2, its first line names what is wrong, and no
+/// panic (clap adds a usage line and a hint below it).
+pub fn assert_usage_error(o: &Output, needles: &[&str]) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let first = err.lines().next().unwrap_or_default();
+    assert!(first.starts_with("error: "), "{err}");
+    for n in needles {
+        assert!(first.contains(n), "`{n}` missing in: {first}");
+    }
+}

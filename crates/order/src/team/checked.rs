@@ -1,6 +1,9 @@
 //! A schedule planned and checked by [`validate_schedule_claim`], the independent oracle.
 
-use super::{plan_schedule, validate_schedule_claim, ScheduleError, ScheduleEvaluation, TeamOutcome, TeamProblem};
+use super::{
+    plan_schedule, validate_schedule_claim, ScheduleError, ScheduleEvaluation, TeamOutcome,
+    TeamProblem,
+};
 use crate::Budget;
 
 /// A planned, validated schedule.

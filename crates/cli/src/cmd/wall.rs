@@ -1,6 +1,43 @@
-//! `mason wall show`.
+//! `mason wall show`: parse, validate and describe a wall design.
 
+use crate::fail::{write_file, CliResult};
+use crate::input::DesignArgs;
 use mason_wall::Wall;
+use std::path::PathBuf;
+
+/// `mason wall` subcommands.
+#[derive(clap::Subcommand)]
+pub enum WallCommand {
+    /// Parse, validate and describe a wall design
+    Show {
+        #[command(flatten)]
+        design: DesignArgs,
+        /// Draw the wall as SVG
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// Print JSON instead of a table
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// `mason wall …`.
+pub fn run(command: WallCommand) -> CliResult<()> {
+    let WallCommand::Show { design, svg, json } = command;
+    let wall = design.load()?;
+    if let Some(path) = svg {
+        write_file(&path, mason_report::wall_svg(&wall, None).as_bytes())?;
+    }
+    if json {
+        println!(
+            "{}",
+            crate::cmd::plan::pretty(&crate::cmd::plan::wall_json(&wall))
+        );
+    } else {
+        print!("{}", wall_table(&wall));
+    }
+    Ok(())
+}
 
 /// A table of bricks with ids, levels, supports and neighbours.
 pub fn wall_table(wall: &Wall) -> String {

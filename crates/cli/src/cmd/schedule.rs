@@ -1,32 +1,73 @@
 //! `mason plan --objective …`: team schedules — solve, validate, print a table or JSON.
 
-use crate::fail::{input_error, CliResult};
-use crate::input::read_toml;
+use crate::cmd::plan::{pretty, report_overrun, time_limit, PlanArgs};
+use crate::fail::{input_error, write_all, CliResult};
 use mason_order::team::{
-    plan_schedule, validate_schedule_claim, Objective, ScheduleEvaluation, TeamModel,
-    TeamModelPatch, TeamOutcome, TeamProblem,
+    schedule_checked, CheckedSchedule, Objective, TeamModel, TeamOutcome, TeamProblem,
 };
 use mason_order::Budget;
 use mason_order::CostModel;
 use mason_wall::{BrickId, Wall};
 use serde_json::{json, Value};
-use std::path::Path;
+use std::path::PathBuf;
 use std::time::Duration;
 
-/// Reads `--model` for schedules: `thesis`, `cmcp`, or a TOML file (see README).
-pub fn load_team_model(spec: Option<&str>) -> CliResult<TeamModel> {
-    let spec = spec.unwrap_or("thesis");
-    if let Some(m) = TeamModel::builtin(spec) {
-        return Ok(m);
+/// `mason plan --objective`.
+pub fn run(a: PlanArgs, started: std::time::Instant) -> CliResult<()> {
+    let req = ScheduleRequest::resolve(
+        a.objective.as_deref().unwrap_or_default(),
+        a.uavs,
+        a.budget,
+        a.uav_hazard,
+        a.seed,
+        a.time_limit,
+    )?;
+    let team = mason_io::load_team_model(a.model.as_deref())?;
+    let wall = a.design.load()?;
+    let problem = problem(&wall, team, &req)?;
+    let checked = solve(&problem, &req)?;
+    let schedule = checked.outcome.schedule.clone().unwrap_or_default();
+    let title = format!(
+        "{} — {} schedule, {} UAVs, model {}",
+        wall.name(),
+        problem.objective(),
+        problem.uavs(),
+        problem.model().name
+    );
+    let figure = mason_report::schedule_svg(&title, &problem, &schedule);
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    if let Some(path) = a.svg {
+        files.push((path, figure.clone().into_bytes()));
     }
-    let path = Path::new(spec);
-    if !path.exists() {
-        return Err(input_error(format!(
-            "--model {spec}: expected thesis, cmcp or a TOML file (no such file)"
-        )));
+    if let Some(path) = a.html {
+        let page = mason_report::report_page(
+            &title,
+            &summary_line(&problem, &checked.outcome),
+            &[
+                mason_report::Section {
+                    heading: "Schedule".into(),
+                    html: figure,
+                },
+                mason_report::Section {
+                    heading: "Placements".into(),
+                    html: mason_report::pre(&schedule_table(&problem, &checked)),
+                },
+            ],
+        );
+        files.push((path, page.into_bytes()));
     }
-    let patch: TeamModelPatch = read_toml(path)?;
-    TeamModel::from_patch(&patch, spec).map_err(|e| input_error(format!("{spec}: {e}")))
+    write_all(&files)?;
+    if a.json {
+        println!("{}", pretty(&schedule_json(&problem, &checked, req.seed)));
+    } else {
+        print!("{}", schedule_table(&problem, &checked));
+    }
+    report_overrun(
+        req.time_limit,
+        started,
+        checked.outcome.stats.elapsed.as_secs_f64(),
+    );
+    Ok(())
 }
 
 /// What `mason plan --objective` was asked.
@@ -44,6 +85,38 @@ pub struct ScheduleRequest {
 }
 
 impl ScheduleRequest {
+    /// The request of the raw flags (`--objective`, `--uavs`, `--budget`, `--uav-hazard`,
+    /// `--seed`, `--time-limit`), checked.
+    pub fn resolve(
+        objective: &str,
+        uavs: usize,
+        budget_s: Option<f64>,
+        uav_hazard: Option<f64>,
+        seed: u64,
+        limit: Option<f64>,
+    ) -> CliResult<Self> {
+        let mut objective: Objective = objective
+            .parse()
+            .map_err(|e| input_error(format!("--objective: {e}")))?;
+        match (&mut objective, uav_hazard) {
+            (Objective::Expected { hazard_per_hour }, Some(h)) => *hazard_per_hour = h,
+            (Objective::Expected { .. }, None) => {
+                return Err(input_error(
+                    "--objective expected needs --uav-hazard λ (failures per hour)",
+                ))
+            }
+            (_, Some(_)) => return Err(input_error("--uav-hazard is for --objective expected")),
+            _ => {}
+        }
+        Ok(ScheduleRequest {
+            objective,
+            uavs,
+            budget_s,
+            time_limit: time_limit(limit)?,
+            seed,
+        })
+    }
+
     /// Seed 0 and the deterministic default search (no deadline).
     pub fn new(objective: Objective, uavs: usize, budget_s: Option<f64>) -> Self {
         ScheduleRequest {
@@ -54,14 +127,6 @@ impl ScheduleRequest {
             seed: 0,
         }
     }
-}
-
-/// A planned, validated schedule.
-pub struct CheckedSchedule {
-    /// The planner's outcome.
-    pub outcome: TeamOutcome,
-    /// The validator's recomputation.
-    pub evaluation: ScheduleEvaluation,
 }
 
 /// Poses the problem (bad parameters: exit 2).
@@ -83,25 +148,10 @@ pub fn solve(p: &TeamProblem<'_>, req: &ScheduleRequest) -> CliResult<CheckedSch
         },
         None => Budget::unlimited(),
     };
-    let outcome = plan_schedule(p, &budget, req.seed);
-    let schedule = outcome.schedule.clone().unwrap_or_default();
-    let evaluation = validate_schedule_claim(
-        p.wall(),
-        p.model(),
-        p.uavs(),
-        p.budget_s(),
-        &schedule,
-        outcome.reward,
-        outcome.makespan_s,
-    )
-    .map_err(|e| {
+    schedule_checked(p, &budget, req.seed).map_err(|e| {
         input_error(format!(
             "internal error: the planner produced an invalid schedule: {e}"
         ))
-    })?;
-    Ok(CheckedSchedule {
-        outcome,
-        evaluation,
     })
 }
 
@@ -155,7 +205,7 @@ pub fn schedule_json(p: &TeamProblem<'_>, c: &CheckedSchedule, seed: u64) -> Val
             "improvements": o.stats.improvements,
         },
         "team_model": p.model(),
-        "wall": crate::plan::wall_json(wall),
+        "wall": crate::cmd::plan::wall_json(wall),
     })
 }
 

@@ -1,28 +1,153 @@
 //! `mason crew`: read a map and a scenario (or a bird's-eye image), solve, validate, print.
 
-use crate::fail::{input_error, no_solution, CliResult};
-use mason_crew::distance::{step_distances, UNREACHABLE};
-use mason_crew::image::{read_birdseye, read_occupancy};
-use mason_crew::movingai::{parse_map, parse_scen};
+use crate::cmd::plan::{pretty, report_overrun, time_limit};
+use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
 use mason_crew::{
-    solve, validate, AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid,
-    Instance, PathMethod, PlanMetrics, PrmConfig, RefineConfig, Resolution, Status,
+    AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid, Instance, PathMethod,
+    PlanMetrics, PrmConfig, RefineConfig, Resolution, Status,
 };
-use rayon::prelude::*;
 use serde_json::{json, Value};
-use std::path::Path;
+use std::path::PathBuf;
 use std::time::Duration;
 
-/// Where the robots and goals come from.
-pub struct CrewInput<'a> {
-    /// A `.map` file or an occupancy PNG.
-    pub map: Option<&'a str>,
-    /// A MovingAI scenario.
-    pub scen: Option<&'a Path>,
-    /// Take the first N agents of the scenario.
+/// `mason crew`'s options.
+#[derive(clap::Args)]
+pub struct CrewArgs {
+    /// MovingAI .map file or occupancy PNG (dark pixels are obstacles); omit with --image
+    pub map: Option<String>,
+    /// MovingAI .scen file with the robots' starts and goals
+    #[arg(long)]
+    pub scen: Option<PathBuf>,
+    /// Take the first N agents of the scenario (default: all)
+    #[arg(long, allow_negative_numbers = true)]
     pub agents: Option<usize>,
-    /// A bird's-eye PNG with robots and goals.
-    pub image: Option<&'a Path>,
+    /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
+    #[arg(long)]
+    pub image: Option<PathBuf>,
+    /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
+    /// path (Hungarian on path lengths) or joint (interchangeable robots: TSWAP solves the
+    /// assignment and the paths together; default with --image)
+    #[arg(long)]
+    pub assign: Option<String>,
+    /// Single-robot paths: astar or prm
+    #[arg(long, default_value = "astar")]
+    pub paths: String,
+    /// Collision resolution: paper (priority waits), st (prioritized space-time A*; default)
+    /// or lacam (complete LaCAM, then refinement until --time-limit); not with --assign joint
+    #[arg(long)]
+    pub resolve: Option<String>,
+    /// 4 or 8 (diagonals only past two free sides)
+    #[arg(long, default_value = "8")]
+    pub connectivity: String,
+    /// Seed of the roadmap sampler and of lacam (same seed, same plan, unless --time-limit
+    /// stops the refinement)
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
+    pub seed: u64,
+    /// lacam: refinement rounds at most (0: the first plan as it is; default: until
+    /// --time-limit, or 1000 rounds in a row without improvement)
+    #[arg(long)]
+    pub refine_rounds: Option<u64>,
+    /// lacam: refinement neighbourhoods planned side by side in one batch, on all cores
+    /// (default 4; 1: one at a time, better on one core). The plan depends on it and on the
+    /// seed, not on the cores
+    #[arg(long)]
+    pub refine_batch: Option<usize>,
+    /// PRM samples
+    #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
+    pub samples: usize,
+    /// PRM neighbours per node
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
+    pub neighbours: usize,
+    /// Time budget in seconds (lacam: 60 when not given; it refines until then)
+    #[arg(long, allow_negative_numbers = true)]
+    pub time_limit: Option<f64>,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+    /// Draw the map, starts, goals and paths as SVG
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// Write the self-contained HTML replay of the plan
+    #[arg(long)]
+    pub html: Option<PathBuf>,
+}
+
+/// `mason crew`.
+pub fn run(a: CrewArgs) -> CliResult<()> {
+    let started = std::time::Instant::now();
+    check_outputs(&[&a.svg, &a.html])?;
+    let limit = time_limit(a.time_limit)?;
+    let prm = mason_crew::PrmConfig {
+        samples: a.samples,
+        neighbours: a.neighbours,
+        seed: a.seed,
+    };
+    let choices = choices(
+        RawChoices {
+            assign: a.assign.as_deref(),
+            paths: &a.paths,
+            resolve: a.resolve.as_deref(),
+            connectivity: &a.connectivity,
+            seed: a.seed,
+            refine_rounds: a.refine_rounds,
+            refine_batch: a.refine_batch,
+        },
+        prm,
+        a.scen.is_some(),
+    )?;
+    // lacam is anytime and, on a hard instance, its search could grow until memory runs out:
+    // without a limit it gets a default one.
+    let limit = match (limit, choices.config.resolve, choices.config.assign) {
+        (None, mason_crew::Resolution::Lacam, a) if a != mason_crew::AssignMethod::Joint => {
+            Some(LACAM_DEFAULT_LIMIT_S)
+        }
+        (l, _, _) => l,
+    };
+    let input = mason_io::CrewInput {
+        map: a.map.as_deref(),
+        scen: a.scen.as_deref(),
+        agents: a.agents,
+        image: a.image.as_deref(),
+    };
+    let (inst, source) = mason_io::load_crew(&input, choices.connectivity)?;
+    check_size(&inst, &source)?;
+    let result = run_solve(&inst, &choices.config, limit)?;
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    if let Some(path) = &a.svg {
+        let title = format!(
+            "{source} — {} robots, {} ({})",
+            inst.robot_count(),
+            result.outcome.status,
+            method_label(&choices.config)
+        );
+        let paths = result.outcome.paths.clone().unwrap_or_default();
+        let svg = mason_report::crew_svg(
+            &title,
+            &inst.grid,
+            &inst.robots,
+            &result.outcome.goals,
+            &paths,
+        );
+        files.push((path.clone(), svg.into_bytes()));
+    }
+    if let (Some(path), Some(paths)) = (&a.html, &result.outcome.paths) {
+        let title = format!(
+            "{source} — {} robots ({})",
+            inst.robot_count(),
+            method_label(&choices.config)
+        );
+        let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
+        files.push((path.clone(), page.into_bytes()));
+    }
+    write_all(&files)?;
+    if a.json {
+        let v = crew_json(&inst, &source, &choices.config, a.seed, &result);
+        println!("{}", pretty(&v));
+    } else {
+        print!("{}", crew_table(&inst, &source, &choices.config, &result));
+    }
+    report_overrun(limit, started, result.outcome.stats.elapsed.as_secs_f64());
+    exit_for(&result)
 }
 
 /// The parsed solver choices.
@@ -162,78 +287,6 @@ pub fn check_size(inst: &Instance, source: &str) -> CliResult<()> {
     Ok(())
 }
 
-fn read(path: &Path) -> CliResult<Vec<u8>> {
-    crate::input::read_input(path, crate::input::MAX_INPUT_BYTES)
-}
-
-fn read_text(path: &Path) -> CliResult<String> {
-    String::from_utf8(read(path)?)
-        .map_err(|_| input_error(format!("{}: not UTF-8 text", path.display())))
-}
-
-/// Reads the grid, robots and goals.
-pub fn load_instance(input: &CrewInput<'_>, conn: Connectivity) -> CliResult<(Instance, String)> {
-    let bad = |e: mason_crew::CrewError| input_error(e.to_string());
-    match (input.map, input.scen, input.image) {
-        (None, None, Some(image)) => {
-            let name = image.display().to_string();
-            let seen = read_birdseye(&read(image)?, &name).map_err(bad)?;
-            if input.agents.is_some() {
-                return Err(input_error("--agents applies to --scen, not to --image"));
-            }
-            let inst = Instance::new(seen.grid, conn, seen.robots, seen.goals, None, &name)
-                .map_err(bad)?;
-            Ok((inst, name))
-        }
-        (Some(map), Some(scen), None) => {
-            let grid = load_grid(map)?;
-            let scen_name = scen.display().to_string();
-            if input.agents == Some(0) {
-                return Err(input_error("--agents must be at least 1"));
-            }
-            let agents = parse_scen(
-                &read_text(scen)?,
-                &scen_name,
-                &grid,
-                input.agents.unwrap_or(usize::MAX),
-            )
-            .map_err(bad)?;
-            let robots = agents.iter().map(|a| a.start).collect();
-            let goals = agents.iter().map(|a| a.goal).collect();
-            let pairing = Some((0..agents.len()).collect());
-            let inst =
-                Instance::new(grid, conn, robots, goals, pairing, &scen_name).map_err(bad)?;
-            Ok((inst, map.to_string()))
-        }
-        (Some(_), None, None) => Err(input_error(
-            "a map needs a scenario: give --scen F [--agents N], or use --image PNG alone",
-        )),
-        (_, _, Some(_)) => Err(input_error(
-            "--image brings its own robots and goals; give it without a map or --scen",
-        )),
-        (None, _, None) => Err(input_error("give a MAP with --scen F, or --image PNG")),
-    }
-}
-
-fn load_grid(map: &str) -> CliResult<Grid> {
-    let path = Path::new(map);
-    let bytes = read(path)?;
-    let is_png = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if is_png {
-        read_occupancy(&bytes, map).map_err(|e| input_error(e.to_string()))
-    } else {
-        let text = String::from_utf8(bytes).map_err(|_| {
-            input_error(format!(
-                "{map}: not UTF-8 text (a PNG map must end in .png)"
-            ))
-        })?;
-        parse_map(&text, map).map_err(|e| input_error(e.to_string()))
-    }
-}
-
 /// A solve with its validation.
 pub struct CrewResult {
     /// The solver's outcome.
@@ -269,40 +322,20 @@ pub fn run_solve(
         Some(s) => Budget::time(Duration::from_secs_f64(s)),
         None => Budget::unlimited(),
     };
-    let outcome = solve(inst, config, &budget).map_err(|e| input_error(e.to_string()))?;
-    let metrics = match &outcome.paths {
-        Some(paths) => Some(
-            validate(
-                &inst.grid,
-                inst.connectivity,
-                &inst.robots,
-                &outcome.goals,
-                paths,
-            )
-            .map_err(|e| {
-                input_error(format!(
-                    "internal error: the crew plan failed validation: {e}"
-                ))
-            })?,
-        ),
-        None => None,
-    };
+    let checked = mason_crew::solve_checked(inst, config, &budget).map_err(|e| match e {
+        mason_crew::CheckedSolveError::Setup(e) => input_error(e.to_string()),
+        e => input_error(format!("internal error: {e}")),
+    })?;
+    let outcome = checked.outcome;
     // Per robot only where the table shows it, or when the solver did not sum it already.
     let shortest = if inst.robot_count() <= TABLE_ROWS || outcome.stats.lower_bound.is_none() {
-        inst.robots
-            .par_iter()
-            .zip(&outcome.goals)
-            .map(|(&s, &g)| {
-                let d = step_distances(&inst.grid, inst.connectivity, s)[g.0 as usize];
-                (d != UNREACHABLE).then_some(u64::from(d))
-            })
-            .collect()
+        mason_crew::shortest_steps(inst, &outcome.goals)
     } else {
         Vec::new()
     };
     Ok(CrewResult {
         outcome,
-        metrics,
+        metrics: checked.metrics,
         shortest,
     })
 }

@@ -1,18 +1,21 @@
 //! `mason demo`: every built-in wall with every planner, a comparison table, and figures.
 
-use crate::crew_cmd::run_solve;
+use crate::cmd::crew::run_solve;
+use crate::cmd::mission::prepare;
+use crate::cmd::plan::{plan_json, solve, time_limit, Checked};
+use crate::cmd::simulate::{fly_many, fly_once};
 use crate::fail::{write_file, CliResult};
-use crate::plan::{plan_json, solve, Checked};
-use crate::sim_cmd::{clock, fly_many, fly_once, prepare, spread_clock};
+use mason_bench::search_limit;
 use mason_crew::generate::{random_tasks, warehouse};
 use mason_crew::{
     AssignMethod, Connectivity, CrewConfig, Instance, PathMethod, PrmConfig, Resolution,
 };
 use mason_mission::{summarise, Coord, MissionConfig, MissionInput, Window};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use mason_report::text::{clock, format_ms, spread_clock};
 use mason_report::{pre, Section, Series};
 use mason_wall::BUILTIN_WALLS;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The planners the demo and the thesis bench compare, in table order.
 pub const COMPARED: [PlannerSpec; 5] = [
@@ -22,11 +25,6 @@ pub const COMPARED: [PlannerSpec; 5] = [
     PlannerSpec::Improved { n: 2, k: 3 },
     PlannerSpec::Exact,
 ];
-
-/// The time limit a compared planner gets: the tree searches are capped, the others not.
-pub fn search_limit(spec: PlannerSpec, limit: f64) -> Option<f64> {
-    matches!(spec, PlannerSpec::Brute | PlannerSpec::Improved { .. }).then_some(limit)
-}
 
 /// One row of a comparison table.
 pub fn row(spec: &str, c: &Checked, optimum: f64, extra: &str) -> String {
@@ -48,19 +46,26 @@ pub fn row(spec: &str, c: &Checked, optimum: f64, extra: &str) -> String {
     )
 }
 
-/// Milliseconds with sensible precision.
-pub fn format_ms(ms: f64) -> String {
-    if ms < 1.0 {
-        format!("{ms:.3} ms")
-    } else if ms < 1000.0 {
-        format!("{ms:.1} ms")
-    } else {
-        format!("{:.2} s", ms / 1e3)
-    }
+/// `mason demo`'s options.
+#[derive(clap::Args)]
+pub struct DemoArgs {
+    /// Output directory for figures and JSON
+    #[arg(long, default_value = "mason-out")]
+    pub out: PathBuf,
+    /// Seconds brute force and improved greedy may search per wall
+    #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
+    pub time_limit: f64,
+}
+
+/// `mason demo`: prints the summary and writes `out`.
+pub fn run(a: DemoArgs, quiet: bool) -> CliResult<()> {
+    let limit = time_limit(Some(a.time_limit))?.unwrap_or(2.0);
+    print!("{}", demo(&a.out, limit, !quiet)?);
+    Ok(())
 }
 
 /// Runs the demo; writes figures and plans under `out`.
-pub fn run(out: &Path, brute_limit: f64, show_progress: bool) -> CliResult<String> {
+pub fn demo(out: &Path, brute_limit: f64, show_progress: bool) -> CliResult<String> {
     // The demo's own output folder is made if missing (DESIGN §1); its parent must exist.
     crate::fail::check_output(&out.join("report.html")).or_else(|_| {
         std::fs::create_dir(out)
@@ -147,7 +152,7 @@ pub fn run(out: &Path, brute_limit: f64, show_progress: bool) -> CliResult<Strin
 /// reward in 900 s, each with its bound; the makespan schedule flown against the `exact` order.
 /// Returns the text and the report's figures.
 fn schedules(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
-    use crate::schedule_cmd::{
+    use crate::cmd::schedule::{
         flight_plan, problem, solve as plan_team, summary_line, ScheduleRequest,
     };
     use mason_order::team::{Objective, TeamModel};
@@ -271,7 +276,7 @@ fn missions(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
                 }
                 rewards.push((label, f.metrics.reward_over_time.clone()));
             }
-            let s = summarise(&fly_many(flight(&faulty), coord, slot, 0, 200, &|| {})?);
+            let s = summarise(&fly_many(flight(&faulty), coord, slot, 0, 200)?);
             text.push_str(&format!(
                 "  {:<8} {:>9} {:>30}\n",
                 format!("{coord:?}").to_lowercase(),

@@ -1,19 +1,117 @@
-//! `mason plan`: solve, validate, print a table or JSON.
+//! `mason plan`: a build order (or, with `--objective`, a team schedule: [`super::schedule`]),
+//! checked by the order validator, printed as a table or JSON.
 
-use crate::fail::{input_error, no_solution, CliResult};
-use mason_order::{validate_claim, Budget, BuildProblem, Evaluation, Outcome, PlannerSpec, Status};
+use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
+use crate::input::DesignArgs;
+use mason_order::{plan_checked, Budget, BuildProblem, CheckedPlan, PlannerSpec, Status};
 use mason_wall::Wall;
 use serde_json::{json, Value};
+use std::path::PathBuf;
 use std::time::Duration;
 
-/// A planner's outcome after validation.
-#[derive(Clone)]
-pub struct Checked {
-    /// The raw outcome.
-    pub outcome: Outcome,
-    /// The validator's evaluation of the order, when there is one.
-    pub evaluation: Option<Evaluation>,
+/// `mason plan`'s options.
+#[derive(clap::Args)]
+pub struct PlanArgs {
+    #[command(flatten)]
+    pub design: DesignArgs,
+    /// brute, greedy, improved:N,K (e.g. improved:1,4) or exact
+    #[arg(long, default_value = "exact")]
+    pub planner: String,
+    /// Cost model parameters (TOML); defaults are the thesis's. With --objective: the team
+    /// model, thesis, cmcp or a TOML file (default thesis)
+    #[arg(long)]
+    pub model: Option<String>,
+    /// Plan a team schedule instead of a build order: makespan (whole wall, shortest),
+    /// reward (most reward by --budget), expected (most expected reward by --budget when
+    /// UAVs fail at --uav-hazard)
+    #[arg(long)]
+    pub objective: Option<String>,
+    /// Team size for --objective
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
+    pub uavs: usize,
+    /// Time budget T in seconds for --objective reward|expected (bricks count if placed by T)
+    #[arg(long, allow_negative_numbers = true)]
+    pub budget: Option<f64>,
+    /// UAV failures per hour per UAV, for --objective expected
+    #[arg(long, allow_negative_numbers = true)]
+    pub uav_hazard: Option<f64>,
+    /// Seed of the schedule search (same seed, same schedule unless --time-limit stops it)
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
+    pub seed: u64,
+    /// Search budget in seconds (brute, improved, schedules); the best so far is reported
+    #[arg(long, allow_negative_numbers = true)]
+    pub time_limit: Option<f64>,
+    /// Print JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw the wall with its build order as SVG
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// Also write an HTML page with the figure and the step table
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
+
+/// `mason plan`.
+pub fn run(a: PlanArgs) -> CliResult<()> {
+    let started = std::time::Instant::now();
+    check_outputs(&[&a.svg, &a.html])?;
+    if a.objective.is_some() {
+        return super::schedule::run(a, started);
+    }
+    if a.uav_hazard.is_some() || a.budget.is_some() {
+        return Err(input_error(
+            "--budget and --uav-hazard belong to team schedules: add --objective",
+        ));
+    }
+    let spec: PlannerSpec = a
+        .planner
+        .parse()
+        .map_err(|e| input_error(format!("--planner: {e}")))?;
+    let limit = time_limit(a.time_limit)?;
+    let wall = a.design.load()?;
+    let model = mason_io::load_model(a.model.as_deref().map(std::path::Path::new))?;
+    let problem = BuildProblem::new(&wall, model).map_err(|e| input_error(e.to_string()))?;
+    let checked = solve(&problem, spec, limit)?;
+    let figure = mason_report::wall_svg(&wall, checked.outcome.order.as_deref());
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    if let Some(path) = a.svg {
+        files.push((path, figure.clone().into_bytes()));
+    }
+    if let Some(path) = a.html {
+        let page = mason_report::report_page(
+            &format!("{} — {}", wall.name(), spec),
+            "Build order (bold numbers: step; small: brick id), checked by order::validate.",
+            &[
+                mason_report::Section {
+                    heading: "Wall".into(),
+                    html: figure,
+                },
+                mason_report::Section {
+                    heading: "Steps".into(),
+                    html: mason_report::pre(&plan_table(&problem, &checked)),
+                },
+            ],
+        );
+        files.push((path, page.into_bytes()));
+    }
+    write_all(&files)?;
+    if a.json {
+        println!("{}", pretty(&plan_json(&problem, &checked)));
+    } else {
+        print!("{}", plan_table(&problem, &checked));
+    }
+    report_overrun(limit, started, checked.outcome.stats.elapsed.as_secs_f64());
+    exit_for(&checked)
+}
+
+/// JSON as printed.
+pub fn pretty(v: &Value) -> String {
+    serde_json::to_string_pretty(v).unwrap_or_default()
+}
+
+/// A planner's outcome after validation.
+pub type Checked = CheckedPlan;
 
 /// Runs a planner and validates its order (a failed validation is a bug: reported, exit 2).
 pub fn solve(
@@ -25,21 +123,7 @@ pub fn solve(
         Some(s) => Budget::time(Duration::from_secs_f64(s)),
         None => Budget::unlimited(),
     };
-    let outcome = spec.plan(problem, &budget);
-    let evaluation = match (&outcome.order, outcome.total_cost) {
-        (Some(order), Some(cost)) => Some(
-            validate_claim(problem.wall(), problem.model(), order, cost).map_err(|e| {
-                input_error(format!(
-                    "internal error: {spec} produced an invalid plan: {e}"
-                ))
-            })?,
-        ),
-        _ => None,
-    };
-    Ok(Checked {
-        outcome,
-        evaluation,
-    })
+    plan_checked(problem, spec, &budget).map_err(|e| input_error(format!("internal error: {e}")))
 }
 
 /// The largest `--time-limit` accepted, in seconds (about 31 years): a larger one is refused,

@@ -1,0 +1,12 @@
+//! One module per subcommand: its arguments, resolved into library calls, and its output.
+
+pub mod agent;
+pub mod bench;
+pub mod crew;
+pub mod demo;
+pub mod launch;
+pub mod mission;
+pub mod plan;
+pub mod schedule;
+pub mod simulate;
+pub mod wall;

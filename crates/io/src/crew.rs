@@ -1,0 +1,122 @@
+//! Crew instances: a grid (MovingAI `.map` or occupancy PNG) with a MovingAI scenario, or a
+//! bird's-eye PNG with its own robots and goals.
+
+use crate::error::{InputError, InputResult};
+use crate::files::{read_input, MAX_INPUT_BYTES};
+use mason_crew::image::{read_birdseye, read_occupancy};
+use mason_crew::movingai::{parse_map, parse_scen};
+use mason_crew::{Connectivity, Grid, Instance};
+use std::path::Path;
+
+/// Where the robots and goals come from.
+pub struct CrewInput<'a> {
+    /// A `.map` file or an occupancy PNG.
+    pub map: Option<&'a str>,
+    /// A MovingAI scenario.
+    pub scen: Option<&'a Path>,
+    /// Take the first N agents of the scenario.
+    pub agents: Option<usize>,
+    /// A bird's-eye PNG with robots and goals.
+    pub image: Option<&'a Path>,
+}
+
+fn read(path: &Path) -> InputResult<Vec<u8>> {
+    read_input(path, MAX_INPUT_BYTES)
+}
+
+fn read_text(path: &Path) -> InputResult<String> {
+    String::from_utf8(read(path)?)
+        .map_err(|_| InputError::bad(format!("{}: not UTF-8 text", path.display())))
+}
+
+/// Reads the grid, robots and goals.
+pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Instance, String)> {
+    let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
+    match (input.map, input.scen, input.image) {
+        (None, None, Some(image)) => {
+            let name = image.display().to_string();
+            let seen = read_birdseye(&read(image)?, &name).map_err(bad)?;
+            if input.agents.is_some() {
+                return Err(InputError::bad(
+                    "--agents applies to --scen, not to --image",
+                ));
+            }
+            let inst = Instance::new(seen.grid, conn, seen.robots, seen.goals, None, &name)
+                .map_err(bad)?;
+            Ok((inst, name))
+        }
+        (Some(map), Some(scen), None) => {
+            let grid = load_grid(map)?;
+            let scen_name = scen.display().to_string();
+            if input.agents == Some(0) {
+                return Err(InputError::bad("--agents must be at least 1"));
+            }
+            let agents = parse_scen(
+                &read_text(scen)?,
+                &scen_name,
+                &grid,
+                input.agents.unwrap_or(usize::MAX),
+            )
+            .map_err(bad)?;
+            let robots = agents.iter().map(|a| a.start).collect();
+            let goals = agents.iter().map(|a| a.goal).collect();
+            let pairing = Some((0..agents.len()).collect());
+            let inst =
+                Instance::new(grid, conn, robots, goals, pairing, &scen_name).map_err(bad)?;
+            Ok((inst, map.to_string()))
+        }
+        (Some(_), None, None) => Err(InputError::bad(
+            "a map needs a scenario: give --scen F [--agents N], or use --image PNG alone",
+        )),
+        (_, _, Some(_)) => Err(InputError::bad(
+            "--image brings its own robots and goals; give it without a map or --scen",
+        )),
+        (None, _, None) => Err(InputError::bad("give a MAP with --scen F, or --image PNG")),
+    }
+}
+
+fn load_grid(map: &str) -> InputResult<Grid> {
+    let path = Path::new(map);
+    let bytes = read(path)?;
+    let is_png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if is_png {
+        read_occupancy(&bytes, map).map_err(|e| InputError::bad(e.to_string()))
+    } else {
+        let text = String::from_utf8(bytes).map_err(|_| {
+            InputError::bad(format!(
+                "{map}: not UTF-8 text (a PNG map must end in .png)"
+            ))
+        })?;
+        parse_map(&text, map).map_err(|e| InputError::bad(e.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_inputs_must_come_in_a_sensible_combination() {
+        let none = CrewInput {
+            map: None,
+            scen: None,
+            agents: None,
+            image: None,
+        };
+        let e = load_crew(&none, Connectivity::Eight)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("give a MAP"), "{e}");
+        let lone_map = CrewInput {
+            map: Some("m.map"),
+            ..none
+        };
+        let e = load_crew(&lone_map, Connectivity::Eight)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("needs a scenario"), "{e}");
+    }
+}
