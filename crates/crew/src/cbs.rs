@@ -157,6 +157,9 @@ fn first_conflict(
 }
 
 /// Space-time A* for one robot under its constraints; the path ends at its arrival.
+///
+/// Kept apart from the shared search in [`crate::spacetime`] on purpose: CBS is the oracle the
+/// tests hold `st`, `refine` and LaCAM to, so a fault in that search must not reach it too.
 fn low_level(
     graph: &MoveGraph,
     dist: &[u32],

@@ -14,6 +14,7 @@
 //! - [`distance`]: BFS step distances and Dijkstra path lengths; [`rra`]: distances on demand;
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
+//! - [`spacetime`]: space-time A*, the one-robot search of [`st`], [`scatter`] and [`refine`];
 //! - [`reservation`], [`paper`], [`st`]: collision resolution, prioritized (incomplete);
 //! - [`moves`], [`scatter`], [`pibt`], [`lacam`], [`refine`]: complete and anytime labelled
 //!   MAPF;
@@ -65,6 +66,7 @@ pub mod reservation;
 pub mod rra;
 pub mod scatter;
 pub mod solve;
+pub mod spacetime;
 pub mod st;
 pub mod tswap;
 pub mod validate;

@@ -14,9 +14,10 @@
 //! - *area*: the robots that pass through the cells nearest a random cell;
 //! - *random*: robots drawn at random.
 //!
-//! Space-time A* is optimal for one robot given the others: states (cell, step), waits allowed,
-//! the true step distance as heuristic (ties to the state nearer the goal, then the deeper), and the robot may stop on its goal only after the last
-//! time anybody else passes there. Beyond the last step of the longest other path the world no
+//! Space-time A* ([`crate::spacetime`]) is optimal for one robot given the others: states
+//! (cell, step), waits allowed, the true step distance as heuristic (ties to the state nearer
+//! the goal, then the deeper), and the robot may stop on its goal only after the last time
+//! anybody else passes there. Beyond the last step of the longest other path the world no
 //! longer changes, so states there are merged by cell and the search is finite.
 //! Each round is O(k · T · V log(T · V)) in the worst case for k robots and horizon T.
 //!
@@ -41,13 +42,13 @@
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
+use crate::spacetime::{key, Limits, Open, Query, Rules, Search};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 use std::sync::Mutex;
 
 /// When refinement stops besides the deadline.
@@ -97,11 +98,6 @@ pub(crate) struct Occupancy {
     pub(crate) rest: Vec<(u32, u32)>,
     /// cell → (step, robot) of every visit before a robot's last step.
     pub(crate) visits: Vec<Vec<(u32, u32)>>,
-}
-
-#[inline]
-fn key(cell: u32, t: u32) -> u64 {
-    (u64::from(t) << 32) | u64::from(cell)
 }
 
 impl Occupancy {
@@ -180,7 +176,7 @@ impl Candidate {
     /// `paths` hold them (read only).
     fn plan(
         &mut self,
-        search: &mut Search,
+        search: &mut Search<OpenEntry>,
         graph: &MoveGraph,
         dist: &[Vec<u32>],
         goals: &[u32],
@@ -197,11 +193,11 @@ impl Candidate {
                 absent: &self.group,
                 planned: &self.fresh,
             };
-            let found = search.plan(
-                graph,
-                &view,
+            let found = replan(
+                search,
+                (graph, &view),
                 &dist[r],
-                (pos(&paths[r], 0), 0, goals[r]),
+                (pos(&paths[r], 0), goals[r]),
                 node_limit,
                 &mut self.expanded,
             );
@@ -270,7 +266,7 @@ pub fn refine(
     let mut occ = Occupancy::new(graph.cells(), paths);
     // Search scratch, taken by whichever thread plans a neighbourhood and given back after:
     // as many as threads ran at once, and one thread keeps reusing the same (warm) one.
-    let scratch: Mutex<Vec<Search>> = Mutex::new(Vec::new());
+    let scratch: Mutex<Vec<Search<OpenEntry>>> = Mutex::new(Vec::new());
     let mut weights = [1.0f64; 3];
     let mut stall = 0u64;
     let lower: u64 = (0..n)
@@ -333,7 +329,7 @@ pub fn refine(
         let shared = (&occ, &*paths);
         batch.par_iter_mut().for_each(|cand| {
             let taken = scratch.lock().map(|mut s| s.pop()).unwrap_or(None);
-            let mut search = taken.unwrap_or_else(Search::new);
+            let mut search = taken.unwrap_or_default();
             cand.plan(&mut search, graph, dist, goals, shared, config.node_limit);
             if let Ok(mut s) = scratch.lock() {
                 s.push(search);
@@ -590,97 +586,66 @@ fn fill_random(group: &mut Vec<usize>, n: usize, k: usize, taken: &[usize], rng:
     }
 }
 
-/// An open state of space-time A*: (f, h, t, node), least f first, then nearest the goal, then
-/// deepest.
+/// An open state of space-time A*: (f, h, t, id), least f first, then nearest the goal, then
+/// deepest, then the first generated.
 type OpenEntry = (Reverse<u32>, Reverse<u32>, u32, Reverse<u32>);
 
-/// Space-time A* with reusable buffers.
-struct Search {
-    nodes: Vec<(u32, u32, u32)>,
-    closed: FxHashSet<u64>,
-    open: BinaryHeap<OpenEntry>,
+/// The rules of space-time A* around the robots of a [`View`], with step distances `dist` to
+/// the goal: every step costs one.
+struct Around<'a> {
+    graph: &'a MoveGraph,
+    view: &'a View<'a>,
+    dist: &'a [u32],
 }
 
-impl Search {
-    pub(crate) fn new() -> Self {
-        Search {
-            nodes: Vec::new(),
-            closed: FxHashSet::default(),
-            open: BinaryHeap::new(),
-        }
+impl Rules for Around<'_> {
+    type Rank = OpenEntry;
+    const UNIT_STEPS: bool = true;
+
+    #[inline(always)]
+    fn rank(s: Open) -> OpenEntry {
+        (Reverse(s.f), Reverse(s.h), s.t, Reverse(s.id))
     }
 
-    /// The quickest path from `start` at step `t0` to `goal` around everyone in `view` (which
-    /// must not hold the robot itself from `t0` on), as the cells from step `t0`; `None` when
-    /// there is none within the cap.
-    fn plan(
-        &mut self,
-        graph: &MoveGraph,
-        view: &View,
-        dist: &[u32],
-        (start, t0, goal): (u32, u32, u32),
-        node_limit: u64,
-        expanded: &mut u64,
-    ) -> Option<Vec<u32>> {
-        let free_from = view.free_from(goal)?;
-        let horizon = view.horizon().max(free_from).max(t0 + 1);
-        self.nodes.clear();
-        self.closed.clear();
-        self.open.clear();
-        let h0 = dist[start as usize];
-        if h0 == NIL {
-            return None;
-        }
-        self.nodes.push((start, t0, NIL));
-        self.open.push((
-            Reverse((t0 + h0).max(free_from)),
-            Reverse(h0),
-            t0,
-            Reverse(0),
-        ));
-        let mut local = 0u64;
-        while let Some((_, _, t, Reverse(id))) = self.open.pop() {
-            let (cell, _, _) = self.nodes[id as usize];
-            let k = key(cell, t.min(horizon));
-            if !self.closed.insert(k) {
-                continue;
-            }
-            local += 1;
-            *expanded += 1;
-            if local > node_limit {
-                return None;
-            }
-            if cell == goal && t >= free_from {
-                let mut path = Vec::with_capacity(t as usize + 1);
-                let mut x = id;
-                while x != NIL {
-                    path.push(self.nodes[x as usize].0);
-                    x = self.nodes[x as usize].2;
-                }
-                path.reverse();
-                return Some(path);
-            }
-            for &next in std::iter::once(&cell).chain(graph.neighbours(cell)) {
-                let h = dist[next as usize];
-                if h == NIL || !view.can_move(graph, cell, next, t) {
-                    continue;
-                }
-                let nk = key(next, (t + 1).min(horizon));
-                if self.closed.contains(&nk) {
-                    continue;
-                }
-                let nid = self.nodes.len() as u32;
-                self.nodes.push((next, t + 1, id));
-                self.open.push((
-                    Reverse((t + 1 + h).max(free_from)),
-                    Reverse(h),
-                    t + 1,
-                    Reverse(nid),
-                ));
-            }
-        }
-        None
+    #[inline(always)]
+    fn id(r: &OpenEntry) -> u32 {
+        r.3 .0
     }
+
+    #[inline(always)]
+    fn distance(&mut self, cell: u32) -> u32 {
+        self.dist[cell as usize]
+    }
+
+    #[inline(always)]
+    fn step(&self, from: u32, to: u32, t: u32) -> Option<u32> {
+        self.view.can_move(self.graph, from, to, t).then_some(1)
+    }
+}
+
+/// The quickest path from `start` at step 0 to `goal` around everyone in `view` (which must not
+/// hold the robot itself), as the cells from step 0; `None` when there is none within the cap.
+fn replan(
+    search: &mut Search<OpenEntry>,
+    (graph, view): (&MoveGraph, &View),
+    dist: &[u32],
+    (start, goal): (u32, u32),
+    node_limit: u64,
+    expanded: &mut u64,
+) -> Option<Vec<u32>> {
+    let rest_from = view.free_from(goal)?;
+    let query = Query {
+        start,
+        goal,
+        rest_from,
+        limits: Limits {
+            still_from: view.horizon().max(rest_from).max(1),
+            node_limit,
+            ..Limits::default()
+        },
+    };
+    let mut rules = Around { graph, view, dist };
+    search.run(graph, &mut rules, &query, expanded).ok()
 }
 
 #[cfg(test)]

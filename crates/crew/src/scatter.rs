@@ -2,18 +2,19 @@
 //! optimisation of Okumura, "Engineering LaCAM*", AAMAS 2024, in our own terms).
 //!
 //! Each robot gets a path to its goal no longer than its shortest path plus `margin`, chosen to
-//! meet the other robots' guide paths as little as possible: space-time A* where a step costs
-//! one plus `weight` for every robot already on the cell at that step, or crossing it along the
-//! edge. Robots are routed one by one, twice, each time around everyone else's latest path.
+//! meet the other robots' guide paths as little as possible: space-time A*
+//! ([`crate::spacetime`]) where a step costs one plus `weight` for every robot already on the
+//! cell at that step, or crossing it along the edge. Robots are routed one by one, twice, each
+//! time around everyone else's latest path.
 //! The paths are only advice for PIBT ([`crate::pibt::Pibt::set_guide`]): nothing here needs
 //! to be collision-free, and LaCAM stays complete whatever the advice.
 //! O(passes · n · S log S) for n robots and S states searched per robot (bounded by `cap`).
 
-use crate::moves::{MoveGraph, NIL};
+use crate::moves::MoveGraph;
 use crate::outcome::Budget;
-use rustc_hash::{FxHashMap, FxHashSet};
+use crate::spacetime::{key, Limits, Open, Query, Rules, Search};
+use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// Guide paths for robots from `starts` to `goals` (`dist[i]`: step distances to goal i); a
 /// robot whose search finds nothing within `cap` states keeps its plain shortest path.
@@ -33,14 +34,25 @@ pub fn guide_paths(
     for p in &paths {
         table.add(p, 1);
     }
+    let mut search = Search::new();
     for _pass in 0..2 {
         for i in 0..n {
             if budget.out_of_time() {
                 return paths;
             }
             table.add(&paths[i], -1);
+            let crowd = Crowd {
+                usage: &table,
+                dist: &dist[i],
+                weight,
+            };
             if let Some(p) = route(
-                graph, &dist[i], starts[i], goals[i], &table, margin, weight, cap,
+                &mut search,
+                graph,
+                crowd,
+                (starts[i], goals[i]),
+                margin,
+                cap,
             ) {
                 paths[i] = p;
             }
@@ -80,11 +92,6 @@ impl Usage {
     }
 }
 
-#[inline]
-fn key(cell: u32, t: u32) -> u64 {
-    (u64::from(t) << 32) | u64::from(cell)
-}
-
 fn shortest(graph: &MoveGraph, dist: &[u32], start: u32, goal: u32) -> Vec<u32> {
     let mut p = vec![start];
     let mut c = start;
@@ -99,54 +106,63 @@ fn shortest(graph: &MoveGraph, dist: &[u32], start: u32, goal: u32) -> Vec<u32> 
     p
 }
 
-#[allow(clippy::too_many_arguments)]
-fn route(
-    graph: &MoveGraph,
-    dist: &[u32],
-    start: u32,
-    goal: u32,
-    table: &Usage,
-    margin: u32,
+/// The order of open states: least f first, then nearest the goal, then the last generated.
+type Rank = (Reverse<u32>, Reverse<u32>, u32);
+
+/// The rules of the guide search for one robot: its step distances `dist` to the goal, and a
+/// step costs one plus `weight` for every other robot met (`usage`).
+struct Crowd<'a> {
+    usage: &'a Usage,
+    dist: &'a [u32],
     weight: u32,
+}
+
+impl Rules for Crowd<'_> {
+    type Rank = Rank;
+
+    #[inline]
+    fn rank(s: Open) -> Rank {
+        (Reverse(s.f), Reverse(s.h), s.id)
+    }
+
+    #[inline]
+    fn id(r: &Rank) -> u32 {
+        r.2
+    }
+
+    #[inline]
+    fn distance(&mut self, cell: u32) -> u32 {
+        self.dist[cell as usize]
+    }
+
+    #[inline]
+    fn step(&self, from: u32, to: u32, t: u32) -> Option<u32> {
+        Some(1 + self.weight * self.usage.meets(from, to, t))
+    }
+}
+
+/// The least crowded path from `start` to `goal` at most `margin` steps longer than the
+/// shortest; `None` when the search expands more than `cap` states before its goal.
+fn route(
+    search: &mut Search<Rank>,
+    graph: &MoveGraph,
+    mut crowd: Crowd,
+    (start, goal): (u32, u32),
+    margin: u32,
     cap: usize,
 ) -> Option<Vec<u32>> {
-    let limit = dist[start as usize] + margin;
-    let mut nodes: Vec<(u32, u32, u32)> = vec![(start, 0, NIL)];
-    let mut open = BinaryHeap::from([(Reverse(dist[start as usize]), Reverse(0u32), 0u32)]);
-    let mut closed: FxHashSet<u64> = FxHashSet::default();
-    let mut cost: Vec<u32> = vec![0];
-    while let Some((_, _, id)) = open.pop() {
-        let (cell, t, _) = nodes[id as usize];
-        if !closed.insert(key(cell, t)) {
-            continue;
-        }
-        if cell == goal {
-            let mut path = Vec::with_capacity(t as usize + 1);
-            let mut x = id;
-            while x != NIL {
-                path.push(nodes[x as usize].0);
-                x = nodes[x as usize].2;
-            }
-            path.reverse();
-            return Some(path);
-        }
-        if closed.len() > cap {
-            return None;
-        }
-        let g = cost[id as usize];
-        for &next in std::iter::once(&cell).chain(graph.neighbours(cell)) {
-            let h = dist[next as usize];
-            if t + 1 + h > limit || closed.contains(&key(next, t + 1)) {
-                continue;
-            }
-            let g2 = g + 1 + weight * table.meets(cell, next, t);
-            let nid = nodes.len() as u32;
-            nodes.push((next, t + 1, id));
-            cost.push(g2);
-            open.push((Reverse(g2 + h), Reverse(h), nid));
-        }
-    }
-    None
+    let query = Query {
+        start,
+        goal,
+        rest_from: 0,
+        limits: Limits {
+            arrive_by: crowd.dist[start as usize] + margin,
+            // The goal is tested before the cap: the goal may be the cap's next state.
+            node_limit: (cap as u64).saturating_add(1),
+            ..Limits::default()
+        },
+    };
+    search.run(graph, &mut crowd, &query, &mut 0).ok()
 }
 
 #[cfg(test)]

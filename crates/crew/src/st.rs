@@ -1,22 +1,23 @@
 //! Prioritized planning with space-time A* (Silver 2005, "cooperative A*"): robots are planned
-//! one at a time, longest shortest-path first, each by A* over (cell, step) states that avoids
-//! the reservation table of the robots before it. Waiting is a move. A robot may stop on its
-//! goal only after every reserved visit of that cell, so nobody runs into it later. The
-//! heuristic is the true step distance to the goal, from reverse resumable A*
-//! ([`crate::rra`]); f is raised to the first step the goal is free for good, and ties go to
-//! the deeper state, so a robot that must wait for its goal does not flood the map.
+//! one at a time, longest shortest-path first, each by space-time A* ([`crate::spacetime`])
+//! over (cell, step) states that avoids the reservation table of the robots before it. Waiting
+//! is a move. A robot may stop on its goal only after every reserved visit of that cell, so
+//! nobody runs into it later. The heuristic is the true step distance to the goal, from
+//! reverse resumable A* ([`crate::rra`]); f is raised to the first step the goal is free for
+//! good, and ties go to the deeper state, so a robot that must wait for its goal does not
+//! flood the map.
 //!
 //! Each robot's path is optimal given those above it; the whole is incomplete (a priority
 //! order may admit no plan). O(T·V log(T·V)) per robot in the worst case for horizon T.
 
 use crate::distance::UNREACHABLE;
 use crate::grid::{Cell, Connectivity, Grid};
+use crate::moves::MoveGraph;
 use crate::outcome::{Budget, Paths};
 use crate::reservation::ReservationTable;
 use crate::rra::GoalDistance;
-use rustc_hash::FxHashMap;
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use crate::spacetime::{Limits, Open, Query, Rules, Search, Stop};
+use std::cmp::Reverse;
 
 /// Why space-time planning stopped without a plan.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -45,22 +46,41 @@ pub enum StFailure {
     },
 }
 
-#[derive(PartialEq, Eq)]
-struct Node {
-    f: u32,
-    t: u32,
-    cell: u32,
+/// The order of open states: least f first, then the deepest, then the lowest cell (then the
+/// first generated, which only tells copies of one state apart).
+type Rank = (Reverse<u32>, u32, Reverse<u32>, Reverse<u32>);
+
+/// The world as robots planned so far leave it to the next: their reservations, and the
+/// step distances to the next robot's goal.
+struct Reserved<'a> {
+    grid: &'a Grid,
+    table: &'a ReservationTable,
+    to_goal: &'a mut GoalDistance,
 }
-impl Ord for Node {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.f.cmp(&self.f)
-            .then(self.t.cmp(&o.t))
-            .then(o.cell.cmp(&self.cell))
+
+impl Rules for Reserved<'_> {
+    type Rank = Rank;
+    const UNIT_STEPS: bool = true;
+
+    #[inline]
+    fn rank(s: Open) -> Rank {
+        (Reverse(s.f), s.t, Reverse(s.cell), Reverse(s.id))
     }
-}
-impl PartialOrd for Node {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
+
+    #[inline]
+    fn id(r: &Rank) -> u32 {
+        r.3 .0
+    }
+
+    #[inline]
+    fn distance(&mut self, cell: u32) -> u32 {
+        self.to_goal.get(self.grid, Cell(cell))
+    }
+
+    #[inline]
+    fn step(&self, from: u32, to: u32, t: u32) -> Option<u32> {
+        let clash = self.table.move_clash(self.grid, Cell(from), Cell(to), t);
+        clash.is_none().then_some(1)
     }
 }
 
@@ -76,16 +96,21 @@ pub fn space_time_plan(
     order: &[usize],
     budget: &Budget,
 ) -> (Result<Paths, StFailure>, u64) {
+    let graph = MoveGraph::new(grid, conn);
+    let mut search = Search::new();
     let mut table = ReservationTable::new();
     let mut paths: Paths = vec![Vec::new(); starts.len()];
     let mut expanded = 0;
     for &r in order {
-        let result = plan_one(
+        let mut world = Reserved {
             grid,
-            conn,
-            &table,
+            table: &table,
+            to_goal: &mut to_goal[r],
+        };
+        let result = plan_one(
+            (&graph, &mut search),
+            &mut world,
             (r, starts[r], goals[r]),
-            &mut to_goal[r],
             budget,
             &mut expanded,
         );
@@ -100,76 +125,37 @@ pub fn space_time_plan(
     (Ok(paths), expanded)
 }
 
-#[allow(clippy::too_many_arguments)]
+/// Plans `robot` from `start` to `goal` around the robots in `world`.
 fn plan_one(
-    grid: &Grid,
-    conn: Connectivity,
-    table: &ReservationTable,
+    (graph, search): (&MoveGraph, &mut Search<Rank>),
+    world: &mut Reserved,
     (robot, start, goal): (usize, Cell, Cell),
-    h: &mut GoalDistance,
     budget: &Budget,
     expanded: &mut u64,
 ) -> Result<Vec<Cell>, StFailure> {
-    let h0 = h.get(grid, start);
+    let h0 = world.distance(start.0);
     if h0 == UNREACHABLE {
         return Err(StFailure::Unreachable { robot });
     }
-    let Some(rest_from) = table.free_for_good_from(goal) else {
+    let Some(rest_from) = world.table.free_for_good_from(goal) else {
         return Err(StFailure::GoalTaken { robot });
     };
-    let horizon = table.horizon().max(rest_from) + h0 + grid.width() + grid.height() + 1;
-    let mut parent: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    let mut open = BinaryHeap::new();
-    open.push(Node {
-        f: h0.max(rest_from),
-        t: 0,
-        cell: start.0,
-    });
-    parent.insert((start.0, 0), u32::MAX);
-    let mut local = 0u64;
-    while let Some(Node { t, cell, .. }) = open.pop() {
-        local += 1;
-        *expanded += 1;
-        if budget.node_limit.is_some_and(|cap| local > cap)
-            || (local % 4096 == 0 && budget.out_of_time())
-        {
-            return Err(StFailure::Budget { robot });
-        }
-        if cell == goal.0 && t >= rest_from {
-            let mut path = vec![Cell(cell)];
-            let (mut c, mut k) = (cell, t);
-            while k > 0 {
-                c = parent[&(c, k)];
-                k -= 1;
-                path.push(Cell(c));
-            }
-            path.reverse();
-            return Ok(path);
-        }
-        if t >= horizon {
-            continue;
-        }
-        let here = Cell(cell);
-        let mut push = |next: Cell| {
-            if parent.contains_key(&(next.0, t + 1)) {
-                return;
-            }
-            let hn = h.get(grid, next);
-            if hn == UNREACHABLE {
-                return;
-            }
-            if table.move_clash(grid, here, next, t).is_some() {
-                return;
-            }
-            parent.insert((next.0, t + 1), cell);
-            open.push(Node {
-                f: (t + 1 + hn).max(rest_from),
-                t: t + 1,
-                cell: next.0,
-            });
-        };
-        push(here);
-        grid.for_each_move(here, conn, |n, _| push(n));
+    let grid = world.grid;
+    let horizon = world.table.horizon().max(rest_from) + h0 + grid.width() + grid.height() + 1;
+    let query = Query {
+        start: start.0,
+        goal: goal.0,
+        rest_from,
+        limits: Limits {
+            last_step: horizon,
+            node_limit: budget.node_limit.unwrap_or(u64::MAX),
+            deadline: budget.deadline,
+            ..Limits::default()
+        },
+    };
+    match search.run(graph, world, &query, expanded) {
+        Ok(path) => Ok(path.into_iter().map(Cell).collect()),
+        Err(Stop::Exhausted) => Err(StFailure::NoPath { robot, horizon }),
+        Err(Stop::Budget) => Err(StFailure::Budget { robot }),
     }
-    Err(StFailure::NoPath { robot, horizon })
 }
