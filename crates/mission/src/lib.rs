@@ -8,6 +8,11 @@
 //! [`metrics`], or [`check::TraceChecker`], the independent safety check. [`montecarlo`] runs
 //! many seeds over the cores.
 //!
+//! Shared by every backend and log: the altitude rule ([`mod@altitude`]: [`cruise_altitude`],
+//! [`altitude()`]), the radio link's faults ([`link`]), and the flight plan of a team schedule
+//! ([`flight`]: [`flight_plan`], planned and checked by
+//! `mason_order::team::validate_schedule_claim`).
+//!
 //! ```
 //! use mason_mission::{check_trace, make_policy, simulate, Coord, MissionConfig, MissionInput, MissionStatus};
 //! let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
@@ -26,6 +31,7 @@
 #![deny(missing_docs)]
 
 pub mod agent;
+pub mod altitude;
 pub mod arena;
 pub mod auto;
 pub mod channel;
@@ -34,6 +40,8 @@ pub mod comm;
 pub mod config;
 pub mod coord;
 pub mod core;
+pub mod flight;
+pub mod link;
 pub mod metrics;
 pub mod montecarlo;
 pub mod policy;
@@ -43,6 +51,7 @@ pub mod state;
 pub mod team;
 pub mod windows;
 
+pub use altitude::{altitude, altitude_during, climb_fraction, cruise_altitude};
 pub use arena::{Arena, Point};
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use config::{
@@ -50,6 +59,8 @@ pub use config::{
     MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
+pub use flight::{flight_plan, FlightPlan, FlightPlanError, FlightRequest};
+pub use link::{Fate, LinkFaults, LinkFaultsError};
 pub use metrics::Metrics;
 pub use montecarlo::{
     for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,
