@@ -8,10 +8,17 @@
 //! [`metrics`], or [`check::TraceChecker`], the independent safety check. [`montecarlo`] runs
 //! many seeds over the cores.
 //!
+//! The per-UAV decisions live in one decision core ([`core`]), shared by the simulator and
+//! by the [`agent`]: one UAV as a separate process that knows only what it has heard, speaking
+//! the team protocol of [`agent::wire`]. The [`bus`] flies a team of agents on a virtual
+//! clock, with the radio faults of [`link`] (the same [`LinkFaults`] as the real transport's)
+//! and agents killed and restarted.
+//!
 //! Shared by every backend and log: the altitude rule ([`mod@altitude`]: [`cruise_altitude`],
-//! [`altitude()`]), the radio link's faults ([`link`]), and the flight plan of a team schedule
-//! ([`flight`]: [`flight_plan`], planned and checked by
-//! `mason_order::team::validate_schedule_claim`).
+//! [`altitude()`]), the seed of each agent ([`agent::agent_seed`]), and the flight plan of a
+//! team schedule ([`flight`]: [`flight_plan`], planned and checked by
+//! `mason_order::team::validate_schedule_claim`). [`replan`] re-plans the schedule when a UAV
+//! fails.
 //!
 //! ```
 //! use mason_mission::{check_trace, make_policy, simulate, Coord, MissionConfig, MissionInput, MissionStatus};
@@ -34,6 +41,7 @@ pub mod agent;
 pub mod altitude;
 pub mod arena;
 pub mod auto;
+pub mod bus;
 pub mod channel;
 pub mod check;
 pub mod comm;
@@ -48,11 +56,11 @@ pub mod policy;
 pub mod replan;
 pub mod sim;
 pub mod state;
-pub mod team;
 pub mod windows;
 
 pub use altitude::{altitude, altitude_during, climb_fraction, cruise_altitude};
 pub use arena::{Arena, Point};
+pub use bus::killed_events;
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use config::{
     ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,

@@ -1,5 +1,5 @@
 //! The fault model of the radio link between agents, shared by the simulated bus
-//! (`bus.rs`) and the real transport's fault layer (`mason agent`), so that a fault
+//! ([`crate::bus`]) and the real transport's fault layer (`mason agent`), so that a fault
 //! setting means the same thing on both.
 //!
 //! A message sent at mission time `t` meets one [`Fate`] per receiver: inside a cut window
