@@ -20,8 +20,8 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(config) = toml::from_str::<mason_mission::MissionConfig>(text) {
         let _ = config.validate();
     }
-    if let Ok(patch) = toml::from_str::<mason_order::team::TeamModelPatch>(text) {
-        let _ = mason_order::team::TeamModel::from_patch(&patch, "fuzz");
+    if let Ok(patch) = toml::from_str::<mason_order::schedule::TeamModelPatch>(text) {
+        let _ = mason_order::schedule::TeamModel::from_patch(&patch, "fuzz");
     }
     if let Ok(net) = toml::from_str::<mason_fleet::NetworkFile>(text) {
         for e in &net.listen {

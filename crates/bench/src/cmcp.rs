@@ -3,7 +3,7 @@
 //! at run time from `GRASP-RESULTS.md` in the benchmark directory (GPL data, not copied here).
 
 use crate::support::{input_error, BenchError, BenchResult};
-use mason_order::team::{schedule_checked, Objective, TeamModel, TeamProblem};
+use mason_order::schedule::{schedule_checked, Objective, TeamModel, TeamProblem};
 use mason_order::Budget;
 use mason_report::text::format_ms;
 use mason_wall::{parse_cmcp, CmcpSizes};

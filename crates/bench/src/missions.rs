@@ -1,8 +1,9 @@
 //! `mason bench thesis-mission` (the thesis's Table 5.1 setting) and `mason bench missions`
 //! (simulator throughput).
 
-use crate::support::{fly_many, fly_once, input_error, prepare, solve, BenchResult};
+use crate::support::{fly_many, fly_once, input_error, prepare, solve, BenchError, BenchResult};
 use mason_mission::{summarise, Coord, MissionConfig, MissionInput};
+use mason_order::Budget;
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_report::text::{clock, policy_table, spread_clock, PolicyRow};
 use std::time::Instant;
@@ -127,7 +128,7 @@ impl mason_mission::Replanner for Timed<'_> {
     fn replan(
         &self,
         wall: &mason_wall::Wall,
-        start: mason_order::team::TeamStart,
+        start: mason_order::schedule::TeamStart,
         now: f64,
     ) -> Option<mason_mission::Replan> {
         let t0 = Instant::now();
@@ -141,7 +142,7 @@ impl mason_mission::Replanner for Timed<'_> {
 /// `bench replan`: static against re-planned team schedules on the MBZIRC wall, 3 UAVs, each
 /// failing at 2 per hour, `runs` missions per row on seeds 0.., and how long the replans took.
 pub fn replan(runs: usize) -> BenchResult<String> {
-    use mason_order::team::Objective;
+    use mason_order::schedule::Objective;
     if runs == 0 {
         return Err(input_error("--runs must be at least 1"));
     }
@@ -162,7 +163,15 @@ pub fn replan(runs: usize) -> BenchResult<String> {
         (Objective::Makespan, None),
         (Objective::Reward, Some(1500.0)),
     ] {
-        let flight = crate::support::flight_plan(&wall, &model, objective, 3, budget, &base)?;
+        let request = mason_mission::FlightRequest {
+            objective,
+            uavs: 3,
+            budget_s: budget,
+            seed: 0,
+        };
+        let flight =
+            mason_mission::flight_plan(&wall, &model, &request, &base, &Budget::unlimited())
+                .map_err(|e| BenchError::Invalid(e.to_string()))?;
         let planner =
             mason_mission::ScheduleReplanner::new(flight.team.clone(), objective, budget, 0);
         let timed = Timed {
@@ -191,13 +200,13 @@ pub fn replan(runs: usize) -> BenchResult<String> {
         let rejected = planner.rejected.load(std::sync::atomic::Ordering::Relaxed);
         if rejected > 0 {
             return Err(input_error(format!(
-                "internal error: {rejected} replans failed order::team::validate_continuation"
+                "internal error: {rejected} replans failed order::schedule::validate_continuation"
             )));
         }
         let spread = mason_mission::Spread::of(&ms);
         let max = ms.iter().copied().fold(0.0, f64::max);
         text.push_str(&format!(
-            "\n{} schedule{}\n{}replan time over {} replans (each checked by order::team::validate_continuation): mean {:.2} ms, p95 {:.2} ms, max {:.2} ms (deadline 100 ms)\n",
+            "\n{} schedule{}\n{}replan time over {} replans (each checked by order::schedule::validate_continuation): mean {:.2} ms, p95 {:.2} ms, max {:.2} ms (deadline 100 ms)\n",
             objective,
             budget.map_or(String::new(), |t| format!(", budget {t} s")),
             policy_table(&rows, budget),

@@ -58,6 +58,7 @@ pub use error::{FleetError, FleetResult};
 pub use faults::{FaultLayer, FaultStats};
 pub use launch::{launch, schedule, Action, AgentRun, Launch, LaunchOptions};
 pub use log::{AgentLog, JsonLines, McapAgentLog};
+pub use mason_mission::agent::agent_seed;
 pub use network::{check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX};
 pub use setting::FleetSetting;
 pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};
@@ -65,9 +66,3 @@ pub use transport::{Hub, HubLink, Transport};
 pub use world::TraceWorld;
 #[cfg(feature = "zenoh")]
 pub use zenoh_link::ZenohLink;
-
-/// The seed of UAV `uav`'s vehicle and fault layer in incarnation `incarnation`.
-pub fn agent_seed(seed: u64, uav: usize, incarnation: u64) -> u64 {
-    seed ^ (uav as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)
-        ^ incarnation.wrapping_mul(0x2545_f491_4f6c_dd1d)
-}

@@ -2,7 +2,7 @@
 
 use crate::error::{InputError, InputResult};
 use crate::files::read_toml;
-use mason_order::team::{TeamModel, TeamModelPatch};
+use mason_order::schedule::{TeamModel, TeamModelPatch};
 use mason_order::CostModel;
 use std::path::Path;
 

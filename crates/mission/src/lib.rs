@@ -8,6 +8,18 @@
 //! [`metrics`], or [`check::TraceChecker`], the independent safety check. [`montecarlo`] runs
 //! many seeds over the cores.
 //!
+//! The per-UAV decisions live in one decision core ([`core`]), shared by the simulator and
+//! by the [`agent`]: one UAV as a separate process that knows only what it has heard, speaking
+//! the team protocol of [`agent::wire`]. The [`bus`] flies a team of agents on a virtual
+//! clock, with the radio faults of [`link`] (the same [`LinkFaults`] as the real transport's)
+//! and agents killed and restarted.
+//!
+//! Shared by every backend and log: the altitude rule ([`mod@altitude`]: [`cruise_altitude`],
+//! [`altitude()`]), the seed of each agent ([`agent::agent_seed`]), and the flight plan of a
+//! team schedule ([`flight`]: [`flight_plan`], planned and checked by
+//! `mason_order::schedule::validate_schedule_claim`). [`replan`] re-plans the schedule when a UAV
+//! fails.
+//!
 //! ```
 //! use mason_mission::{check_trace, make_policy, simulate, Coord, MissionConfig, MissionInput, MissionStatus};
 //! let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
@@ -26,8 +38,10 @@
 #![deny(missing_docs)]
 
 pub mod agent;
+pub mod altitude;
 pub mod arena;
 pub mod auto;
+pub mod bus;
 pub mod channel;
 pub mod check;
 mod checked;
@@ -35,6 +49,7 @@ pub mod comm;
 pub mod config;
 pub mod coord;
 pub mod core;
+pub mod flight;
 pub mod link;
 pub mod metrics;
 pub mod montecarlo;
@@ -42,10 +57,11 @@ pub mod policy;
 pub mod replan;
 pub mod sim;
 pub mod state;
-pub mod team;
 pub mod windows;
 
+pub use altitude::{altitude, altitude_during, climb_fraction, cruise_altitude};
 pub use arena::{Arena, Point};
+pub use bus::killed_events;
 pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
 pub use checked::fly_checked;
 pub use config::{
@@ -53,7 +69,8 @@ pub use config::{
     MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
-pub use link::{Fate, LinkFaults};
+pub use flight::{flight_plan, FlightPlan, FlightPlanError, FlightRequest};
+pub use link::{Fate, LinkFaults, LinkFaultsError};
 pub use metrics::Metrics;
 pub use montecarlo::{
     for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,
@@ -62,4 +79,3 @@ pub use policy::{Coordination, EntryQuery};
 pub use replan::{Replan, Replanner, ScheduleReplanner};
 pub use sim::{simulate, MissionInput, MissionResult, MissionStatus};
 pub use state::{CommMode, Event, EventKind, Observer, UavState};
-pub use team::killed_events;

@@ -1,17 +1,17 @@
 //! Re-planning a team schedule in flight: when a UAV fails, the survivors plan the rest of
 //! the wall from where they stand.
 //!
-//! The simulator describes the moment as an [`order::team::TeamStart`](mason_order::team::TeamStart):
+//! The simulator describes the moment as an [`order::schedule::TeamStart`](mason_order::schedule::TeamStart):
 //! the bricks on the wall, the bricks on their way (their carriers and the expected start of
 //! their placing phase, from each carrier's state and the arena's flight times), and when each
 //! idle UAV could start fetching (∞ for a UAV that is down or landing). A [`Replanner`] turns
 //! it into new per-UAV brick lists and a new shared order. [`ScheduleReplanner`] uses the team
 //! schedule planner with a small decode cap and a 100 ms deadline, so a replan is
 //! deterministic for a seed unless the deadline stops it; every replan is checked by
-//! `order::team::validate_continuation` before it is flown (a rejected one is counted and the
+//! `order::schedule::validate_continuation` before it is flown (a rejected one is counted and the
 //! UAVs keep their lists).
 
-use mason_order::team::{
+use mason_order::schedule::{
     plan_schedule, validate_continuation, Objective, TeamModel, TeamProblem, TeamStart,
 };
 use mason_order::Budget;

@@ -707,7 +707,7 @@ impl Sim<'_, '_> {
 
     /// The survivors plan the rest of the wall from here; their new lists replace the old.
     fn replan(&mut self, replanner: &dyn crate::replan::Replanner) {
-        use mason_order::team::{Placement, TeamStart};
+        use mason_order::schedule::{Placement, TeamStart};
         let wall = self.input.wall;
         let placed: Vec<BrickId> = wall
             .ids()

@@ -2,8 +2,10 @@
 //! brick must be placed exactly once.
 
 use mason_mission::agent::{AgentSetup, DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S};
-use mason_mission::team::{fly_team, BusFaults, TeamRun};
-use mason_mission::{check_trace, slot_length, Coord, EventKind, MissionConfig, Window};
+use mason_mission::bus::{fly_bus, BusFaults, BusRun};
+use mason_mission::{
+    check_trace, slot_length, Coord, EventKind, LinkFaults, MissionConfig, Window,
+};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_wall::{BrickId, Wall};
 
@@ -19,7 +21,7 @@ fn order(w: &Wall, model: &CostModel) -> Vec<BrickId> {
         .unwrap()
 }
 
-fn fly(name: &str, uavs: usize, coord: Coord, faults: &BusFaults, seed: u64) -> (TeamRun, usize) {
+fn fly(name: &str, uavs: usize, coord: Coord, faults: &BusFaults, seed: u64) -> (BusRun, usize) {
     fly_with(name, uavs, coord, faults, seed, |_| {})
 }
 
@@ -30,7 +32,7 @@ fn fly_with(
     faults: &BusFaults,
     seed: u64,
     tune: impl Fn(&mut MissionConfig),
-) -> (TeamRun, usize) {
+) -> (BusRun, usize) {
     let (run, bricks, summary) = try_fly(name, uavs, coord, faults, seed, tune);
     assert!(summary.is_ok(), "{name} {coord:?} seed {seed}: {summary:?}");
     (run, bricks)
@@ -44,7 +46,7 @@ fn try_fly(
     seed: u64,
     tune: impl Fn(&mut MissionConfig),
 ) -> (
-    TeamRun,
+    BusRun,
     usize,
     Result<mason_mission::TraceSummary, mason_mission::TraceError>,
 ) {
@@ -68,12 +70,12 @@ fn try_fly(
         dead_after_s: DEFAULT_DEAD_AFTER_S,
         lease_s: DEFAULT_LEASE_S,
     };
-    let run = fly_team(setup, faults, seed);
+    let run = fly_bus(setup, faults, seed);
     let summary = check_trace(&w, uavs, &run.events);
     (run, w.len(), summary)
 }
 
-fn placed(run: &TeamRun) -> usize {
+fn placed(run: &BusRun) -> usize {
     run.events
         .iter()
         .filter(|e| matches!(e.kind, EventKind::Place { .. }))
@@ -107,10 +109,13 @@ fn a_killed_agent_is_declared_out_and_the_others_finish_its_work() {
 #[test]
 fn a_cut_sends_auto_to_windows_and_back_without_sharing_the_zone() {
     let faults = BusFaults {
-        cuts: vec![Window {
-            from: 100.0,
-            to: 125.0,
-        }],
+        link: LinkFaults {
+            cuts: vec![Window {
+                from: 100.0,
+                to: 125.0,
+            }],
+            ..LinkFaults::default()
+        },
         ..BusFaults::default()
     };
     let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 5);
@@ -142,10 +147,13 @@ fn a_cut_sends_auto_to_windows_and_back_without_sharing_the_zone() {
 fn lost_duplicated_and_reordered_messages_do_no_harm() {
     for seed in 1..=10 {
         let faults = BusFaults {
-            loss: 0.3,
-            duplicate: 0.2,
-            latency: 0.05,
-            jitter: 0.8,
+            link: LinkFaults {
+                loss: 0.3,
+                duplicate: 0.2,
+                latency: 0.05,
+                jitter: 0.8,
+                cuts: Vec::new(),
+            },
             ..BusFaults::default()
         };
         for coord in [Coord::Comm, Coord::Auto] {
@@ -182,14 +190,16 @@ fn random_case(case: usize) -> (BusFaults, Coord, f64) {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(2026 + case as u64);
     let from = rng.gen_range(0.0..300.0);
     let mut faults = BusFaults {
-        loss: rng.gen_range(0.0..0.4),
-        duplicate: rng.gen_range(0.0..0.3),
-        latency: rng.gen_range(0.0..0.3),
-        jitter: rng.gen_range(0.0..2.0),
-        cuts: vec![Window {
-            from,
-            to: from + rng.gen_range(1.0..60.0),
-        }],
+        link: LinkFaults {
+            loss: rng.gen_range(0.0..0.4),
+            duplicate: rng.gen_range(0.0..0.3),
+            latency: rng.gen_range(0.0..0.3),
+            jitter: rng.gen_range(0.0..2.0),
+            cuts: vec![Window {
+                from,
+                to: from + rng.gen_range(1.0..60.0),
+            }],
+        },
         ..BusFaults::default()
     };
     if rng.gen_bool(0.5) {

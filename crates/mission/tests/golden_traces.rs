@@ -84,7 +84,8 @@ fn fly(
 }
 
 fn lines() -> Vec<String> {
-    use mason_order::team::{plan_schedule, Objective, TeamModel, TeamProblem};
+    use mason_mission::{flight_plan, FlightRequest};
+    use mason_order::schedule::Objective;
     let model = CostModel::default();
     let mut out = Vec::new();
     for name in ["thesis-2x5", "levels5-width5", "mbzirc"] {
@@ -112,16 +113,24 @@ fn lines() -> Vec<String> {
             }
         }
         // A team schedule for three, flown with and without a replanner.
-        let team = TeamModel::from_cost_model(&model);
-        let tp = TeamProblem::new(&w, team.clone(), 3, None, Objective::Makespan).unwrap();
-        let s = plan_schedule(&tp, &mason_order::Budget::nodes(300), 0)
-            .schedule
-            .unwrap();
-        let sorder: Vec<BrickId> = s.placements.iter().map(|pl| pl.brick).collect();
-        let lists = s.by_uav(3);
+        let request = FlightRequest {
+            objective: Objective::Makespan,
+            uavs: 3,
+            budget_s: None,
+            seed: 0,
+        };
+        let plan = flight_plan(
+            &w,
+            &model,
+            &request,
+            &order,
+            &mason_order::Budget::nodes(300),
+        )
+        .unwrap();
+        let (sorder, lists) = (plan.order, plan.lists);
         let replanner = mason_mission::ScheduleReplanner {
             time_limit: std::time::Duration::from_secs(60), // the node cap decides
-            ..mason_mission::ScheduleReplanner::new(team, Objective::Makespan, None, 0)
+            ..mason_mission::ScheduleReplanner::new(plan.team, Objective::Makespan, None, 0)
         };
         for replan in [false, true] {
             for which in 0..5 {

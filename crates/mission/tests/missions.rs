@@ -277,23 +277,16 @@ proptest! {
     }
 }
 
-/// A schedule for the MBZIRC wall and the team model it came from.
-fn schedule_lists(
-    w: &Wall,
-    model: &CostModel,
-) -> (
-    mason_order::team::TeamModel,
-    Vec<mason_wall::BrickId>,
-    Vec<Vec<mason_wall::BrickId>>,
-) {
-    use mason_order::team::{plan_schedule, Objective, TeamModel, TeamProblem};
-    let team = TeamModel::from_cost_model(model);
-    let p = TeamProblem::new(w, team.clone(), 3, None, Objective::Makespan).unwrap();
-    let s = plan_schedule(&p, &mason_order::Budget::nodes(300), 0)
-        .schedule
-        .unwrap();
-    let order = s.placements.iter().map(|pl| pl.brick).collect();
-    (team, order, s.by_uav(3))
+/// The MBZIRC makespan schedule's flight plan (planned and validated by `flight_plan`).
+fn makespan_plan(w: &Wall, model: &CostModel) -> mason_mission::FlightPlan {
+    let request = mason_mission::FlightRequest {
+        objective: mason_order::schedule::Objective::Makespan,
+        uavs: 3,
+        budget_s: None,
+        seed: 0,
+    };
+    let base: Vec<_> = w.ids().collect();
+    mason_mission::flight_plan(w, model, &request, &base, &mason_order::Budget::nodes(300)).unwrap()
 }
 
 /// Flies the MBZIRC makespan schedule; every replan must pass `validate_continuation`.
@@ -304,12 +297,12 @@ fn fly_schedule(
     seed: u64,
 ) -> (MissionResult, Vec<Event>) {
     let model = CostModel::default();
-    let (team, order, lists) = schedule_lists(w, &model);
+    let mason_mission::FlightPlan { team, order, lists } = makespan_plan(w, &model);
     let replanner = mason_mission::ScheduleReplanner {
         time_limit: std::time::Duration::from_secs(60), // deterministic: the node cap decides
         ..mason_mission::ScheduleReplanner::new(
             team,
-            mason_order::team::Objective::Makespan,
+            mason_order::schedule::Objective::Makespan,
             None,
             0,
         )

@@ -36,7 +36,7 @@ mod model;
 mod outcome;
 mod planner;
 mod problem;
-pub mod team;
+pub mod schedule;
 mod tree_search;
 mod validate;
 

@@ -2,8 +2,8 @@
 //! against the exhaustive oracle on tiny walls, the bounds against the optimum, and one
 //! hand-made broken schedule per rule of `validate_schedule`.
 
-use mason_order::team::search::SCENARIOS;
-use mason_order::team::{
+use mason_order::schedule::search::SCENARIOS;
+use mason_order::schedule::{
     bounds, exhaustive_schedule, plan_schedule, validate_schedule, validate_schedule_claim,
     Objective, Placement, Schedule, ScheduleError, TeamModel, TeamProblem,
 };
@@ -37,7 +37,7 @@ fn random_model(rng: &mut ChaCha8Rng) -> TeamModel {
         TeamModel::thesis()
     };
     if rng.gen_bool(0.3) {
-        m.concurrency = mason_order::team::Concurrency::Distance {
+        m.concurrency = mason_order::schedule::Concurrency::Distance {
             distance_m: rng.gen_range(0.0..2.0),
         };
     }
@@ -158,7 +158,7 @@ proptest! {
     /// `validate_continuation`.
     #[test]
     fn plans_from_start_states_pass_validate_continuation(seed in any::<u64>()) {
-        use mason_order::team::{validate_continuation, TeamStart};
+        use mason_order::schedule::{validate_continuation, TeamStart};
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let wall = random_wall(&mut rng, 30, 4);
         let model = random_model(&mut rng);
@@ -422,7 +422,7 @@ fn rejects_wrong_claims() {
 
 #[test]
 fn a_plan_from_a_start_state_continues_a_valid_schedule() {
-    use mason_order::team::TeamStart;
+    use mason_order::schedule::TeamStart;
     // MBZIRC wall, cmcp model: the bottom layer's first 10 bricks are on the wall, brick 11 is on
     // its way with UAV 0 (starting in 20 s), UAV 2 is gone, UAV 1 is free in 30 s.
     let wall = mason_wall::builtin("mbzirc").unwrap().wall();
@@ -441,7 +441,7 @@ fn a_plan_from_a_start_state_continues_a_valid_schedule() {
     let out = plan_schedule(&p, &Budget::nodes(200), 1);
     assert!(out.bound.is_nan(), "no bound from a start state");
     let s = out.schedule.unwrap();
-    mason_order::team::validate_continuation(&wall, &m, 3, None, p.start().unwrap(), &s)
+    mason_order::schedule::validate_continuation(&wall, &m, 3, None, p.start().unwrap(), &s)
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.placements.len(), wall.len() - placed.len());
     assert!(s.placements.contains(&committed[0]));
@@ -479,7 +479,7 @@ fn a_plan_from_a_start_state_continues_a_valid_schedule() {
 
 #[test]
 fn start_states_that_do_not_fit_are_typed_errors() {
-    use mason_order::team::{TeamProblemError, TeamStart};
+    use mason_order::schedule::{TeamProblemError, TeamStart};
     let (wall, m) = two_layer();
     let p = || TeamProblem::new(&wall, m.clone(), 3, None, Objective::Makespan).unwrap();
     let short = TeamStart {
@@ -512,7 +512,7 @@ fn start_states_that_do_not_fit_are_typed_errors() {
 
 #[test]
 fn validate_continuation_checks_the_start_state() {
-    use mason_order::team::{validate_continuation, TeamStart};
+    use mason_order::schedule::{validate_continuation, TeamStart};
     // 101 is on the wall, 102 on its way with UAV 0 from 10 s; UAV 1 ready at 30 s; UAV 2 gone.
     let (wall, m) = two_layer();
     let start = TeamStart {

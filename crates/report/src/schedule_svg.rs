@@ -3,7 +3,7 @@
 //! are placing at once, and the budget line.
 
 use crate::svg::{open_figure, time_axis};
-use mason_order::team::{Schedule, TeamProblem};
+use mason_order::schedule::{Schedule, TeamProblem};
 use std::fmt::Write;
 
 /// An SVG Gantt chart of a team schedule.
@@ -120,7 +120,7 @@ pub fn schedule_svg(title: &str, p: &TeamProblem<'_>, schedule: &Schedule) -> St
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mason_order::team::{plan_schedule, Objective, TeamModel};
+    use mason_order::schedule::{plan_schedule, Objective, TeamModel};
     use mason_order::Budget;
 
     #[test]

@@ -1,7 +1,8 @@
-//! Plain-text figures shared by tables: mission clocks and durations, and the comparison of
-//! two policies over the same seeds ([`PolicyRow`], [`policy_table`]).
+//! Plain-text figures and tables: mission clocks and durations, a mission's result
+//! ([`result_table`]), a Monte Carlo summary ([`summary_table`]), and the comparison of two
+//! policies over the same seeds ([`PolicyRow`], [`policy_table`]).
 
-use mason_mission::{MissionResult, Spread, Summariser, Summary};
+use mason_mission::{Event, EventKind, MissionResult, Spread, Summariser, Summary, UavState};
 
 /// `m:ss.s` (a dash for a time that is not finite).
 pub fn clock(t: f64) -> String {
@@ -26,6 +27,86 @@ pub fn format_ms(ms: f64) -> String {
     } else {
         format!("{:.2} s", ms / 1e3)
     }
+}
+
+/// A readable single-run report.
+pub fn result_table(r: &MissionResult, trace: &[Event]) -> String {
+    let m = &r.metrics;
+    let mut s = format!(
+        "status: {:?}\nmakespan: {} ({} s); mission end {}\nbricks placed: {}/{}, reward {}, lost {}, UAVs failed {}\nzone utilisation: {:.1} %\n",
+        r.status,
+        m.makespan_s.map_or("-".into(), clock),
+        m.makespan_s.map_or("-".into(), |t| format!("{t:.1}")),
+        clock(m.end_s),
+        m.bricks_placed,
+        m.bricks_total,
+        m.reward,
+        m.bricks_lost,
+        m.uavs_failed,
+        m.zone_utilisation * 100.0
+    )
+    .to_lowercase();
+    s.push_str("seconds per UAV:   flying  detect+grasp  waiting  placing  idle/ground\n");
+    for (u, t) in m.time_in_state.iter().enumerate() {
+        let sum = |states: &[UavState]| states.iter().map(|s| t[s.index()]).sum::<f64>();
+        s.push_str(&format!(
+            "  UAV {u}        {:>8.1} {:>13.1} {:>8.1} {:>8.1} {:>12.1}\n",
+            sum(&[
+                UavState::TakeOff,
+                UavState::FlyToPile,
+                UavState::FlyToWallWait,
+                UavState::Land,
+                UavState::SafeLand
+            ]),
+            sum(&[UavState::Detect, UavState::FlyAbove, UavState::Grasp]),
+            sum(&[UavState::WaitForZone]),
+            sum(&[UavState::EnterAndPlace]),
+            sum(&[
+                UavState::Check,
+                UavState::ChooseBrick,
+                UavState::Landed,
+                UavState::Down
+            ]),
+        ));
+    }
+    let switches = trace
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Comm { .. }))
+        .count();
+    if switches > 0 {
+        s.push_str(&format!("coordination mode switches: {switches}\n"));
+    }
+    s.push_str("trace checked by mission::check_trace\n");
+    s
+}
+
+/// A Monte Carlo summary table.
+pub fn summary_table(s: &Summary) -> String {
+    format!(
+        "runs: {}, walls completed: {}\n{:<18} {:>10} {:>10} {:>10}\n{:<18} {:>10} {:>10} {:>10}\n{:<18} {:>10.2} {:>10.2} {:>10.2}\n{:<18} {:>10.2} {:>10.2} {:>10.2}\n{:<18} {:>9.1}% {:>9.1}% {:>9.1}%\nevery trace checked by mission::check_trace\n",
+        s.runs,
+        s.completed,
+        "",
+        "mean",
+        "p5",
+        "p95",
+        "makespan",
+        clock(s.makespan_s.mean),
+        clock(s.makespan_s.p5),
+        clock(s.makespan_s.p95),
+        "bricks placed",
+        s.bricks_placed.mean,
+        s.bricks_placed.p5,
+        s.bricks_placed.p95,
+        "reward",
+        s.reward.mean,
+        s.reward.p5,
+        s.reward.p95,
+        "zone utilisation",
+        s.zone_utilisation.mean * 100.0,
+        s.zone_utilisation.p5 * 100.0,
+        s.zone_utilisation.p95 * 100.0,
+    )
 }
 
 /// One policy's Monte Carlo figures in a static-vs-replanned comparison.

@@ -155,10 +155,10 @@ fn schedules(model: &CostModel, out: &Path) -> CliResult<(String, String)> {
     use crate::cmd::schedule::{
         flight_plan, problem, solve as plan_team, summary_line, ScheduleRequest,
     };
-    use mason_order::team::{Objective, TeamModel};
+    use mason_order::schedule::{Objective, TeamModel};
     let wall = mason_wall::builtin("mbzirc").expect("built-in").wall();
     let mut text = String::from(
-        "\nTeam schedules: the MBZIRC wall, 3 UAVs, thesis model (the simulator's timings, zone rule);\nevery schedule checked by order::team::validate_schedule.\n",
+        "\nTeam schedules: the MBZIRC wall, 3 UAVs, thesis model (the simulator's timings, zone rule);\nevery schedule checked by order::schedule::validate_schedule.\n",
     );
     let mut html = String::new();
     for (objective, budget, file) in [

@@ -2,7 +2,8 @@
 
 use crate::cmd::plan::{pretty, report_overrun, time_limit, PlanArgs};
 use crate::fail::{input_error, write_all, CliResult};
-use mason_order::team::{
+use mason_mission::{FlightPlan, FlightPlanError, FlightRequest};
+use mason_order::schedule::{
     schedule_checked, CheckedSchedule, Objective, TeamModel, TeamOutcome, TeamProblem,
 };
 use mason_order::Budget;
@@ -139,16 +140,21 @@ pub fn problem<'w>(
         .map_err(|e| input_error(e.to_string()))
 }
 
-/// Plans and validates (an invalid schedule is a bug: reported, exit 2).
-pub fn solve(p: &TeamProblem<'_>, req: &ScheduleRequest) -> CliResult<CheckedSchedule> {
-    let budget = match req.time_limit {
+/// The schedule search's budget: until the deadline when there is a time limit, else the
+/// deterministic default.
+fn search_budget(limit: Option<f64>) -> Budget {
+    match limit {
         Some(s) => Budget {
             deadline: Budget::time(Duration::from_secs_f64(s)).deadline,
             node_limit: Some(u64::MAX),
         },
         None => Budget::unlimited(),
-    };
-    schedule_checked(p, &budget, req.seed).map_err(|e| {
+    }
+}
+
+/// Plans and validates (an invalid schedule is a bug: reported, exit 2).
+pub fn solve(p: &TeamProblem<'_>, req: &ScheduleRequest) -> CliResult<CheckedSchedule> {
+    schedule_checked(p, &search_budget(req.time_limit), req.seed).map_err(|e| {
         input_error(format!(
             "internal error: the planner produced an invalid schedule: {e}"
         ))
@@ -281,37 +287,27 @@ pub fn schedule_table(p: &TeamProblem<'_>, c: &CheckedSchedule) -> String {
     out
 }
 
-/// What a mission flies from a team schedule.
-pub struct FlightPlan {
-    /// The thesis team model of the cost model's times (the simulator's timings).
-    pub team: TeamModel,
-    /// The shared order: scheduled bricks by start, then the rest as `base` has them.
-    pub order: Vec<BrickId>,
-    /// Each UAV's bricks in the order it places them.
-    pub lists: Vec<Vec<BrickId>>,
-}
-
-/// Plans (and validates) the schedule a mission flies. Bricks the schedule leaves out (after
-/// the budget) follow in `base`'s order, so that the mission can still finish the wall.
+/// Plans (and validates) the schedule a mission flies ([`mason_mission::flight_plan`]).
+/// Bricks the schedule leaves out (after the budget) follow in `base`'s order, so that the
+/// mission can still finish the wall.
 pub fn flight_plan(
     wall: &Wall,
     cost: &CostModel,
     req: &ScheduleRequest,
     base: &[BrickId],
 ) -> CliResult<FlightPlan> {
-    let team = TeamModel::from_cost_model(cost);
-    let p = problem(wall, team.clone(), req)?;
-    let s = solve(&p, req)?.outcome.schedule.unwrap_or_default();
-    let mut listed = vec![false; wall.len()];
-    let mut order: Vec<BrickId> = Vec::with_capacity(wall.len());
-    for pl in &s.placements {
-        listed[pl.brick.index()] = true;
-        order.push(pl.brick);
-    }
-    order.extend(base.iter().copied().filter(|b| !listed[b.index()]));
-    Ok(FlightPlan {
-        team,
-        order,
-        lists: s.by_uav(req.uavs),
-    })
+    let request = FlightRequest {
+        objective: req.objective,
+        uavs: req.uavs,
+        budget_s: req.budget_s,
+        seed: req.seed,
+    };
+    mason_mission::flight_plan(wall, cost, &request, base, &search_budget(req.time_limit)).map_err(
+        |e| match e {
+            FlightPlanError::InvalidSchedule(e) => input_error(format!(
+                "internal error: the planner produced an invalid schedule: {e}"
+            )),
+            e => input_error(e.to_string()),
+        },
+    )
 }

@@ -6,10 +6,9 @@ use crate::cmd::schedule::{flight_plan, ScheduleRequest};
 use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
 use mason_io::FaultSpec;
 use mason_mission::{
-    for_each_run, run_many, Coord, Event, EventKind, MissionInput, MissionResult, MissionStatus,
-    Summariser, Summary, UavState,
+    for_each_run, run_many, Coord, Event, MissionInput, MissionResult, MissionStatus, Summariser,
 };
-use mason_report::text::{clock, policy_table, PolicyRow};
+use mason_report::text::{policy_table, result_table, summary_table, PolicyRow};
 use mason_report::{event_json, metrics_json};
 use std::path::PathBuf;
 
@@ -383,91 +382,11 @@ pub fn fly_summary(
     Ok(summary)
 }
 
-/// A readable single-run report.
-pub fn result_table(r: &MissionResult, trace: &[Event]) -> String {
-    let m = &r.metrics;
-    let mut s = format!(
-        "status: {:?}\nmakespan: {} ({} s); mission end {}\nbricks placed: {}/{}, reward {}, lost {}, UAVs failed {}\nzone utilisation: {:.1} %\n",
-        r.status,
-        m.makespan_s.map_or("-".into(), clock),
-        m.makespan_s.map_or("-".into(), |t| format!("{t:.1}")),
-        clock(m.end_s),
-        m.bricks_placed,
-        m.bricks_total,
-        m.reward,
-        m.bricks_lost,
-        m.uavs_failed,
-        m.zone_utilisation * 100.0
-    )
-    .to_lowercase();
-    s.push_str("seconds per UAV:   flying  detect+grasp  waiting  placing  idle/ground\n");
-    for (u, t) in m.time_in_state.iter().enumerate() {
-        let sum = |states: &[UavState]| states.iter().map(|s| t[s.index()]).sum::<f64>();
-        s.push_str(&format!(
-            "  UAV {u}        {:>8.1} {:>13.1} {:>8.1} {:>8.1} {:>12.1}\n",
-            sum(&[
-                UavState::TakeOff,
-                UavState::FlyToPile,
-                UavState::FlyToWallWait,
-                UavState::Land,
-                UavState::SafeLand
-            ]),
-            sum(&[UavState::Detect, UavState::FlyAbove, UavState::Grasp]),
-            sum(&[UavState::WaitForZone]),
-            sum(&[UavState::EnterAndPlace]),
-            sum(&[
-                UavState::Check,
-                UavState::ChooseBrick,
-                UavState::Landed,
-                UavState::Down
-            ]),
-        ));
-    }
-    let switches = trace
-        .iter()
-        .filter(|e| matches!(e.kind, EventKind::Comm { .. }))
-        .count();
-    if switches > 0 {
-        s.push_str(&format!("coordination mode switches: {switches}\n"));
-    }
-    s.push_str("trace checked by mission::check_trace\n");
-    s
-}
-
-/// A Monte Carlo summary table.
-pub fn summary_table(s: &Summary) -> String {
-    format!(
-        "runs: {}, walls completed: {}\n{:<18} {:>10} {:>10} {:>10}\n{:<18} {:>10} {:>10} {:>10}\n{:<18} {:>10.2} {:>10.2} {:>10.2}\n{:<18} {:>10.2} {:>10.2} {:>10.2}\n{:<18} {:>9.1}% {:>9.1}% {:>9.1}%\nevery trace checked by mission::check_trace\n",
-        s.runs,
-        s.completed,
-        "",
-        "mean",
-        "p5",
-        "p95",
-        "makespan",
-        clock(s.makespan_s.mean),
-        clock(s.makespan_s.p5),
-        clock(s.makespan_s.p95),
-        "bricks placed",
-        s.bricks_placed.mean,
-        s.bricks_placed.p5,
-        s.bricks_placed.p95,
-        "reward",
-        s.reward.mean,
-        s.reward.p5,
-        s.reward.p95,
-        "zone utilisation",
-        s.zone_utilisation.mean * 100.0,
-        s.zone_utilisation.p5 * 100.0,
-        s.zone_utilisation.p95 * 100.0,
-    )
-}
-
-/// A replan that failed `order::team::validate_continuation` is a bug: reported, exit 2.
+/// A replan that failed `order::schedule::validate_continuation` is a bug: reported, exit 2.
 pub fn check_replans(r: Option<&mason_mission::ScheduleReplanner>) -> CliResult<()> {
     match r.map(|r| r.rejected.load(std::sync::atomic::Ordering::Relaxed)) {
         Some(n) if n > 0 => Err(input_error(format!(
-            "internal error: {n} replans failed order::team::validate_continuation"
+            "internal error: {n} replans failed order::schedule::validate_continuation"
         ))),
         _ => Ok(()),
     }

@@ -1,8 +1,8 @@
 //! A simulated mission's trace turned into a log ([`write_trace`], [`mission_mcap`]): every
 //! event, and each UAV's poses, which the trace does not hold and are rebuilt here. The trace's
 //! state events give where each UAV is (x, y); between two of them it flies a straight leg,
-//! sampled at the ticks the [`PoseSampler`] asks for; its altitude comes from the altitude rule
-//! below.
+//! sampled at the ticks the [`PoseSampler`] asks for; its altitude comes from the project's one altitude
+//! rule, [`mason_mission::altitude`] (on the ground before take-off, climbing through it).
 //!
 //! The heading is the sampler's, shared with live agents: along the move from the last pose
 //! logged. Before the sampler, this conversion headed every pose of a leg along the whole leg,
@@ -12,28 +12,11 @@
 
 use super::pose_sampler::{ticks_between, PoseSampler};
 use super::{LogMeta, McapLog, McapLogError, UavPose};
-use mason_mission::{Event, EventKind, UavState};
+use mason_mission::{altitude, Event, EventKind};
+
+/// Cruise altitude of UAV `i` (m): the project's one altitude rule ([`mason_mission::altitude`]).
+pub use mason_mission::cruise_altitude;
 use std::io::{Cursor, Seek, Write};
-
-// ---------------------------------------------------------------------------------------------
-// The altitude rule: the only place report decides how high a UAV flies. (crates/mission is
-// to hold the one altitude rule of the project; this section then gives way to it.)
-
-/// Cruise altitude of UAV `i` (m): 3 + i, so that the UAVs fly at their own altitudes.
-pub fn cruise_altitude(uav: u32) -> f64 {
-    3.0 + f64::from(uav)
-}
-
-/// Altitude of UAV `uav` at the start of `state`: on the ground before take-off and after
-/// landing, at its cruise altitude otherwise (so take-off climbs and landing descends).
-fn altitude(uav: u32, state: UavState) -> f64 {
-    match state {
-        UavState::Check | UavState::TakeOff | UavState::Landed | UavState::Down => 0.0,
-        _ => cruise_altitude(uav),
-    }
-}
-
-// ---------------------------------------------------------------------------------------------
 
 /// A position (x east, y north, z up; m).
 type Position = (f64, f64, f64);
@@ -148,7 +131,7 @@ pub fn mission_mcap(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mason_mission::Arena;
+    use mason_mission::{Arena, UavState};
     use std::f64::consts::FRAC_PI_2;
 
     fn state(t: f64, uav: u32, state: UavState, x: f64, y: f64) -> Event {

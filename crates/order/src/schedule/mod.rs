@@ -7,7 +7,7 @@
 //! [`validate_schedule`] checks a schedule without knowing any planner.
 //!
 //! ```
-//! use mason_order::team::{plan_schedule, validate_schedule, Objective, TeamModel, TeamProblem};
+//! use mason_order::schedule::{plan_schedule, validate_schedule, Objective, TeamModel, TeamProblem};
 //! use mason_order::{Budget, Status};
 //!
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();

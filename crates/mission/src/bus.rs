@@ -1,11 +1,16 @@
 //! A team of [`Agent`]s on one virtual clock and a simulated bus that loses, duplicates,
-//! delays, reorders and cuts messages, and kills and restarts agents: the agents' protocol
-//! tested fast and deterministically, with the same code `mason agent` runs over Zenoh.
+//! delays, reorders and cuts messages ([`LinkFaults`], the same fault model as the real
+//! transport's), and kills and restarts agents: the agents' protocol tested fast and
+//! deterministically, with the same code `mason agent` runs over Zenoh.
+//!
+//! **Randomness.** The bus draws every message's [`Fate`] from one generator seeded with the
+//! run's seed, once per (message, receiver), receivers in UAV order; each vehicle draws from
+//! its own generator, seeded with [`agent_seed`]. A fault-free bus draws nothing.
 
-use crate::agent::{Agent, AgentSetup, Message, SimulatedVehicle};
-use crate::config::Window;
+use crate::agent::{agent_seed, Agent, AgentSetup, Message, SimulatedVehicle};
+use crate::link::{Fate, LinkFaults};
 use crate::state::{Event, EventKind, UavState};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
@@ -13,16 +18,8 @@ use std::collections::BinaryHeap;
 /// What the bus and the launcher do to the team.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BusFaults {
-    /// Probability that a message is lost.
-    pub loss: f64,
-    /// Probability that a message is delivered twice.
-    pub duplicate: f64,
-    /// Fixed latency (s).
-    pub latency: f64,
-    /// Extra random delay up to this (s): messages overtake each other.
-    pub jitter: f64,
-    /// Nothing gets through in these windows.
-    pub cuts: Vec<Window>,
+    /// What the radio link does to each message, per receiver.
+    pub link: LinkFaults,
     /// `(uav, t)`: the agent is killed at t (as `kill -9`: no last word).
     pub kills: Vec<(usize, f64)>,
     /// `(uav, t)`: the killed agent starts again at t, as a new incarnation.
@@ -90,7 +87,7 @@ pub fn killed_events(trace: &[Event], uav: u32, t: f64) -> Vec<Event> {
 
 /// A team run on the virtual bus.
 #[derive(Clone, Debug, PartialEq)]
-pub struct TeamRun {
+pub struct BusRun {
     /// Every agent's events (and the killed agents' last ones), by time.
     pub events: Vec<Event>,
     /// Whether every agent still running finished (landed or down) in time.
@@ -149,7 +146,7 @@ impl crate::agent::WallView for World {
 
 /// Flies `setup`'s team (`setup.uav` is ignored: one agent per UAV) on the virtual bus until
 /// every agent has finished or `setup.config.max_time_s` has passed.
-pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun {
+pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
     let n = setup.config.uavs;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let world = std::sync::Arc::new(World(std::sync::Mutex::new((
@@ -157,11 +154,8 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
         Vec::new(),
     ))));
     let make = |u: usize, incarnation: u64| {
-        let vehicle = SimulatedVehicle::new(
-            setup.config,
-            seed ^ (u as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ incarnation,
-        )
-        .with_world(world.clone());
+        let vehicle = SimulatedVehicle::new(setup.config, agent_seed(seed, u, incarnation))
+            .with_world(world.clone());
         Agent::new(
             AgentSetup {
                 uav: u,
@@ -183,7 +177,6 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
     let mut events: Vec<Event> = Vec::new();
     let (mut sent, mut delivered) = (0, 0);
     let max_t = setup.config.max_time_s;
-    let cut = |t: f64| faults.cuts.iter().any(|w| w.contains(t));
     loop {
         // The next thing to happen: a kill, a restart, a delivery or an agent's wake-up.
         let next_wake = (0..n)
@@ -260,17 +253,11 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
         for m in tick.messages {
             sent += 1;
             for to in (0..n).filter(|&v| v != target) {
-                if cut(t) || rng.gen::<f64>() < faults.loss {
+                let Fate::Delivered { first, second } = faults.link.fate(t, &mut rng) else {
                     continue;
-                }
-                let copies = if rng.gen::<f64>() < faults.duplicate {
-                    2
-                } else {
-                    1
                 };
-                for _ in 0..copies {
+                for delay in std::iter::once(first).chain(second) {
                     seq += 1;
-                    let delay = faults.latency + faults.jitter * rng.gen::<f64>();
                     queue.push(Reverse(Delivery {
                         t: t + delay,
                         seq,
@@ -283,10 +270,86 @@ pub fn fly_team(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> TeamRun
     }
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
     let finished = agents.iter().flatten().all(|a| a.finished());
-    TeamRun {
+    BusRun {
         events,
         finished,
         sent,
         delivered,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mason_wall::BrickId;
+
+    fn at(t: f64, uav: u32, kind: EventKind) -> Event {
+        Event { t, uav, kind }
+    }
+
+    fn state(t: f64, uav: u32, state: UavState) -> Event {
+        at(
+            t,
+            uav,
+            EventKind::State {
+                state,
+                outcome: "ok",
+                x: 1.0,
+                y: 2.0,
+            },
+        )
+    }
+
+    #[test]
+    fn an_agent_killed_in_the_zone_leaves_it_and_loses_its_brick() {
+        let b = BrickId(3);
+        let trace = vec![
+            state(1.0, 0, UavState::TakeOff),
+            at(5.0, 0, EventKind::Grasp { brick: b }),
+            at(9.0, 0, EventKind::ZoneEnter),
+        ];
+        let kinds: Vec<EventKind> = killed_events(&trace, 0, 10.0)
+            .into_iter()
+            .inspect(|e| assert_eq!((e.t, e.uav), (10.0, 0)))
+            .map(|e| e.kind)
+            .collect();
+        assert_eq!(
+            kinds,
+            vec![
+                EventKind::Fail,
+                EventKind::ZoneLeave,
+                EventKind::Lost { brick: b },
+                EventKind::State {
+                    state: UavState::Down,
+                    outcome: "killed",
+                    x: 0.0,
+                    y: 0.0
+                }
+            ]
+        );
+    }
+
+    #[test]
+    fn a_brick_its_partner_still_holds_does_not_fall() {
+        let b = BrickId(0);
+        let trace = vec![
+            at(5.0, 0, EventKind::Grasp { brick: b }),
+            at(5.0, 1, EventKind::Grasp { brick: b }),
+        ];
+        let lost = |events: Vec<Event>| {
+            events
+                .iter()
+                .any(|e| matches!(e.kind, EventKind::Lost { .. }))
+        };
+        assert!(!lost(killed_events(&trace, 0, 6.0)));
+        assert!(lost(killed_events(&trace[..1], 0, 6.0)));
+    }
+
+    #[test]
+    fn an_agent_on_the_ground_for_good_has_no_last_events() {
+        let trace = vec![state(1.0, 2, UavState::Landed)];
+        assert!(killed_events(&trace, 2, 5.0).is_empty());
+        let trace = vec![state(1.0, 2, UavState::Down)];
+        assert!(killed_events(&trace, 2, 5.0).is_empty());
     }
 }

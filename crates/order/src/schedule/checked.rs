@@ -42,7 +42,7 @@ pub fn schedule_checked(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::team::{Objective, TeamModel};
+    use crate::schedule::{Objective, TeamModel};
 
     #[test]
     fn a_checked_schedule_places_the_whole_wall() {
