@@ -1,6 +1,6 @@
 //! The TOML files: cost model (`--model`), mission (`--mission`, with its `[faults]` table) and
-//! team model (`plan --objective --model`), and the agents' network file (`agent --config`),
-//! each parsed and then validated.
+//! team model (`plan --objective --model`), the faults file (`simulate --faults`) and the
+//! agents' network file (`agent --config`), each parsed and then validated.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -22,6 +22,15 @@ fuzz_target!(|data: &[u8]| {
     }
     if let Ok(patch) = toml::from_str::<mason_order::schedule::TeamModelPatch>(text) {
         let _ = mason_order::schedule::TeamModel::from_patch(&patch, "fuzz");
+    }
+    if let Ok(spec) = toml::from_str::<mason_io::FaultSpec>(text) {
+        if let Ok(faults) = spec.resolve() {
+            let config = mason_mission::MissionConfig {
+                faults,
+                ..mason_mission::MissionConfig::with_uavs(3)
+            };
+            let _ = config.validate();
+        }
     }
     if let Ok(net) = toml::from_str::<mason_fleet::NetworkFile>(text) {
         for e in &net.listen {

@@ -1,6 +1,6 @@
 //! `mason bench paper`: the crew paper's Table 2 setting and the MovingAI warehouse.
 
-use crate::support::{input_error, BenchError, BenchResult};
+use crate::support::{benchmarks_dir, input_error, BenchError, BenchResult};
 use mason_crew::generate::{random_tasks, warehouse};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
@@ -195,20 +195,6 @@ pub fn paper(runs: usize, progress: &(dyn Fn() + Sync)) -> BenchResult<String> {
     text.push('\n');
     text.push_str(&movingai_warehouse()?);
     Ok(text)
-}
-
-/// Where the shared MAPF benchmarks are, if present.
-pub(crate) fn benchmarks_dir() -> Option<PathBuf> {
-    let candidates = [
-        std::env::var_os("MASON_BENCHMARKS").map(PathBuf::from),
-        Some(PathBuf::from("../shared/benchmarks")),
-        Some(PathBuf::from("benchmarks")),
-    ];
-    candidates
-        .into_iter()
-        .flatten()
-        .map(|d| d.join("mapf"))
-        .find(|d| d.join("maps").is_dir())
 }
 
 fn movingai_warehouse() -> BenchResult<String> {

@@ -1,5 +1,6 @@
-//! What a mission flies from a team schedule: plan the schedule ([`plan_schedule`]), check it
-//! with the validator that knows nothing of the planner ([`validate_schedule_claim`]), and
+//! What a mission flies from a team schedule: plan the schedule and check it with the validator
+//! that knows nothing of the planner ([`schedule_checked`]: `plan_schedule`, then
+//! `validate_schedule_claim`), and
 //! turn it into the shared order and the per-UAV lists the simulator and the agents fly.
 //!
 //! The shared order is the schedule's bricks by start time, then the bricks the schedule
@@ -20,8 +21,7 @@
 //! ```
 
 use mason_order::schedule::{
-    plan_schedule, validate_schedule_claim, Objective, ScheduleError, TeamModel, TeamProblem,
-    TeamProblemError,
+    schedule_checked, Objective, ScheduleError, TeamModel, TeamProblem, TeamProblemError,
 };
 use mason_order::{Budget, CostModel};
 use mason_wall::{BrickId, Wall};
@@ -94,18 +94,11 @@ pub fn flight_plan(
         request.budget_s,
         request.objective,
     )?;
-    let outcome = plan_schedule(&p, budget, request.seed);
-    let schedule = outcome.schedule.unwrap_or_default();
-    validate_schedule_claim(
-        p.wall(),
-        p.model(),
-        p.uavs(),
-        p.budget_s(),
-        &schedule,
-        outcome.reward,
-        outcome.makespan_s,
-    )
-    .map_err(FlightPlanError::InvalidSchedule)?;
+    let schedule = schedule_checked(&p, budget, request.seed)
+        .map_err(FlightPlanError::InvalidSchedule)?
+        .outcome
+        .schedule
+        .unwrap_or_default();
     let mut listed = vec![false; wall.len()];
     let mut order: Vec<BrickId> = Vec::with_capacity(wall.len());
     for pl in &schedule.placements {
@@ -154,7 +147,9 @@ mod tests {
         .unwrap();
         let team = TeamModel::from_cost_model(&cost);
         let p = TeamProblem::new(&wall, team.clone(), 3, None, Objective::Makespan).unwrap();
-        let s = plan_schedule(&p, &budget, 0).schedule.unwrap();
+        let s = mason_order::schedule::plan_schedule(&p, &budget, 0)
+            .schedule
+            .unwrap();
         let order: Vec<BrickId> = s.placements.iter().map(|pl| pl.brick).collect();
         assert_eq!(plan.team, team);
         assert_eq!(
