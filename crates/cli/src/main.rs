@@ -56,6 +56,7 @@ fn run(cli: Cli) -> fail::CliResult<()> {
     match cli.command {
         Command::Demo(a) => cmd::demo::run(a, quiet),
         Command::Wall { command } => cmd::wall::run(command),
+        Command::Plan(a) if a.objective.is_some() => cmd::schedule::run(a),
         Command::Plan(a) => cmd::plan::run(a),
         Command::Simulate(a) => cmd::simulate::run(a, quiet),
         Command::Agent(a) => cmd::agent::run(a, quiet),

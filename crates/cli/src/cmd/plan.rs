@@ -52,13 +52,10 @@ pub struct PlanArgs {
     pub html: Option<PathBuf>,
 }
 
-/// `mason plan`.
+/// `mason plan` without `--objective` (with it, [`super::schedule::run`]).
 pub fn run(a: PlanArgs) -> CliResult<()> {
     let started = std::time::Instant::now();
     check_outputs(&[&a.svg, &a.html])?;
-    if a.objective.is_some() {
-        return super::schedule::run(a, started);
-    }
     if a.uav_hazard.is_some() || a.budget.is_some() {
         return Err(input_error(
             "--budget and --uav-hazard belong to team schedules: add --objective",

@@ -1,7 +1,7 @@
 //! `mason plan --objective …`: team schedules — solve, validate, print a table or JSON.
 
 use crate::cmd::plan::{pretty, report_overrun, time_limit, PlanArgs};
-use crate::fail::{input_error, write_all, CliResult};
+use crate::fail::{check_outputs, input_error, write_all, CliResult};
 use mason_mission::{FlightPlan, FlightPlanError, FlightRequest};
 use mason_order::schedule::{
     schedule_checked, CheckedSchedule, Objective, TeamModel, TeamOutcome, TeamProblem,
@@ -14,7 +14,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 /// `mason plan --objective`.
-pub fn run(a: PlanArgs, started: std::time::Instant) -> CliResult<()> {
+pub fn run(a: PlanArgs) -> CliResult<()> {
+    let started = std::time::Instant::now();
+    check_outputs(&[&a.svg, &a.html])?;
     let req = ScheduleRequest::resolve(
         a.objective.as_deref().unwrap_or_default(),
         a.uavs,
