@@ -622,3 +622,38 @@ fn a_damaged_png_palette_is_refused_by_both_image_readers() {
         assert_input_error(&o, &["palette-5-bytes.png", "PLTE) is 5 bytes"]);
     }
 }
+
+/// #32: an output that is a device is written in place, a FIFO is refused, and neither is ever
+/// replaced by a regular file (atomic writes rename, which would replace them).
+#[cfg(unix)]
+#[test]
+fn outputs_never_replace_a_device_or_a_fifo() {
+    use std::os::unix::fs::FileTypeExt;
+    let o = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--mcap",
+        "/dev/null",
+        "--svg",
+        "/dev/null",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let t = std::fs::metadata("/dev/null").unwrap().file_type();
+    assert!(t.is_char_device(), "/dev/null is still a device");
+    let dir = scratch("fifo-out");
+    let fifo = dir.join("out.svg");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        let path = fifo.to_string_lossy().into_owned();
+        assert_input_error(
+            &mason(&["plan", "builtin:thesis-2x5", "--svg", &path]),
+            &["is a FIFO", "never replaced"],
+        );
+        assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    }
+    #[cfg(target_os = "linux")]
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--mcap", "/proc/version"]),
+        &["/proc/version", "cannot be written"],
+    );
+}

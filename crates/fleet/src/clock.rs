@@ -12,6 +12,9 @@ pub trait Clock {
 
 /// The fastest clock accepted: a heartbeat every millisecond of wall time.
 pub const MAX_SPEED: f64 = 1000.0;
+/// The slowest clock accepted: a mission second every 1000 wall seconds (slower would make
+/// every wait practically endless).
+pub const MIN_SPEED: f64 = 1e-3;
 
 /// The real clock: mission time = (wall time − `start_at`) × `speed`. Read from the system
 /// clock once, then from the monotonic clock, so that it never goes back; processes on one

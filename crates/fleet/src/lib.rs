@@ -52,14 +52,17 @@ pub mod world;
 pub mod zenoh_link;
 
 pub use agent::{fly_agent, AgentOptions, AgentReport, MAX_START_AHEAD_S};
-pub use clock::{unix_now, Clock, MissionClock, MAX_SPEED};
+pub use clock::{unix_now, Clock, MissionClock, MAX_SPEED, MIN_SPEED};
 pub use drive::{drive, Ending, LAST_WORD_REPEATS};
 pub use error::{FleetError, FleetResult};
 pub use faults::{FaultLayer, FaultStats};
 pub use launch::{launch, schedule, Action, AgentRun, Launch, LaunchOptions};
 pub use log::{AgentLog, JsonLines, McapAgentLog};
 pub use mason_mission::agent::agent_seed;
-pub use network::{check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX};
+pub use network::{
+    check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX, MAX_KEY_CHUNK,
+    MAX_PREFIX_CHUNKS,
+};
 pub use setting::FleetSetting;
 pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};
 pub use transport::{Hub, HubLink, Transport};

@@ -87,6 +87,12 @@ impl Network {
 
 /// Checks a Zenoh endpoint `proto/host:port` (tcp or udp; port 0 only to listen).
 pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
+    if e.chars().count() > MAX_ENDPOINT {
+        let head: String = e.chars().take(80).collect();
+        return Err(FleetError::bad(format!(
+            "{flag} `{head}…`: longer than {MAX_ENDPOINT} characters"
+        )));
+    }
     let bad = |why: &str| FleetError::bad(format!("{flag} `{e}`: {why}"));
     let (proto, addr) = e
         .split_once('/')
@@ -109,8 +115,37 @@ pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
     }
 }
 
-/// Checks one key chunk (`one`) or chunks joined by `/`: letters, digits and `- _ . ~ + =`.
+/// The longest endpoint, in characters.
+pub const MAX_ENDPOINT: usize = 256;
+/// The longest key chunk (mission id, each chunk of a prefix), in characters.
+pub const MAX_KEY_CHUNK: usize = 64;
+/// The most chunks in a key prefix.
+pub const MAX_PREFIX_CHUNKS: usize = 8;
+
+/// Checks one key chunk (`one`) or chunks joined by `/`: letters, digits and `- _ . ~ + =`,
+/// at most [`MAX_KEY_CHUNK`] characters each and [`MAX_PREFIX_CHUNKS`] chunks, before any
+/// transport sees them. The value is shown cut to 80 characters.
 pub fn check_chunks(flag: &str, s: &str, one: bool) -> FleetResult<()> {
+    let shown = || {
+        let n = s.chars().count();
+        if n > 80 {
+            format!(
+                "{}… ({n} characters)",
+                s.chars().take(80).collect::<String>()
+            )
+        } else {
+            s.to_string()
+        }
+    };
+    let chunks = s.split('/').count();
+    if s.split('/').any(|c| c.chars().count() > MAX_KEY_CHUNK)
+        || (!one && chunks > MAX_PREFIX_CHUNKS)
+    {
+        return Err(FleetError::bad(format!(
+            "{flag} `{}`: at most {MAX_KEY_CHUNK} characters per key chunk and {MAX_PREFIX_CHUNKS} chunks",
+            shown()
+        )));
+    }
     let chunk_ok = |c: &str| {
         !c.is_empty()
             && c.chars()
@@ -129,7 +164,10 @@ pub fn check_chunks(flag: &str, s: &str, one: bool) -> FleetResult<()> {
     } else {
         "key chunks of letters, digits and - _ . ~ + =, joined by /"
     };
-    Err(FleetError::bad(format!("{flag} `{s}`: expected {what}")))
+    Err(FleetError::bad(format!(
+        "{flag} `{}`: expected {what}",
+        shown()
+    )))
 }
 
 #[cfg(test)]
@@ -163,6 +201,12 @@ mod tests {
             assert!(check_chunks("--mission", bad, true).is_err(), "{bad}");
         }
         assert!(check_chunks("--prefix", "a//b", false).is_err());
+        let long = "m".repeat(70_000);
+        let e = check_chunks("--mission", &long, true)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at most 64 characters") && e.len() < 300, "{e}");
+        assert!(check_chunks("--prefix", "a/b/c/d/e/f/g/h/i", false).is_err());
         let n = Network::resolve(None, Some("m".into()), None, &[], &["tcp/h:1".into()]).unwrap();
         assert_eq!(n.prefix, DEFAULT_PREFIX);
         let e = Network::resolve(None, None, None, &[], &[])

@@ -1,6 +1,6 @@
 //! A fleet's setting: what every agent of a team shares besides its own number and network.
 
-use crate::clock::MAX_SPEED;
+use crate::clock::{MAX_SPEED, MIN_SPEED};
 use crate::error::{FleetError, FleetResult};
 use mason_mission::agent::{AgentSetup, DEFAULT_LEASE_S};
 use mason_mission::{Coord, LinkFaults, MissionConfig};
@@ -37,9 +37,9 @@ impl FleetSetting {
     /// Checks the settings a mission configuration does not cover: clock speed, declaration
     /// time and link faults (errors name the flag).
     pub fn check(&self) -> FleetResult<()> {
-        if !(self.speed.is_finite() && self.speed > 0.0 && self.speed <= MAX_SPEED) {
+        if !(self.speed.is_finite() && (MIN_SPEED..=MAX_SPEED).contains(&self.speed)) {
             return Err(FleetError::bad(format!(
-                "--speed {}: expected a factor in (0, {MAX_SPEED}]",
+                "--speed {:e}: expected a factor in [{MIN_SPEED}, {MAX_SPEED}]",
                 self.speed
             )));
         }
@@ -122,6 +122,9 @@ pub(crate) mod tests {
         let mut s = good.clone();
         s.speed = 0.0;
         assert!(s.check().unwrap_err().to_string().starts_with("--speed"));
+        let mut s = good.clone();
+        s.speed = 1e-300;
+        assert!(s.check().unwrap_err().to_string().contains("[0.001, 1000]"));
         let mut s = good.clone();
         s.link.loss = 1.5;
         assert!(s.check().unwrap_err().to_string().starts_with("--drop"));

@@ -11,11 +11,35 @@ use std::path::{Path, PathBuf};
 /// The largest trace file read (1 GiB).
 pub const MAX_TRACE_BYTES: u64 = 1 << 30;
 
-/// One line of a trace file as an event.
+/// The longest reason given for a bad line, in characters.
+const MAX_REASON_CHARS: usize = 200;
+
+/// A reason on one line: control characters (a newline the bad value carried) escaped, and
+/// cut to [`MAX_REASON_CHARS`].
+fn one_line(reason: &str) -> String {
+    let mut out: String = reason
+        .chars()
+        .flat_map(|c| {
+            if c.is_control() {
+                c.escape_default().collect::<Vec<_>>()
+            } else {
+                vec![c]
+            }
+        })
+        .take(MAX_REASON_CHARS)
+        .collect();
+    if reason.chars().count() > MAX_REASON_CHARS {
+        out.push('…');
+    }
+    out
+}
+
+/// One line of a trace file as an event; a bad line's reason is one line.
 pub fn parse_line(line: &str) -> Result<Event, String> {
     serde_json::from_str::<EventRecord>(line.trim_end())
         .map_err(|e| e.to_string())
         .and_then(EventRecord::into_event)
+        .map_err(|reason| one_line(&reason))
 }
 
 /// The events of a trace file's `text` (read from `path`, named in errors). When `killed`, a
@@ -142,6 +166,25 @@ mod tests {
         assert!(e.contains("line 2"), "{e}");
         let text = format!("{GOOD}\n{{\"t\":1.0,\"uav\":0,\"kind\":\"place\",\"brick\":-3}}\n");
         assert!(parse_trace(&text, Path::new("t.jsonl"), false).is_err());
+    }
+
+    /// Found by the `trace_file` fuzz target: serde echoed a bad value with its newline.
+    #[test]
+    fn a_bad_value_with_a_newline_is_reported_on_one_line() {
+        let text = "{\"t\":0.0,\"uav\":1,\"kind\":\"u\\n\\\"state\"}\n";
+        let e = parse_trace(text, Path::new("t.jsonl"), false)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("t.jsonl: line 1: "), "{e}");
+        assert!(!e.contains('\n'), "{e}");
+        let long = format!(
+            "{{\"t\":0.0,\"uav\":1,\"kind\":\"{}\"}}\n",
+            "x".repeat(5000)
+        );
+        let e = parse_trace(&long, Path::new("t.jsonl"), false)
+            .unwrap_err()
+            .to_string();
+        assert!(e.chars().count() < 260, "{e}");
     }
 
     #[test]

@@ -64,7 +64,8 @@ fn target(path: &Path) -> InputResult<Target> {
 }
 
 /// Checks, before any work, that an output can go to `path`: its folder exists (no folder is
-/// created), and `path` is a regular file, nothing yet, or a character device.
+/// created), `path` is a regular file, nothing yet, or a character device, and a file can be
+/// made in the folder (a read-only folder, or one like `/proc`, is named, not met halfway).
 pub fn check_output(path: &Path) -> InputResult<()> {
     let dir = folder_of(path);
     if !dir.is_dir() {
@@ -74,7 +75,27 @@ pub fn check_output(path: &Path) -> InputResult<()> {
             dir.display()
         )));
     }
-    target(path).map(|_| ())
+    if target(path)? == Target::File {
+        let probe = temporary(path);
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&probe)
+        {
+            Ok(_) => {
+                let _ = std::fs::remove_file(&probe);
+            }
+            // Another process of ours has the name: the folder is writable.
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            Err(e) => {
+                return Err(InputError::bad(format!(
+                    "{}: cannot be written there ({e})",
+                    path.display()
+                )))
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The temporary name `path` is written under before it is renamed into place.
@@ -155,6 +176,37 @@ mod tests {
         assert_eq!(std::fs::read(&a).unwrap(), b"1");
         let e = write_file(&dir, b"x").unwrap_err();
         assert!(e.to_string().contains("is a folder"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_file_that_cannot_be_written_is_named_as_such() {
+        let e = check_output(Path::new("/proc/version"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("/proc/version: cannot be written there"),
+            "{e}"
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_not_replaced() {
+        let dir = std::env::temp_dir().join(format!("mason-io-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = write_file(&fifo, b"x").unwrap_err().to_string();
+            assert!(
+                e.contains("is a FIFO") && e.contains("never replaced"),
+                "{e}"
+            );
+            use std::os::unix::fs::FileTypeExt;
+            assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
