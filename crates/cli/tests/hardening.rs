@@ -657,3 +657,36 @@ fn outputs_never_replace_a_device_or_a_fifo() {
         &["/proc/version", "cannot be written"],
     );
 }
+
+/// #32: a slot too short for any brick says so in words, and a kilobytes-long team-model base
+/// is cut in the message.
+#[test]
+fn a_tiny_slot_and_a_huge_base_get_short_clear_messages() {
+    assert_input_error(
+        &mason(&[
+            "simulate",
+            "builtin:thesis-2x5",
+            "--coord",
+            "windows",
+            "--slot",
+            "5e-324",
+        ]),
+        &["slot", "too small"],
+    );
+    let dir = scratch("huge-base");
+    let model = write(
+        &dir,
+        "team.toml",
+        format!("base = \"{}\"\n", "x".repeat(5000)),
+    );
+    let o = mason(&[
+        "plan",
+        "builtin:thesis-2x5",
+        "--objective",
+        "makespan",
+        "--model",
+        &model,
+    ]);
+    assert_input_error(&o, &["team.toml", "(5000 characters)"]);
+    assert!(stderr(&o).len() < 400, "{}", stderr(&o));
+}

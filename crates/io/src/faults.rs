@@ -7,41 +7,21 @@ use mason_mission::{Faults, MissionConfig, UavFailure, Window};
 use serde::Deserialize;
 use std::path::Path;
 
-/// Parses a time in seconds: finite and ≥ 0.
-fn seconds(x: &str) -> Option<f64> {
-    x.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite() && *v >= 0.0)
-}
-
-/// Parses `A-B`: a window of mission seconds, 0 ≤ A < B. Errors name `flag` and the value.
+/// Parses `A-B`: a window of mission seconds, 0 ≤ A < B ([`Window`]'s one parser). Errors
+/// name `flag` and the value.
 pub fn parse_window(flag: &str, s: &str) -> InputResult<Window> {
-    let bad = |why: &str| InputError::bad(format!("{flag} `{s}`: {why}"));
-    let (a, b) = s
-        .split_once('-')
-        .ok_or_else(|| bad("expected A-B in mission seconds, e.g. 100-125"))?;
-    let num = |x: &str| seconds(x).ok_or_else(|| bad(&format!("`{x}` is not a time in seconds")));
-    let (from, to) = (num(a)?, num(b)?);
-    if from >= to {
-        return Err(bad("the window ends before it starts"));
-    }
-    Ok(Window { from, to })
+    s.parse()
+        .map_err(|why| InputError::bad(format!("{flag} `{s}`: {why}")))
 }
 
-/// Parses `U@T`: UAV U (0-based) at mission time T ≥ 0 s. Errors name `flag` and the value.
-/// Whether U is in the team is the caller's check ([`check_uav`]).
+/// Parses `U@T`: UAV U (0-based) at mission time T ≥ 0 s ([`UavFailure`]'s one parser).
+/// Errors name `flag` and the value. Whether U is in the team is the caller's check
+/// ([`check_uav`]).
 pub fn parse_at(flag: &str, s: &str) -> InputResult<(usize, f64)> {
-    let bad = |why: String| InputError::bad(format!("{flag} `{s}`: {why}"));
-    let (u, t) = s
-        .split_once('@')
-        .ok_or_else(|| bad("expected U@T, e.g. 1@300".into()))?;
-    let uav = u
-        .trim()
-        .parse::<usize>()
-        .map_err(|_| bad(format!("`{u}` is not a UAV number")))?;
-    let at = seconds(t).ok_or_else(|| bad(format!("`{t}` is not a time in seconds")))?;
-    Ok((uav, at))
+    let f: UavFailure = s
+        .parse()
+        .map_err(|why| InputError::bad(format!("{flag} `{s}`: {why}")))?;
+    Ok((f.uav, f.at))
 }
 
 /// Checks that UAV `uav` of the value `s` given to `flag` is in a team of `uavs`.

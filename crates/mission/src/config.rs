@@ -65,8 +65,8 @@ impl Default for CoordParams {
     }
 }
 
-/// A time window, seconds.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// A time window, seconds. Written as a table `{from = A, to = B}` or as the string `"A-B"`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Window {
     /// Start.
     pub from: f64,
@@ -81,13 +81,125 @@ impl Window {
     }
 }
 
-/// A UAV failing at a given time.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// A UAV failing at a given time. Written as a table `{uav = U, at = T}` or as the string
+/// `"U@T"`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct UavFailure {
     /// 0-based UAV.
     pub uav: usize,
     /// Time, seconds.
     pub at: f64,
+}
+
+/// A time in seconds, finite and ≥ 0.
+fn seconds(x: &str) -> Option<f64> {
+    x.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v >= 0.0)
+}
+
+/// `A-B` in seconds, 0 ≤ A < B: the one parser of windows (flags and files alike).
+impl std::str::FromStr for Window {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (a, b) = s
+            .split_once('-')
+            .ok_or("expected A-B in mission seconds, e.g. 100-125")?;
+        let num = |x: &str| seconds(x).ok_or(format!("`{x}` is not a time in seconds"));
+        let (from, to) = (num(a)?, num(b)?);
+        if from >= to {
+            return Err("the window ends before it starts".into());
+        }
+        Ok(Window { from, to })
+    }
+}
+
+/// `U@T`: UAV U (0-based) at T ≥ 0 s: the one parser of timed failures (flags and files).
+impl std::str::FromStr for UavFailure {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (u, t) = s.split_once('@').ok_or("expected U@T, e.g. 1@300")?;
+        let uav = u
+            .trim()
+            .parse::<usize>()
+            .map_err(|_| format!("`{u}` is not a UAV number"))?;
+        let at = seconds(t).ok_or(format!("`{t}` is not a time in seconds"))?;
+        Ok(UavFailure { uav, at })
+    }
+}
+
+/// A value cut to 80 characters for a message.
+fn shown(s: &str) -> String {
+    let n = s.chars().count();
+    if n > 80 {
+        format!(
+            "{}… ({n} characters)",
+            s.chars().take(80).collect::<String>()
+        )
+    } else {
+        s.to_string()
+    }
+}
+
+impl<'de> Deserialize<'de> for Window {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Table {
+            from: f64,
+            to: f64,
+        }
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Form {
+            Table(Table),
+            Text(String),
+        }
+        use serde::de::Error;
+        match Form::deserialize(d).map_err(|_| {
+            D::Error::custom("expected a window as {from = A, to = B} or \"A-B\" (seconds)")
+        })? {
+            Form::Table(t) => Ok(Window {
+                from: t.from,
+                to: t.to,
+            }),
+            Form::Text(s) => s
+                .parse()
+                .map_err(|why| D::Error::custom(format!("`{}`: {why}", shown(&s)))),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for UavFailure {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Table {
+            uav: usize,
+            at: f64,
+        }
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Form {
+            Table(Table),
+            Text(String),
+        }
+        use serde::de::Error;
+        match Form::deserialize(d).map_err(|_| {
+            D::Error::custom(
+                "expected a UAV failure as {uav = U, at = T} or \"U@T\" (0-based UAV, seconds)",
+            )
+        })? {
+            Form::Table(t) => Ok(UavFailure {
+                uav: t.uav,
+                at: t.at,
+            }),
+            Form::Text(s) => s
+                .parse()
+                .map_err(|why| D::Error::custom(format!("`{}`: {why}", shown(&s)))),
+        }
+    }
 }
 
 /// Every fault of DESIGN §5.
@@ -284,5 +396,62 @@ impl MissionConfig {
             ));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn failures_and_windows_read_as_tables_or_as_text() {
+        let f: Faults = serde_json::from_str(
+            r#"{"uav_fail": [{"uav": 1, "at": 10.0}, "2@30"], "blackout": ["100-160", {"from": 5.0, "to": 6.0}]}"#,
+        )
+        .unwrap();
+        assert_eq!(f.uav_fail[1], UavFailure { uav: 2, at: 30.0 });
+        assert_eq!(
+            f.blackout[0],
+            Window {
+                from: 100.0,
+                to: 160.0
+            }
+        );
+        assert_eq!(f.blackout[1], Window { from: 5.0, to: 6.0 });
+    }
+
+    #[test]
+    fn a_bad_entry_names_the_accepted_forms() {
+        let e = serde_json::from_str::<Faults>(r#"{"uav_fail": [7]}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("{uav = U, at = T} or \"U@T\""), "{e}");
+        let e = serde_json::from_str::<Faults>(r#"{"uav_fail": ["1-10"]}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`1-10`: expected U@T"), "{e}");
+        let e = serde_json::from_str::<Faults>(r#"{"blackout": ["9-3"]}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("ends before it starts"), "{e}");
+        let long = format!(r#"{{"blackout": ["{}"]}}"#, "9".repeat(500));
+        let e = serde_json::from_str::<Faults>(&long)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("(500 characters)"), "{e}");
+    }
+
+    #[test]
+    fn text_forms_parse_once() {
+        assert_eq!(
+            "1@300".parse::<UavFailure>().unwrap(),
+            UavFailure { uav: 1, at: 300.0 }
+        );
+        for bad in ["1", "x@3", "1@-3", "1@nan", "-1@3"] {
+            assert!(bad.parse::<UavFailure>().is_err(), "{bad}");
+        }
+        for bad in ["100", "125-100", "a-b", "-5-10", "10-inf", "5-5"] {
+            assert!(bad.parse::<Window>().is_err(), "{bad}");
+        }
     }
 }

@@ -60,7 +60,7 @@ pub fn slot_length(
             value: Some(format!("{s}"))
                 .filter(|v| v.len() <= 16)
                 .unwrap_or_else(|| format!("{s:e}")),
-            reason: format!("a brick of this wall may need {longest:.1} s in the zone, so it could never enter; use at least that"),
+            reason: format!("too small: a brick of this wall may need {longest:.1} s in the zone, so it could never enter; use at least that"),
         }),
         Some(s) => Ok(s),
         None => Ok(DEFAULT_SLOT_S.max(longest.ceil())),

@@ -179,7 +179,15 @@ impl TeamModel {
     pub fn from_patch(patch: &TeamModelPatch, name: &str) -> Result<TeamModel, TeamModelError> {
         let base = patch.base.as_deref().unwrap_or("thesis");
         let mut m = TeamModel::builtin(base).ok_or_else(|| TeamModelError {
-            field: format!("base = \"{base}\""),
+            field: {
+                let n = base.chars().count();
+                let head: String = base.chars().take(80).collect();
+                if n > 80 {
+                    format!("base = \"{head}…\" ({n} characters)")
+                } else {
+                    format!("base = \"{head}\"")
+                }
+            },
             value: f64::NAN,
             reason: "unknown base model: expected \"thesis\" or \"cmcp\"",
         })?;
