@@ -690,3 +690,44 @@ fn a_tiny_slot_and_a_huge_base_get_short_clear_messages() {
     assert_input_error(&o, &["team.toml", "(5000 characters)"]);
     assert!(stderr(&o).len() < 400, "{}", stderr(&o));
 }
+
+/// #32: a tiny hazard keeps the expected reward under its bound, and a placing phase shorter
+/// than a millisecond (which the validator's tolerance could not tell from none) is refused.
+#[test]
+fn bounds_hold_at_a_tiny_hazard_and_near_zero_durations_are_refused() {
+    let o = mason(&[
+        "plan",
+        "builtin:thesis-2x5",
+        "--objective",
+        "expected",
+        "--uav-hazard",
+        "1e-18",
+        "--budget",
+        "300",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (e, b) = (
+        v["expected_reward"].as_f64().unwrap(),
+        v["bound"].as_f64().unwrap(),
+    );
+    assert!(e <= b + 1e-9, "expected {e} over its bound {b}");
+    let dir = scratch("tiny-place");
+    let model = write(
+        &dir,
+        "team.toml",
+        "base = \"cmcp\"\n[red]\nplace_s = 1e-10\n",
+    );
+    assert_input_error(
+        &mason(&[
+            "plan",
+            "builtin:thesis-2x5",
+            "--objective",
+            "makespan",
+            "--model",
+            &model,
+        ]),
+        &["team.toml", "red.place_s", "0.001"],
+    );
+}

@@ -552,3 +552,35 @@ fn validate_continuation_checks_the_start_state() {
     let r = check(vec![pl(1, &[0], 10.0), pl(2, &[1], 40.0)]);
     assert!(matches!(r, Err(ScheduleError::Precedence { .. })), "{r:?}");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+
+    /// #32: at the extremes of every duration the model accepts (10⁻³ to 10⁷ s) and of the
+    /// hazard (10⁻³⁰⁰ to 10³ per hour), each checked schedule stays on its side of its own
+    /// bound (`schedule_checked` refuses one that does not).
+    #[test]
+    fn objectives_stay_within_their_bounds_at_extreme_values(
+        place_exp in -3.0f64..7.0,
+        rest_exp in -3.0f64..7.0,
+        hazard_exp in -300.0f64..3.0,
+        which in 0usize..3,
+        seed in 0u64..1000,
+    ) {
+        let mut model = TeamModel::cmcp();
+        for t in model.types.iter_mut() {
+            t.place_s = 10f64.powf(place_exp);
+            t.cycle_rest_s = 10f64.powf(rest_exp);
+        }
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let whole = 20.0 * (10f64.powf(place_exp) + 10f64.powf(rest_exp));
+        let (objective, budget) = match which {
+            0 => (Objective::Makespan, None),
+            1 => (Objective::Reward, Some(whole / 3.0)),
+            _ => (Objective::Expected { hazard_per_hour: 10f64.powf(hazard_exp) }, Some(whole / 3.0)),
+        };
+        let p = TeamProblem::new(&wall, model, 3, budget, objective).unwrap();
+        let checked = mason_order::schedule::schedule_checked(&p, &Budget::nodes(50), seed);
+        prop_assert!(checked.is_ok(), "{:?}", checked.err());
+    }
+}

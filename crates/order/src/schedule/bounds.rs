@@ -281,8 +281,11 @@ pub fn reward_upper_bound(p: &TeamProblem<'_>, budget: f64) -> RewardBound {
 /// `hazard_per_hour` (exponential), for any policy.
 pub fn expected_reward_upper_bound(p: &TeamProblem<'_>, budget: f64, hazard_per_hour: f64) -> f64 {
     let rate = hazard_per_hour / 3600.0;
+    // (1 − e^(−rT))/r, written with exp_m1 so that a tiny rate keeps its precision (with
+    // `1 − exp` a rate of 1e-18/h gave 0 and a bound far below the reward), and never more
+    // than T.
     let uav_time = if rate > 0.0 {
-        (1.0 - (-rate * budget).exp()) / rate
+        (-(-rate * budget).exp_m1() / rate).min(budget)
     } else {
         budget
     };

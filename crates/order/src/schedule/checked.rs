@@ -1,8 +1,8 @@
 //! A schedule planned and checked by [`validate_schedule_claim`], the independent oracle.
 
 use super::{
-    plan_schedule, validate_schedule_claim, ScheduleError, ScheduleEvaluation, TeamOutcome,
-    TeamProblem,
+    plan_schedule, validate_schedule_claim, Objective, ScheduleError, ScheduleEvaluation,
+    TeamOutcome, TeamProblem,
 };
 use crate::Budget;
 
@@ -33,10 +33,36 @@ pub fn schedule_checked(
         outcome.reward,
         outcome.makespan_s,
     )?;
+    check_bound(p, &outcome)?;
     Ok(CheckedSchedule {
         outcome,
         evaluation,
     })
+}
+
+/// The objective must lie on its side of the proven bound: a makespan at or above its lower
+/// bound, a reward or expected reward at or below its upper bound (up to rounding).
+fn check_bound(p: &TeamProblem<'_>, o: &TeamOutcome) -> Result<(), ScheduleError> {
+    if o.schedule.is_none() || !o.bound.is_finite() {
+        return Ok(());
+    }
+    let slack = 1e-9 * o.bound.abs().max(1.0);
+    let (objective, value, outside) = match p.objective() {
+        Objective::Makespan => ("makespan", o.makespan_s, o.makespan_s < o.bound - slack),
+        Objective::Reward => ("reward", o.reward, o.reward > o.bound + slack),
+        Objective::Expected { .. } => {
+            let v = o.expected_reward.unwrap_or(o.reward);
+            ("expected reward", v, v > o.bound + slack)
+        }
+    };
+    if outside {
+        return Err(ScheduleError::OutsideBound {
+            objective,
+            value,
+            bound: o.bound,
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -50,5 +76,36 @@ mod tests {
         let p = TeamProblem::new(&wall, TeamModel::cmcp(), 3, None, Objective::Makespan).unwrap();
         let c = schedule_checked(&p, &Budget::nodes(200), 1).unwrap();
         assert_eq!(c.evaluation.bricks, 5);
+    }
+
+    /// #32: with a hazard of 1e-18 per hour the expected-reward bound lost all precision and
+    /// fell far below the reward any schedule gets; it is now sound, and checked.
+    #[test]
+    fn the_expected_reward_stays_under_its_bound_at_tiny_hazards() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        for h in [1e-300, 1e-18, 1e-6, 1.0, 1e3] {
+            let objective = Objective::Expected { hazard_per_hour: h };
+            let p =
+                TeamProblem::new(&wall, TeamModel::thesis(), 3, Some(300.0), objective).unwrap();
+            let c = schedule_checked(&p, &Budget::nodes(300), 0).unwrap();
+            let v = c.outcome.expected_reward.unwrap();
+            assert!(
+                v <= c.outcome.bound + 1e-9,
+                "h {h}: {v} > {}",
+                c.outcome.bound
+            );
+        }
+    }
+
+    #[test]
+    fn an_objective_beyond_its_bound_is_caught() {
+        let wall = mason_wall::parse_layer_text("R G\nB R R", "t").unwrap();
+        let p = TeamProblem::new(&wall, TeamModel::cmcp(), 3, None, Objective::Makespan).unwrap();
+        let mut o = plan_schedule(&p, &Budget::nodes(200), 1);
+        o.bound = o.makespan_s * 2.0;
+        assert!(matches!(
+            check_bound(&p, &o),
+            Err(ScheduleError::OutsideBound { .. })
+        ));
     }
 }

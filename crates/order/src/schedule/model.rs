@@ -55,6 +55,9 @@ pub struct TeamModel {
 
 /// The longest placing phase or rest a model may set (s).
 pub const MAX_SECONDS: f64 = 1e7;
+/// The shortest placing phase accepted (s): a thousand times the validator's time tolerance
+/// ([`super::TIME_EPS`]), so that no two placements can hide inside it.
+pub const MIN_PLACE_S: f64 = 1e-3;
 /// The largest reward a model may set.
 pub const MAX_REWARD: f64 = 1e9;
 /// The largest concurrency distance (m): beyond it the conflict lists grow with the square of
@@ -124,7 +127,7 @@ impl TeamModel {
         &self.types[kind.index()]
     }
 
-    /// Checks every parameter: placing in (0, 10⁷] s, rest in [0, 10⁷] s, 1–2 UAVs per brick,
+    /// Checks every parameter: placing in [10⁻³, 10⁷] s, rest in [0, 10⁷] s, 1–2 UAVs per brick,
     /// rewards in [0, 10⁹], a distance in [0, 10] m.
     pub fn validate(&self) -> Result<(), TeamModelError> {
         let err = |field: String, value: f64, reason| {
@@ -137,11 +140,11 @@ impl TeamModel {
         for kind in BrickType::ALL {
             let t = self.of(kind);
             let n = kind.name();
-            if !(t.place_s > 0.0 && t.place_s <= MAX_SECONDS) {
+            if !(MIN_PLACE_S..=MAX_SECONDS).contains(&t.place_s) {
                 return err(
                     format!("{n}.place_s"),
                     t.place_s,
-                    "must be a number of seconds in (0, 10⁷]",
+                    "must be a number of seconds in [0.001, 10⁷] (a shorter placing phase is not a physical one)",
                 );
             }
             if !(0.0..=MAX_SECONDS).contains(&t.cycle_rest_s) {

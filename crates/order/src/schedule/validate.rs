@@ -117,6 +117,16 @@ pub enum ScheduleError {
         "brick {0} was on its way but the replan drops it, changes its crew or starts it too early"
     )]
     Committed(u32),
+    /// A planner's objective lies on the wrong side of its own proven bound.
+    #[error("the {objective} {value} lies beyond its proven bound {bound}")]
+    OutsideBound {
+        /// `makespan`, `reward` or `expected reward`.
+        objective: &'static str,
+        /// The reported value.
+        value: f64,
+        /// The bound.
+        bound: f64,
+    },
     /// The reported reward or makespan is not what the schedule gives.
     #[error("reported {what} {claimed} but the schedule gives {actual}")]
     Claim {
