@@ -731,3 +731,15 @@ fn bounds_hold_at_a_tiny_hazard_and_near_zero_durations_are_refused() {
         &["team.toml", "red.place_s", "0.001"],
     );
 }
+
+/// #32: a CMCP file of 3 000 bricks in one spot (4.5 million overlapping pairs) is refused at
+/// once by `plan` and `wall show`, naming the limit, instead of planning or listing them all.
+#[test]
+fn thousands_of_piled_bricks_are_refused_by_name() {
+    let dir = scratch("piled");
+    let text: String = (1..=3000).map(|i| format!("{i} 1 0 0 0.1 0\n")).collect();
+    let wall = write(&dir, "piled.txt", text);
+    for args in [vec!["plan", &wall], vec!["wall", "show", &wall]] {
+        assert_input_error(&mason(&args), &["piled.txt", "MAX_PAIRS"]);
+    }
+}

@@ -103,16 +103,13 @@ pub fn load_wall(
         if let (true, Some(w)) = (strict, wall.warnings().first()) {
             return Err(InputError::bad(format!("{design}: {w} (--strict)")));
         }
-        let (overlaps, other): (Vec<&String>, Vec<&String>) = wall
-            .warnings()
-            .iter()
-            .partition(|w| w.contains(" overlap by "));
-        match overlaps.as_slice() {
-            [] => {}
-            [one] => warnings.push(format!("{design}: {one}")),
-            [first, ..] => warnings.push(format!(
-                "{design}: {} pairs of same-level bricks overlap, e.g. {first} (`mason wall show` lists them)",
-                overlaps.len()
+        let (overlaps, other): (Vec<&String>, Vec<&String>) =
+            wall.warnings().iter().partition(|w| w.contains(" overlap"));
+        match (wall.overlapping_pairs(), overlaps.first()) {
+            (0, _) | (_, None) => {}
+            (1, Some(one)) => warnings.push(format!("{design}: {one}")),
+            (n, Some(first)) => warnings.push(format!(
+                "{design}: {n} pairs of same-level bricks overlap, e.g. {first} (`mason wall show` lists them)"
             )),
         }
         warnings.extend(other.iter().map(|w| format!("{design}: {w}")));

@@ -223,6 +223,37 @@ mod tests {
         assert_eq!(w.warnings().len(), 1);
     }
 
+    /// #32: 1 200 bricks in one spot list the first 1 000 overlaps and count the rest, and
+    /// 3 000 (4.5 million overlapping pairs) are refused before planning, not listed.
+    #[test]
+    fn piled_bricks_are_counted_then_refused() {
+        let pile = |n: usize| {
+            (1..=n)
+                .map(|i| format!("{i} 1 0 0 0.1 0\n"))
+                .collect::<String>()
+        };
+        let w = parse_cmcp(&pile(1_200), "t", CmcpSizes::Yaml).unwrap();
+        let pairs = 1_200 * 1_199 / 2;
+        assert_eq!(w.overlapping_pairs(), pairs);
+        assert_eq!(w.warnings().len(), crate::limits::MAX_OVERLAP_WARNINGS + 1);
+        assert!(w
+            .warnings()
+            .last()
+            .unwrap()
+            .contains(&format!("{} more", pairs - 1_000)));
+        let e = parse_cmcp(&pile(3_000), "t", CmcpSizes::Yaml).unwrap_err();
+        assert!(
+            matches!(
+                e.kind,
+                WallErrorKind::TooLarge {
+                    name: "MAX_PAIRS",
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+
     #[test]
     fn malformed_lines_are_reported() {
         let cases: &[(&str, WallErrorKind)] = &[

@@ -18,6 +18,7 @@ pub struct Wall {
     neighbours: Vec<Vec<BrickId>>,
     levels: u32,
     warnings: Vec<String>,
+    overlapping_pairs: usize,
 }
 
 fn location_of(origin: Origin) -> Location {
@@ -127,6 +128,19 @@ impl Wall {
         let mut neighbours = vec![Vec::new(); n];
         let mut warnings = Vec::new();
         let mut floating = 0usize;
+        let mut overlapping_pairs = 0usize;
+        let mut pairs = 0usize;
+        let too_many_pairs = || {
+            WallError::new(
+                source_name,
+                Location::Whole,
+                WallErrorKind::TooLarge {
+                    what: "related brick pairs (supports, neighbours, overlaps)",
+                    limit: crate::limits::MAX_PAIRS as u64,
+                    name: "MAX_PAIRS",
+                },
+            )
+        };
 
         for (i, b) in bricks.iter().enumerate() {
             let f = &b.footprint;
@@ -137,6 +151,10 @@ impl Wall {
                     if s.segment == b.segment && s.footprint.overlaps(f) {
                         supports[i].push(BrickId(j as u32));
                         carried[j].push(BrickId(i as u32));
+                        pairs += 1;
+                        if pairs > crate::limits::MAX_PAIRS {
+                            return Err(too_many_pairs());
+                        }
                     }
                 }
                 if supports[i].is_empty() && allow_floating {
@@ -159,7 +177,18 @@ impl Wall {
                 if j <= i || o.segment != b.segment {
                     continue;
                 }
+                if o.footprint.overlaps(f) || o.footprint.faces(f) {
+                    pairs += 1;
+                    if pairs > crate::limits::MAX_PAIRS {
+                        return Err(too_many_pairs());
+                    }
+                }
                 if o.footprint.overlaps(f) {
+                    overlapping_pairs += 1;
+                }
+                if o.footprint.overlaps(f)
+                    && overlapping_pairs <= crate::limits::MAX_OVERLAP_WARNINGS
+                {
                     warnings.push(format!(
                         "bricks {} and {} on level {} overlap by {:.3} m × {:.3} m",
                         b.label,
@@ -174,6 +203,13 @@ impl Wall {
                     neighbours[j].push(BrickId(i as u32));
                 }
             }
+        }
+        if overlapping_pairs > crate::limits::MAX_OVERLAP_WARNINGS {
+            warnings.push(format!(
+                "… and {} more pairs of same-level bricks overlap (the first {} are listed)",
+                overlapping_pairs - crate::limits::MAX_OVERLAP_WARNINGS,
+                crate::limits::MAX_OVERLAP_WARNINGS
+            ));
         }
         if floating > 0 {
             warnings.push(format!(
@@ -196,6 +232,7 @@ impl Wall {
             neighbours,
             levels,
             warnings,
+            overlapping_pairs,
         })
     }
 
@@ -249,7 +286,13 @@ impl Wall {
         &self.neighbours[id.index()]
     }
 
-    /// Non-fatal findings, e.g. overlapping same-level footprints.
+    /// How many pairs of same-level bricks overlap (a CMCP wall may have some).
+    pub fn overlapping_pairs(&self) -> usize {
+        self.overlapping_pairs
+    }
+
+    /// What a reader accepted but a person should know (overlapping same-level bricks, at most
+    /// [`crate::limits::MAX_OVERLAP_WARNINGS`] of them one by one; floating bricks).
     pub fn warnings(&self) -> &[String] {
         &self.warnings
     }
