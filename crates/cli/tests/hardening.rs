@@ -743,3 +743,33 @@ fn thousands_of_piled_bricks_are_refused_by_name() {
         assert_input_error(&mason(&args), &["piled.txt", "MAX_PAIRS"]);
     }
 }
+
+/// #32: a model value that makes the team model of `simulate --objective` invalid names the
+/// `--model` file it came from, and arenas of thousands of points are refused.
+#[test]
+fn a_bad_team_model_from_a_cost_model_names_the_file() {
+    let dir = scratch("slow-model");
+    // κ₂ · drop = 10⁸ s of placing: a valid cost model, an invalid team model.
+    let model = write(
+        &dir,
+        "slow.toml",
+        "kappa = [1.0, 1000.0, 1000.0]\n[red]\ndrop = 100000.0\n",
+    );
+    let o = mason(&[
+        "simulate",
+        "builtin:thesis-2x5",
+        "--objective",
+        "makespan",
+        "--model",
+        &model,
+    ]);
+    assert_input_error(&o, &["slow.toml", "red.place_s"]);
+    let starts: String = (0..20_000)
+        .map(|_| "[[arena.uav_starts]]\nx = 1.0\ny = 1.0\n")
+        .collect();
+    let mission = write(&dir, "arena.toml", starts);
+    assert_input_error(
+        &mason(&["simulate", "builtin:thesis-2x5", "--mission", &mission]),
+        &["arena.toml", "MAX_ARENA_POINTS"],
+    );
+}

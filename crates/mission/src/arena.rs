@@ -48,6 +48,11 @@ pub struct Arena {
     pub wall_waits: Vec<Point>,
 }
 
+/// The most UAV starts or wall waiting points an arena may list.
+pub const MAX_ARENA_POINTS: usize = 256;
+/// The longest side of an arena (m).
+pub const MAX_ARENA_M: f64 = 100_000.0;
+
 /// The thesis's pile→wall flight times t_f (s), red, green, blue, orange.
 pub const CALIBRATED_FLIGHT: [f64; 4] = [22.5, 18.5, 22.5, 25.0];
 
@@ -97,6 +102,22 @@ impl Arena {
         if self.uav_starts.is_empty() || self.wall_waits.is_empty() {
             return Err("the arena needs at least one UAV start and one wall waiting point".into());
         }
+        for (what, n) in [
+            ("UAV starts", self.uav_starts.len()),
+            ("wall waiting points", self.wall_waits.len()),
+        ] {
+            if n > MAX_ARENA_POINTS {
+                return Err(format!(
+                    "{n} {what}: at most {MAX_ARENA_POINTS} (MAX_ARENA_POINTS), one per UAV is enough"
+                ));
+            }
+        }
+        if !(self.width <= MAX_ARENA_M && self.depth <= MAX_ARENA_M) {
+            return Err(format!(
+                "an arena of {} × {} m: at most {MAX_ARENA_M} m a side (MAX_ARENA_M)",
+                self.width, self.depth
+            ));
+        }
         let inside = |p: &Point| {
             p.x.is_finite()
                 && p.y.is_finite()
@@ -128,6 +149,18 @@ impl Arena {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// #32: a mission file listing 20 000 positions is refused before anything is built.
+    #[test]
+    fn an_arena_of_thousands_of_points_is_refused() {
+        let mut a = Arena::default();
+        a.uav_starts = vec![a.uav_starts[0]; 20_000];
+        let e = a.validate().unwrap_err();
+        assert!(e.contains("MAX_ARENA_POINTS"), "{e}");
+        let mut a = Arena::default();
+        a.width = 1e300;
+        assert!(a.validate().unwrap_err().contains("MAX_ARENA_M"));
+    }
 
     #[test]
     fn default_arena_is_calibrated_to_the_thesis() {

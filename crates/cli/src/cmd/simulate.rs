@@ -143,7 +143,13 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
             None
         };
         let req = ScheduleRequest::resolve(objective, m.uavs, a.budget, hazard, a.seed, None)?;
-        let flight = flight_plan(wall, model, &req, &order)?;
+        // The team model comes from --model's times: a bad value names that file.
+        let flight = flight_plan(wall, model, &req, &order).map_err(|e| match &m.model {
+            Some(p) if e.code == 2 && !e.message.starts_with("internal") => {
+                input_error(format!("{} (as a team model): {}", p.display(), e.message))
+            }
+            _ => e,
+        })?;
         if a.replan {
             replanner = Some(mason_mission::ScheduleReplanner::new(
                 flight.team,
