@@ -157,8 +157,10 @@ mod tests {
         a.uav_starts = vec![a.uav_starts[0]; 20_000];
         let e = a.validate().unwrap_err();
         assert!(e.contains("MAX_ARENA_POINTS"), "{e}");
-        let mut a = Arena::default();
-        a.width = 1e300;
+        let a = Arena {
+            width: 1e300,
+            ..Arena::default()
+        };
         assert!(a.validate().unwrap_err().contains("MAX_ARENA_M"));
     }
 
