@@ -131,7 +131,7 @@ pub fn fly_agent<T: Transport>(
     agent.remember(&crate::trace::placed_by(opts.uav, &opts.remember)?);
     let mut logs: Vec<Box<dyn AgentLog + '_>> = Vec::new();
     if let Some(f) = trace_file {
-        logs.push(Box::new(JsonLines(f)));
+        logs.push(Box::new(JsonLines::new(f)));
     }
     let meta = mason_report::LogMeta {
         mission_id: &network.mission,

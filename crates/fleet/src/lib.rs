@@ -57,7 +57,7 @@ pub use drive::{drive, Ending, LAST_WORD_REPEATS};
 pub use error::{FleetError, FleetResult};
 pub use faults::{FaultLayer, FaultStats};
 pub use launch::{launch, schedule, Action, AgentRun, Launch, LaunchOptions};
-pub use log::{AgentLog, JsonLines, McapAgentLog};
+pub use log::{AgentLog, Capped, JsonLines, McapAgentLog, MAX_LOG_BYTES};
 pub use mason_mission::agent::agent_seed;
 pub use network::{
     check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX, MAX_KEY_CHUNK,

@@ -47,10 +47,63 @@ impl AgentLog for Vec<Box<dyn AgentLog + '_>> {
     }
 }
 
+/// The most bytes an agent writes to one log (its trace file or its MCAP log): what
+/// [`crate::trace::read_trace`] reads back, 1 GiB.
+pub const MAX_LOG_BYTES: u64 = crate::trace::MAX_TRACE_BYTES;
+
+/// A writer that refuses to grow past a number of bytes: a runaway agent fails with a clear
+/// error instead of filling the disk.
+pub struct Capped<W> {
+    inner: W,
+    written: u64,
+    limit: u64,
+}
+
+impl<W> Capped<W> {
+    /// `inner`, which may take at most `limit` bytes.
+    pub fn new(inner: W, limit: u64) -> Self {
+        Capped {
+            inner,
+            written: 0,
+            limit,
+        }
+    }
+}
+
+impl<W: Write> Write for Capped<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.written + buf.len() as u64 > self.limit {
+            return Err(std::io::Error::other(format!(
+                "the log would grow past {} bytes (MAX_LOG_BYTES)",
+                self.limit
+            )));
+        }
+        let n = self.inner.write(buf)?;
+        self.written += n as u64;
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+impl<W: std::io::Seek> std::io::Seek for Capped<W> {
+    fn seek(&mut self, pos: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.inner.seek(pos)
+    }
+}
+
 /// The trace file: one [`Event`] as JSON per line, written and flushed line by line so that
 /// an agent killed mid-mission leaves every event but at most a truncated last line
-/// ([`crate::trace::read_trace`] reads it back).
-pub struct JsonLines<W: Write>(pub W);
+/// ([`crate::trace::read_trace`] reads it back). At most [`MAX_LOG_BYTES`].
+pub struct JsonLines<W: Write>(pub Capped<W>);
+
+impl<W: Write> JsonLines<W> {
+    /// Trace lines into `out`.
+    pub fn new(out: W) -> Self {
+        JsonLines(Capped::new(out, MAX_LOG_BYTES))
+    }
+}
 
 impl<W: Write> AgentLog for JsonLines<W> {
     fn event(&mut self, e: &Event) -> std::io::Result<()> {
@@ -61,13 +114,13 @@ impl<W: Write> AgentLog for JsonLines<W> {
     }
 }
 
-type Mcap<'a, W> = mason_report::McapLog<'a, std::io::BufWriter<W>>;
+type Mcap<'a, W> = mason_report::McapLog<'a, std::io::BufWriter<Capped<W>>>;
 
 /// The agent's MCAP log (the topics of `simulate --mcap`): poses as
 /// [`mason_report::PoseSampler`] samples them (at every event, else at
 /// [`mason_report::POSE_RATE_HZ`], heading along the last move); every event; every message
 /// sent or heard on `/messages` (`kind` is `sent/KIND` or `heard/KIND`, `body` the whole
-/// message).
+/// message). At most [`MAX_LOG_BYTES`].
 pub struct McapAgentLog<'a, W: Write + std::io::Seek> {
     log: Option<Mcap<'a, W>>,
     sampler: mason_report::PoseSampler,
@@ -76,8 +129,11 @@ pub struct McapAgentLog<'a, W: Write + std::io::Seek> {
 impl<'a, W: Write + std::io::Seek> McapAgentLog<'a, W> {
     /// A log into `out` for UAV `uav` of the mission `meta` describes.
     pub fn new(out: W, meta: &mason_report::LogMeta<'a>, uav: usize) -> std::io::Result<Self> {
-        let log = mason_report::McapLog::new(std::io::BufWriter::new(out), meta)
-            .map_err(std::io::Error::other)?;
+        let log = mason_report::McapLog::new(
+            std::io::BufWriter::new(Capped::new(out, MAX_LOG_BYTES)),
+            meta,
+        )
+        .map_err(std::io::Error::other)?;
         Ok(McapAgentLog {
             log: Some(log),
             sampler: mason_report::PoseSampler::new(uav as u32),
@@ -129,6 +185,15 @@ impl<W: Write + std::io::Seek> AgentLog for McapAgentLog<'_, W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_capped_log_refuses_to_grow_past_its_limit() {
+        let mut w = Capped::new(Vec::new(), 10);
+        w.write_all(b"0123456789").unwrap();
+        let e = w.write_all(b"x").unwrap_err().to_string();
+        assert!(e.contains("MAX_LOG_BYTES"), "{e}");
+        assert_eq!(w.inner.len(), 10);
+    }
     use mason_mission::EventKind;
 
     #[test]
@@ -147,11 +212,11 @@ mod tests {
                 },
             },
         ];
-        let mut log = JsonLines(Vec::new());
+        let mut log = JsonLines::new(Vec::new());
         for e in &events {
             log.event(e).unwrap();
         }
-        let text = String::from_utf8(log.0).unwrap();
+        let text = String::from_utf8(log.0.inner).unwrap();
         let back =
             crate::trace::parse_trace(&text, std::path::Path::new("t.jsonl"), false).unwrap();
         assert_eq!(back, events);
