@@ -63,7 +63,7 @@ pub use network::{
     check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX, MAX_KEY_CHUNK,
     MAX_PREFIX_CHUNKS,
 };
-pub use setting::FleetSetting;
+pub use setting::{default_dead_after, least_dead_after, FleetSetting, DEAD_AFTER_HEARTBEATS};
 pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};
 pub use transport::{Hub, HubLink, Transport};
 pub use world::TraceWorld;

@@ -33,6 +33,24 @@ pub struct FleetSetting {
     pub link: LinkFaults,
 }
 
+/// Heartbeats of margin between the longest zone time and the time a teammate is declared out.
+pub const DEAD_AFTER_HEARTBEATS: f64 = 5.0;
+
+/// The shortest `dead_after` with which every brick of `wall` can still be placed: an agent
+/// enters the zone only when it can leave (its zone time plus three heartbeats) before a
+/// teammate that last heard it could declare it out; two more heartbeats cover how old that
+/// hearing may be.
+pub fn least_dead_after(wall: &Wall, model: &CostModel, config: &MissionConfig) -> f64 {
+    mason_mission::coord::longest_zone_time(wall, model, config)
+        + DEAD_AFTER_HEARTBEATS * config.coord.heartbeat_s
+}
+
+/// The default `dead_after` for a wall: 30 s ([`mason_mission::agent::DEFAULT_DEAD_AFTER_S`]),
+/// or longer where a brick's zone time needs it ([`least_dead_after`]).
+pub fn default_dead_after(wall: &Wall, model: &CostModel, config: &MissionConfig) -> f64 {
+    mason_mission::agent::DEFAULT_DEAD_AFTER_S.max(least_dead_after(wall, model, config).ceil())
+}
+
 impl FleetSetting {
     /// Checks the settings a mission configuration does not cover: clock speed, declaration
     /// time and link faults (errors name the flag).
@@ -46,6 +64,13 @@ impl FleetSetting {
         if !(self.dead_after.is_finite() && self.dead_after > 0.0) {
             return Err(FleetError::bad(format!(
                 "--dead-after {}: expected seconds > 0",
+                self.dead_after
+            )));
+        }
+        let least = least_dead_after(&self.wall, &self.model, &self.config);
+        if self.dead_after < least {
+            return Err(FleetError::bad(format!(
+                "--dead-after {}: at least {least:.1} s for this wall (its longest zone time plus {DEAD_AFTER_HEARTBEATS} heartbeats): an agent enters the zone only if it can leave before a teammate could declare it out",
                 self.dead_after
             )));
         }
@@ -109,11 +134,66 @@ pub(crate) mod tests {
             slot,
             speed,
             seed: 1,
-            dead_after: DEFAULT_DEAD_AFTER_S,
+            dead_after: 0.0,
             link: LinkFaults::default(),
+        };
+        let s = FleetSetting {
+            dead_after: default_dead_after(&s.wall, &s.model, &s.config),
+            ..s
         };
         s.check().unwrap();
         s
+    }
+
+    /// Found in #25's review: an orange brick with two placed neighbours needs 32 s in the zone
+    /// on MBZIRC, and with 30 s to be declared out no agent could ever enter for it.
+    #[test]
+    fn dead_after_leaves_room_for_the_longest_zone_time() {
+        let mut s = setting("mbzirc", Coord::Comm, 1.0);
+        let least = least_dead_after(&s.wall, &s.model, &s.config);
+        assert!(least > DEFAULT_DEAD_AFTER_S, "{least}");
+        assert_eq!(
+            default_dead_after(&s.wall, &s.model, &s.config),
+            least.ceil()
+        );
+        s.dead_after = DEFAULT_DEAD_AFTER_S;
+        let e = s.check().unwrap_err().to_string();
+        assert!(e.starts_with("--dead-after 30: at least"), "{e}");
+        let small = setting("thesis-2x5", Coord::Comm, 1.0);
+        assert_eq!(
+            default_dead_after(&small.wall, &small.model, &small.config),
+            DEFAULT_DEAD_AFTER_S
+                .max(least_dead_after(&small.wall, &small.model, &small.config).ceil())
+        );
+    }
+
+    /// The stall itself, on the virtual bus: the level-by-level order puts orange bricks with
+    /// placed neighbours early on MBZIRC; with 30 s to be declared out the team never finishes,
+    /// with the wall's default it does, and its trace is safe.
+    #[test]
+    fn the_default_dead_after_lets_a_team_place_every_brick() {
+        let mut s = setting("mbzirc", Coord::Comm, 1.0);
+        s.order = s.wall.ids().collect();
+        let fly = |dead_after: f64| {
+            let s = FleetSetting {
+                dead_after,
+                ..s.clone()
+            };
+            let faults = mason_mission::bus::BusFaults::default();
+            let run = mason_mission::bus::fly_bus(s.setup(0, "bus", 1), &faults, 1);
+            let placed = run
+                .events
+                .iter()
+                .filter(|e| matches!(e.kind, mason_mission::EventKind::Place { .. }))
+                .count();
+            (run, placed)
+        };
+        let (run, placed) = fly(default_dead_after(&s.wall, &s.model, &s.config));
+        assert!(run.finished, "placed {placed}");
+        assert_eq!(placed, s.wall.len());
+        mason_mission::check_trace(&s.wall, 3, &run.events).unwrap();
+        let (_, stalled) = fly(DEFAULT_DEAD_AFTER_S);
+        assert!(stalled < s.wall.len(), "30 s no longer stalls: {stalled}");
     }
 
     #[test]

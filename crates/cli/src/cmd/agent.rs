@@ -5,7 +5,6 @@
 use crate::cmd::mission::MissionArgs;
 use crate::fail::{input_error, CliResult};
 use mason_fleet::{AgentOptions, FleetSetting, Network};
-use mason_mission::agent::DEFAULT_DEAD_AFTER_S;
 use mason_mission::{Coord, LinkFaults};
 use mason_order::Status;
 use std::path::{Path, PathBuf};
@@ -26,7 +25,9 @@ pub struct FleetArgs {
     /// and incarnation)
     #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub seed: u64,
-    /// A teammate unheard this long (mission s) is declared out by a majority
+    /// A teammate unheard this long (mission s) is declared out by a majority (default 30 s,
+    /// or the wall's longest zone time plus five heartbeats if that is longer; a shorter one
+    /// is refused, since no agent could then enter the zone for the longest brick)
     #[arg(long, allow_negative_numbers = true)]
     pub dead_after: Option<f64>,
     /// Transport fault: probability that a received message is dropped
@@ -89,8 +90,15 @@ impl FleetArgs {
             slot: m.slot,
             speed: self.speed,
             seed: self.seed,
-            dead_after: self.dead_after.unwrap_or(DEFAULT_DEAD_AFTER_S),
+            dead_after: 0.0,
             link,
+        };
+        let dead_after = self.dead_after.unwrap_or_else(|| {
+            mason_fleet::default_dead_after(&setting.wall, &setting.model, &setting.config)
+        });
+        let setting = FleetSetting {
+            dead_after,
+            ..setting
         };
         setting.check()?;
         Ok(setting)
