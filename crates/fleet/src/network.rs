@@ -126,17 +126,7 @@ pub const MAX_PREFIX_CHUNKS: usize = 8;
 /// at most [`MAX_KEY_CHUNK`] characters each and [`MAX_PREFIX_CHUNKS`] chunks, before any
 /// transport sees them. The value is shown cut to 80 characters.
 pub fn check_chunks(flag: &str, s: &str, one: bool) -> FleetResult<()> {
-    let shown = || {
-        let n = s.chars().count();
-        if n > 80 {
-            format!(
-                "{}… ({n} characters)",
-                s.chars().take(80).collect::<String>()
-            )
-        } else {
-            s.to_string()
-        }
-    };
+    let shown = || mason_wall::limits::shown(s);
     let chunks = s.split('/').count();
     if s.split('/').any(|c| c.chars().count() > MAX_KEY_CHUNK)
         || (!one && chunks > MAX_PREFIX_CHUNKS)

@@ -2,6 +2,7 @@
 //! with `Default` and validation; TOML-readable.
 
 use crate::arena::Arena;
+use mason_wall::limits::shown;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -126,19 +127,6 @@ impl std::str::FromStr for UavFailure {
             .map_err(|_| format!("`{u}` is not a UAV number"))?;
         let at = seconds(t).ok_or(format!("`{t}` is not a time in seconds"))?;
         Ok(UavFailure { uav, at })
-    }
-}
-
-/// A value cut to 80 characters for a message.
-fn shown(s: &str) -> String {
-    let n = s.chars().count();
-    if n > 80 {
-        format!(
-            "{}… ({n} characters)",
-            s.chars().take(80).collect::<String>()
-        )
-    } else {
-        s.to_string()
     }
 }
 
