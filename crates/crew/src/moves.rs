@@ -84,7 +84,12 @@ impl MoveGraph {
 /// Step distances to each of `goals`, one breadth-first search per goal, run on all cores.
 /// The result does not depend on the number of threads. Memory: cells × goals × 4 bytes.
 pub fn goal_distances(grid: &Grid, conn: Connectivity, goals: &[Cell]) -> Vec<Vec<u32>> {
-    let graph = MoveGraph::new(grid, conn);
+    distances_to_goals(&MoveGraph::new(grid, conn), goals)
+}
+
+/// [`goal_distances`] on a move graph the caller has already built (on a large map the graph
+/// is a good part of the setup's time and memory: build it once).
+pub fn distances_to_goals(graph: &MoveGraph, goals: &[Cell]) -> Vec<Vec<u32>> {
     goals
         .par_iter()
         .map(|&g| graph.distances_from(g.0))

@@ -6,7 +6,7 @@ use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
 use crate::lacam::{lacam_guided, LacamEnd};
-use crate::moves::{goal_distances, MoveGraph};
+use crate::moves::{distances_to_goals, MoveGraph};
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
@@ -313,7 +313,7 @@ fn solve_lacam(
 ) -> Result<Paths, (Status, String)> {
     let (grid, conn) = (&inst.grid, inst.connectivity);
     let graph = MoveGraph::new(grid, conn);
-    let dist = goal_distances(grid, conn, goals);
+    let dist = distances_to_goals(&graph, goals);
     for (r, (&s, &g)) in inst.robots.iter().zip(goals).enumerate() {
         if dist[r][s.0 as usize] == UNREACHABLE {
             return Err((
@@ -393,7 +393,7 @@ fn solve_lacam(
 fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcome {
     let (grid, conn) = (&inst.grid, inst.connectivity);
     let graph = MoveGraph::new(grid, conn);
-    let dist = goal_distances(grid, conn, &inst.goals);
+    let dist = distances_to_goals(&graph, &inst.goals);
     let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
     let goal_cells: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
     let greedy = bottleneck_assignment(&dist, &starts);
