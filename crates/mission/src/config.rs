@@ -130,63 +130,78 @@ impl std::str::FromStr for UavFailure {
     }
 }
 
+/// Reads a value written either as a table (`Table`, converted) or as its text form
+/// (`T::from_str`); a value of neither form gets `expected`, naming both.
+fn table_or_text<'de, D, Table, T>(d: D, expected: &'static str) -> Result<T, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    Table: Deserialize<'de> + Into<T>,
+    T: std::str::FromStr<Err = String>,
+{
+    use serde::de::Error;
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Form<Table> {
+        Table(Table),
+        Text(String),
+    }
+    match Form::<Table>::deserialize(d).map_err(|_| D::Error::custom(expected))? {
+        Form::Table(t) => Ok(t.into()),
+        Form::Text(s) => s
+            .parse()
+            .map_err(|why| D::Error::custom(format!("`{}`: {why}", shown(&s)))),
+    }
+}
+
+/// A window as a table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WindowTable {
+    from: f64,
+    to: f64,
+}
+
+impl From<WindowTable> for Window {
+    fn from(t: WindowTable) -> Self {
+        Window {
+            from: t.from,
+            to: t.to,
+        }
+    }
+}
+
 impl<'de> Deserialize<'de> for Window {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        #[derive(Deserialize)]
-        #[serde(deny_unknown_fields)]
-        struct Table {
-            from: f64,
-            to: f64,
-        }
-        #[derive(Deserialize)]
-        #[serde(untagged)]
-        enum Form {
-            Table(Table),
-            Text(String),
-        }
-        use serde::de::Error;
-        match Form::deserialize(d).map_err(|_| {
-            D::Error::custom("expected a window as {from = A, to = B} or \"A-B\" (seconds)")
-        })? {
-            Form::Table(t) => Ok(Window {
-                from: t.from,
-                to: t.to,
-            }),
-            Form::Text(s) => s
-                .parse()
-                .map_err(|why| D::Error::custom(format!("`{}`: {why}", shown(&s)))),
+        table_or_text::<D, WindowTable, Window>(
+            d,
+            "expected a window as {from = A, to = B} or \"A-B\" (seconds)",
+        )
+    }
+}
+
+/// A UAV failure as a table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct UavFailureTable {
+    uav: usize,
+    at: f64,
+}
+
+impl From<UavFailureTable> for UavFailure {
+    fn from(t: UavFailureTable) -> Self {
+        UavFailure {
+            uav: t.uav,
+            at: t.at,
         }
     }
 }
 
 impl<'de> Deserialize<'de> for UavFailure {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        #[derive(Deserialize)]
-        #[serde(deny_unknown_fields)]
-        struct Table {
-            uav: usize,
-            at: f64,
-        }
-        #[derive(Deserialize)]
-        #[serde(untagged)]
-        enum Form {
-            Table(Table),
-            Text(String),
-        }
-        use serde::de::Error;
-        match Form::deserialize(d).map_err(|_| {
-            D::Error::custom(
-                "expected a UAV failure as {uav = U, at = T} or \"U@T\" (0-based UAV, seconds)",
-            )
-        })? {
-            Form::Table(t) => Ok(UavFailure {
-                uav: t.uav,
-                at: t.at,
-            }),
-            Form::Text(s) => s
-                .parse()
-                .map_err(|why| D::Error::custom(format!("`{}`: {why}", shown(&s)))),
-        }
+        table_or_text::<D, UavFailureTable, UavFailure>(
+            d,
+            "expected a UAV failure as {uav = U, at = T} or \"U@T\" (0-based UAV, seconds)",
+        )
     }
 }
 
