@@ -155,13 +155,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
                 };
                 let p = TeamProblem::new(&wall, TeamModel::cmcp(), 3, budget, objective)
                     .map_err(|e| input_error(e.to_string()))?;
-                let search = match time_limit {
-                    Some(s) => Budget {
-                        deadline: Budget::time(std::time::Duration::from_secs_f64(s)).deadline,
-                        node_limit: Some(u64::MAX),
-                    },
-                    None => Budget::unlimited(),
-                };
+                let search = Budget::anytime(time_limit.map(std::time::Duration::from_secs_f64));
                 let c = schedule_checked(&p, &search, 0)
                     .map_err(|e| BenchError::Invalid(format!("an invalid schedule: {e}")))?;
                 let o = &c.outcome;

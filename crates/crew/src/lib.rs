@@ -76,6 +76,7 @@ pub use checked::{shortest_steps, solve_checked, CheckedCrewPlan, CheckedSolveEr
 pub use error::{CrewError, Location};
 pub use grid::{Cell, Connectivity, Grid};
 pub use instance::Instance;
+pub use mason_wall::stop::Stop;
 pub use outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 pub use prm::PrmConfig;
 pub use refine::RefineConfig;

@@ -2,6 +2,7 @@
 //! statistics; and the search budget.
 
 use crate::grid::Cell;
+use mason_wall::stop::Stop;
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
@@ -30,13 +31,16 @@ impl std::fmt::Display for Status {
     }
 }
 
-/// Limits on a solve: a deadline and/or a cap on search nodes. Passed in, never global.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// Limits on a solve: a deadline, a cap on search nodes and a stop flag. Passed in, never
+/// global.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Budget {
     /// Stop after this instant.
     pub deadline: Option<Instant>,
     /// Stop after expanding this many search nodes in one robot's search.
     pub node_limit: Option<u64>,
+    /// Stop when this flag is raised (Ctrl-C, a caller's cancel), as at the deadline.
+    pub stop: Option<Stop>,
 }
 
 impl Budget {
@@ -50,12 +54,19 @@ impl Budget {
         Budget {
             deadline: Instant::now().checked_add(limit),
             node_limit: None,
+            stop: None,
         }
     }
 
-    /// Whether the deadline has passed.
+    /// The same budget, also stopped by `stop`.
+    pub fn with_stop(mut self, stop: Option<Stop>) -> Self {
+        self.stop = stop;
+        self
+    }
+
+    /// Whether the deadline has passed or a stop was asked.
     pub fn out_of_time(&self) -> bool {
-        self.deadline.is_some_and(|d| Instant::now() >= d)
+        mason_wall::stop::raised(&self.stop) || self.deadline.is_some_and(|d| Instant::now() >= d)
     }
 }
 

@@ -669,8 +669,8 @@ mod tests {
             ..CrewConfig::default()
         };
         let budget = Budget {
-            deadline: None,
             node_limit: Some(2_000_000),
+            ..Budget::default()
         };
         let out = solve(inst, &config, &budget).unwrap();
         let paths = out.paths?;

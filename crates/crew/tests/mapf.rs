@@ -30,8 +30,8 @@ fn lacam_config(rounds: u64, seed: u64) -> CrewConfig {
 /// A cap on LaCAM's configurations, so that a bug cannot hang the suite.
 fn capped() -> Budget {
     Budget {
-        deadline: None,
         node_limit: Some(2_000_000),
+        ..Budget::default()
     }
 }
 
@@ -460,8 +460,8 @@ fn dense_aisles_need_few_configurations() {
         )
         .unwrap();
         let budget = Budget {
-            deadline: None,
             node_limit: Some(5_000),
+            ..Budget::default()
         };
         let out = solve(&inst, &lacam_config(0, seed), &budget).unwrap();
         let Some(paths) = out.paths else {

@@ -126,7 +126,7 @@ proptest! {
             prm: PrmConfig { samples: 40, neighbours: 6, seed: 7 },
             ..CrewConfig::default()
         };
-        let out = solve(&inst, &config, &Budget { deadline: None, node_limit: Some(200_000) }).unwrap();
+        let out = solve(&inst, &config, &Budget { node_limit: Some(200_000), ..Budget::default() }).unwrap();
         match out.status {
             Status::Optimal | Status::Feasible => {
                 let paths = out.paths.expect("plan");

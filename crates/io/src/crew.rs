@@ -5,7 +5,10 @@ use crate::error::{InputError, InputResult};
 use crate::files::{read_input, MAX_INPUT_BYTES};
 use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
-use mason_crew::{Connectivity, Grid, Instance};
+use mason_crew::{
+    AssignMethod, Connectivity, CrewConfig, Grid, Instance, PathMethod, PrmConfig, RefineConfig,
+    Resolution,
+};
 use std::path::Path;
 
 /// Where the robots and goals come from.
@@ -92,6 +95,134 @@ fn load_grid(map: &str) -> InputResult<Grid> {
         })?;
         parse_map(&text, map).map_err(|e| InputError::bad(e.to_string()))
     }
+}
+
+/// The parsed solver choices.
+pub struct CrewChoices {
+    /// The solver configuration.
+    pub config: CrewConfig,
+    /// Moves allowed.
+    pub connectivity: Connectivity,
+}
+
+/// The time limit of `--resolve lacam` when `--time-limit` is not given, in seconds.
+pub const LACAM_DEFAULT_LIMIT_S: f64 = 60.0;
+
+/// The solver flags as given.
+pub struct RawChoices<'a> {
+    /// `--assign`.
+    pub assign: Option<&'a str>,
+    /// `--paths`.
+    pub paths: &'a str,
+    /// `--resolve`.
+    pub resolve: Option<&'a str>,
+    /// `--connectivity`.
+    pub connectivity: &'a str,
+    /// `--seed`.
+    pub seed: u64,
+    /// `--refine-rounds`.
+    pub refine_rounds: Option<u64>,
+    /// `--refine-batch`.
+    pub refine_batch: Option<usize>,
+}
+
+/// The largest `--refine-batch`: more neighbourhoods than that per batch would mostly be
+/// planned against a stale plan.
+const MAX_REFINE_BATCH: usize = 64;
+
+/// Parses the solver options (a bad one is an [`InputError`] naming its flag).
+pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> InputResult<CrewChoices> {
+    let assign: AssignMethod = match raw.assign {
+        Some(a) => a
+            .parse()
+            .map_err(|e| InputError::bad(format!("--assign: {e}")))?,
+        None if has_pairing => AssignMethod::Given,
+        None => AssignMethod::Joint,
+    };
+    let paths: PathMethod = raw
+        .paths
+        .parse()
+        .map_err(|e| InputError::bad(format!("--paths: {e}")))?;
+    if assign == AssignMethod::Joint && raw.resolve.is_some() {
+        return Err(InputError::bad(
+            "--assign joint plans the paths itself (TSWAP); drop --resolve, or choose another --assign",
+        ));
+    }
+    if assign == AssignMethod::Joint && paths != PathMethod::Astar {
+        return Err(InputError::bad(
+            "--assign joint moves robots on the grid itself; drop --paths prm",
+        ));
+    }
+    let resolve: Resolution = raw
+        .resolve
+        .unwrap_or("st")
+        .parse()
+        .map_err(|e| InputError::bad(format!("--resolve: {e}")))?;
+    let connectivity: Connectivity = raw
+        .connectivity
+        .parse()
+        .map_err(|e| InputError::bad(format!("--connectivity: {e}")))?;
+    if prm.samples == 0 || prm.neighbours == 0 {
+        return Err(InputError::bad(
+            "--samples and --neighbours must be at least 1",
+        ));
+    }
+    if prm.samples > MAX_PRM_SAMPLES || prm.neighbours > MAX_PRM_NEIGHBOURS {
+        return Err(InputError::bad(format!(
+            "--samples is at most {MAX_PRM_SAMPLES} and --neighbours at most {MAX_PRM_NEIGHBOURS}"
+        )));
+    }
+    if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
+        return Err(InputError::bad(
+            "--refine-rounds applies to --resolve lacam",
+        ));
+    }
+    if raw.refine_batch.is_some() && resolve != Resolution::Lacam {
+        return Err(InputError::bad("--refine-batch applies to --resolve lacam"));
+    }
+    let mut refine = RefineConfig::default();
+    if let Some(r) = raw.refine_rounds {
+        refine.rounds = Some(r);
+        refine.stall = None;
+    }
+    if let Some(b) = raw.refine_batch {
+        if !(1..=MAX_REFINE_BATCH).contains(&b) {
+            return Err(InputError::bad(format!(
+                "--refine-batch is 1 to {MAX_REFINE_BATCH}"
+            )));
+        }
+        refine.batch = b;
+    }
+    Ok(CrewChoices {
+        config: CrewConfig {
+            assign,
+            paths,
+            resolve,
+            prm,
+            seed: raw.seed,
+            refine,
+        },
+        connectivity,
+    })
+}
+
+/// The most PRM samples `--samples` accepts.
+pub const MAX_PRM_SAMPLES: usize = 1_000_000;
+/// The most PRM neighbours `--neighbours` accepts.
+pub const MAX_PRM_NEIGHBOURS: usize = 1_000;
+
+/// Refuses an instance over [`mason_crew::limits::MAX_AGENT_CELLS`] (robots × free cells).
+pub fn check_size(inst: &Instance, source: &str) -> InputResult<()> {
+    let size = inst.robot_count() as u64 * inst.grid.free_count() as u64;
+    let limit = mason_crew::limits::MAX_AGENT_CELLS;
+    if size > limit {
+        return Err(InputError::bad(format!(
+            "{source}: {} robots × {} free cells is more than {limit} (mason_crew::limits::MAX_AGENT_CELLS); take fewer robots (--agents N) or a smaller map",
+            inst.robot_count(),
+            inst.grid.free_count()
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

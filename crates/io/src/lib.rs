@@ -35,11 +35,11 @@ pub mod files;
 pub mod models;
 pub mod output;
 
-pub use crew::{load_crew, CrewInput};
+pub use crew::{check_size, choices, load_crew, CrewChoices, CrewInput, RawChoices};
 pub use design::{load_wall, Format, LoadedWall, Sizes};
 pub use error::InputError;
 pub use faults::check_uav;
 pub use faults::{parse_at, parse_window, read_mission, FaultSpec};
 pub use files::{read_input, read_input_text, read_toml, MAX_INPUT_BYTES, MAX_TOML_BYTES};
-pub use models::{load_model, load_team_model};
+pub use models::{load_model, load_team_model, objective};
 pub use output::{check_output, write_file, write_files};

@@ -2,7 +2,7 @@
 
 use crate::error::{InputError, InputResult};
 use crate::files::read_toml;
-use mason_order::schedule::{TeamModel, TeamModelPatch};
+use mason_order::schedule::{Objective, TeamModel, TeamModelPatch};
 use mason_order::CostModel;
 use std::path::Path;
 
@@ -32,6 +32,25 @@ pub fn load_team_model(spec: Option<&str>) -> InputResult<TeamModel> {
     }
     let patch: TeamModelPatch = read_toml(path)?;
     TeamModel::from_patch(&patch, spec).map_err(|e| InputError::bad(format!("{spec}: {e}")))
+}
+
+/// The schedule objective named `objective` (`makespan`, `reward` or `expected`), with the
+/// failure rate `uav_hazard` (per UAV per hour) that `expected` needs and the others refuse.
+pub fn objective(objective: &str, uav_hazard: Option<f64>) -> InputResult<Objective> {
+    let mut o: Objective = objective
+        .parse()
+        .map_err(|e| InputError::bad(format!("--objective: {e}")))?;
+    match (&mut o, uav_hazard) {
+        (Objective::Expected { hazard_per_hour }, Some(h)) => *hazard_per_hour = h,
+        (Objective::Expected { .. }, None) => {
+            return Err(InputError::bad(
+                "--objective expected needs --uav-hazard λ (failures per hour)",
+            ))
+        }
+        (_, Some(_)) => return Err(InputError::bad("--uav-hazard is for --objective expected")),
+        _ => {}
+    }
+    Ok(o)
 }
 
 #[cfg(test)]

@@ -21,11 +21,14 @@
 //! ```
 
 use mason_order::schedule::{
-    schedule_checked, Objective, ScheduleError, TeamModel, TeamProblem, TeamProblemError,
+    schedule_checked, Objective, Schedule, ScheduleError, TeamModel, TeamProblem, TeamProblemError,
 };
 use mason_order::{Budget, CostModel};
 use mason_wall::{BrickId, Wall};
 use thiserror::Error;
+
+/// What a planner may take to plan the shared order a mission flies (s).
+pub const ORDER_TIME_LIMIT_S: f64 = 60.0;
 
 /// The schedule a mission asks for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,18 +102,38 @@ pub fn flight_plan(
         .outcome
         .schedule
         .unwrap_or_default();
-    let mut listed = vec![false; wall.len()];
-    let mut order: Vec<BrickId> = Vec::with_capacity(wall.len());
-    for pl in &schedule.placements {
-        listed[pl.brick.index()] = true;
-        order.push(pl.brick);
-    }
-    order.extend(base.iter().copied().filter(|b| !listed[b.index()]));
-    Ok(FlightPlan {
+    Ok(FlightPlan::of_schedule(
+        wall,
         team,
-        order,
-        lists: schedule.by_uav(request.uavs),
-    })
+        &schedule,
+        request.uavs,
+        base,
+    ))
+}
+
+impl FlightPlan {
+    /// The flight plan of a checked `schedule` for `uavs` UAVs: its bricks by start, then the
+    /// rest of `base` (indices within `wall`, as [`flight_plan`] checks).
+    pub fn of_schedule(
+        wall: &Wall,
+        team: TeamModel,
+        schedule: &Schedule,
+        uavs: usize,
+        base: &[BrickId],
+    ) -> FlightPlan {
+        let mut listed = vec![false; wall.len()];
+        let mut order: Vec<BrickId> = Vec::with_capacity(wall.len());
+        for pl in &schedule.placements {
+            listed[pl.brick.index()] = true;
+            order.push(pl.brick);
+        }
+        order.extend(base.iter().copied().filter(|b| !listed[b.index()]));
+        FlightPlan {
+            team,
+            order,
+            lists: schedule.by_uav(uavs),
+        }
+    }
 }
 
 #[cfg(test)]

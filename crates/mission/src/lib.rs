@@ -69,11 +69,11 @@ pub use config::{
     MIN_HEARTBEAT_S,
 };
 pub use coord::{make_policy, slot_length, Coord};
-pub use flight::{flight_plan, FlightPlan, FlightPlanError, FlightRequest};
+pub use flight::{flight_plan, FlightPlan, FlightPlanError, FlightRequest, ORDER_TIME_LIMIT_S};
 pub use link::{Fate, LinkFaults, LinkFaultsError};
 pub use metrics::Metrics;
 pub use montecarlo::{
-    for_each_run, reward_by, run_many, summarise, Spread, Stream, Summariser, Summary,
+    for_each_run, reward_by, run_many, summarise, RunFigures, Spread, Stream, Summariser, Summary,
 };
 pub use policy::{Coordination, EntryQuery};
 pub use replan::{Replan, Replanner, ScheduleReplanner};

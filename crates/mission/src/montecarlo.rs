@@ -111,20 +111,27 @@ impl Summariser {
 
     /// Adds one run.
     pub fn push(&mut self, r: &MissionResult) {
-        self.runs += 1;
-        if r.status == MissionStatus::Complete {
-            if let Some(m) = r.metrics.makespan_s {
-                self.completed += 1;
-                self.makespan.push(m);
-            }
-        }
-        self.bricks.push(r.metrics.bricks_placed as f64);
-        self.reward.push(r.metrics.reward);
-        self.zone.push(r.metrics.zone_utilisation);
+        self.push_figures(&RunFigures::of(r));
         if let Some((t, s)) = &mut self.reward_by {
             s.push(reward_placed_by(r, *t));
         }
         self.replans += r.metrics.replans as u64;
+    }
+
+    /// Adds one run's [`RunFigures`] (as [`Summariser::push`] does for a whole result, without
+    /// the reward-by-time and replan figures): runs summarised elsewhere, e.g. on other machines,
+    /// give the same summary when pushed in seed order.
+    pub fn push_figures(&mut self, f: &RunFigures) {
+        self.runs += 1;
+        if f.complete {
+            if let Some(m) = f.makespan_s {
+                self.completed += 1;
+                self.makespan.push(m);
+            }
+        }
+        self.bricks.push(f.bricks_placed as f64);
+        self.reward.push(f.reward);
+        self.zone.push(f.zone_utilisation);
     }
 
     /// The summary so far.
@@ -157,6 +164,34 @@ fn reward_placed_by(r: &MissionResult, t: f64) -> f64 {
         .take_while(|(at, _)| *at <= t)
         .last()
         .map_or(0.0, |&(_, reward)| reward)
+}
+
+/// The figures of one run that a [`Summary`] is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RunFigures {
+    /// The wall was completed.
+    pub complete: bool,
+    /// Makespan (s), when completed.
+    pub makespan_s: Option<f64>,
+    /// Bricks placed.
+    pub bricks_placed: usize,
+    /// Reward placed.
+    pub reward: f64,
+    /// Zone utilisation.
+    pub zone_utilisation: f64,
+}
+
+impl RunFigures {
+    /// The figures of a result.
+    pub fn of(r: &MissionResult) -> Self {
+        RunFigures {
+            complete: r.status == MissionStatus::Complete,
+            makespan_s: r.metrics.makespan_s,
+            bricks_placed: r.metrics.bricks_placed,
+            reward: r.metrics.reward,
+            zone_utilisation: r.metrics.zone_utilisation,
+        }
+    }
 }
 
 /// Mean and the 5th and 95th percentiles.

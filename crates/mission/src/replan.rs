@@ -93,6 +93,7 @@ impl Replanner for ScheduleReplanner {
         let limit = Budget {
             deadline: std::time::Instant::now().checked_add(self.time_limit),
             node_limit: Some(self.decodes),
+            ..Budget::default()
         };
         let out = plan_schedule(&p, &limit, self.seed);
         let s = out.schedule?;

@@ -41,8 +41,9 @@ mod tree_search;
 mod validate;
 
 pub use checked::{plan_checked, CheckedPlan, InvalidPlan};
+pub use mason_wall::stop::Stop;
 pub use model::{CostModel, ModelError, TypeTimes};
-pub use outcome::{Budget, Outcome, Stats, Status};
+pub use outcome::{Better, Budget, OnBetter, Outcome, Stats, Status};
 pub use planner::{PlannerParseError, PlannerSpec};
 pub use problem::BuildProblem;
 pub use validate::{validate, validate_claim, Evaluation, OrderError, Step};

@@ -1,7 +1,9 @@
 //! What a planner returns: a status, maybe an order, and statistics; and the search budget.
 
+use mason_wall::stop::Stop;
 use mason_wall::BrickId;
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// How a search ended.
@@ -55,13 +57,48 @@ pub struct Outcome {
     pub stats: Stats,
 }
 
-/// Limits on a search: a deadline and/or a node cap. Passed in, never global.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// Limits on a search: a deadline, a node cap and a stop flag, and who hears of progress.
+/// Passed in, never global.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Budget {
     /// Stop after this instant.
     pub deadline: Option<Instant>,
     /// Stop after expanding this many nodes.
     pub node_limit: Option<u64>,
+    /// Stop when this flag is raised (Ctrl-C, a caller's cancel), as at the deadline.
+    pub stop: Option<Stop>,
+    /// Told of each better result of the anytime searches (team schedules).
+    pub on_better: Option<OnBetter>,
+}
+
+/// A better result found by an anytime search: its objective value (makespan in seconds,
+/// reward, or expected reward), the proven bound, and the schedules decoded so far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Better {
+    /// The objective of the best result so far.
+    pub value: f64,
+    /// The proven bound on the objective.
+    pub bound: f64,
+    /// Schedules decoded so far.
+    pub decodes: u64,
+    /// Seconds since the search started.
+    pub elapsed_s: f64,
+}
+
+/// A listener for [`Better`] results, called from the searching thread.
+#[derive(Clone)]
+pub struct OnBetter(pub Arc<dyn Fn(Better) + Send + Sync>);
+
+impl PartialEq for OnBetter {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl std::fmt::Debug for OnBetter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("OnBetter")
+    }
 }
 
 impl Budget {
@@ -75,6 +112,37 @@ impl Budget {
         Budget {
             deadline: Instant::now().checked_add(limit),
             node_limit: None,
+            ..Budget::default()
+        }
+    }
+
+    /// The budget of an anytime search (team schedules): with a time limit, search until the
+    /// deadline with no node cap; without one, the search's own deterministic default.
+    pub fn anytime(limit: Option<Duration>) -> Self {
+        match limit {
+            Some(l) => Budget {
+                node_limit: Some(u64::MAX),
+                ..Budget::time(l)
+            },
+            None => Budget::unlimited(),
+        }
+    }
+
+    /// The same budget, also stopped by `stop`.
+    pub fn with_stop(mut self, stop: Option<Stop>) -> Self {
+        self.stop = stop;
+        self
+    }
+
+    /// Whether the deadline has passed or a stop was asked (the clock is read on each call).
+    pub fn out_of_time(&self) -> bool {
+        mason_wall::stop::raised(&self.stop) || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+
+    /// Tells the listener, if any, of a better result.
+    pub fn better(&self, b: Better) {
+        if let Some(f) = &self.on_better {
+            (f.0)(b);
         }
     }
 
@@ -83,6 +151,7 @@ impl Budget {
         Budget {
             deadline: None,
             node_limit: Some(limit),
+            ..Budget::default()
         }
     }
 
@@ -91,6 +160,6 @@ impl Budget {
         if self.node_limit.is_some_and(|cap| nodes >= cap) {
             return true;
         }
-        nodes % 1024 == 0 && self.deadline.is_some_and(|d| Instant::now() >= d)
+        nodes % 1024 == 0 && self.out_of_time()
     }
 }

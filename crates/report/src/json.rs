@@ -1,7 +1,10 @@
-//! The JSON of a mission that other tools read (DESIGN §7): events with bricks as thesis ids,
-//! and a run's metrics.
+//! The JSON that other tools read (DESIGN §7, README): walls, build orders, team schedules,
+//! mission events (bricks as thesis ids) and a run's metrics. The CLI prints these and the
+//! Python package returns them, so both say the same.
 
-use mason_mission::{Event, EventKind, MissionResult, UavState};
+use mason_mission::{Coord, Event, EventKind, Faults, MissionResult, Summary, UavState};
+use mason_order::schedule::{CheckedSchedule, Objective, TeamProblem};
+use mason_order::{BuildProblem, CheckedPlan};
 use mason_wall::{BrickId, Wall};
 use serde_json::{json, Value};
 
@@ -63,6 +66,154 @@ pub fn metrics_json(r: &MissionResult) -> Value {
         "zone_utilisation": m.zone_utilisation,
         "bricks_lost": m.bricks_lost,
         "uavs_failed": m.uavs_failed,
+    })
+}
+
+/// The plan as the JSON of DESIGN §7, with the wall and the model so it can be checked alone.
+pub fn plan_json(problem: &BuildProblem<'_>, checked: &CheckedPlan) -> Value {
+    let wall = problem.wall();
+    let o = &checked.outcome;
+    let steps: Vec<Value> = checked
+        .evaluation
+        .iter()
+        .flat_map(|e| &e.steps)
+        .map(|s| {
+            json!({
+                "id": wall.brick(s.brick).label,
+                "placed_neighbours": s.placed_neighbours,
+                "cost": s.cost,
+            })
+        })
+        .collect();
+    json!({
+        "planner": o.planner,
+        "status": o.status,
+        "order": o.order.as_ref().map(|ord| ord.iter().map(|&b| wall.brick(b).label).collect::<Vec<_>>()),
+        "total_cost": checked.evaluation.as_ref().map(|e| e.total_cost),
+        "steps": steps,
+        "stats": {
+            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "nodes": o.stats.nodes,
+            "leaves": o.stats.leaves,
+        },
+        "model": problem.model(),
+        "wall": wall_json(wall),
+    })
+}
+
+/// The wall's bricks with their supports and neighbours, by label.
+pub fn wall_json(wall: &Wall) -> Value {
+    let labels =
+        |ids: &[mason_wall::BrickId]| ids.iter().map(|&i| wall.brick(i).label).collect::<Vec<_>>();
+    let bricks: Vec<Value> = wall
+        .ids()
+        .map(|id| {
+            let b = wall.brick(id);
+            json!({
+                "id": b.label,
+                "type": b.kind,
+                "level": b.level,
+                "segment": b.segment,
+                "footprint": [b.footprint.x0, b.footprint.x1, b.footprint.y0, b.footprint.y1],
+                "supports": labels(wall.supports(id)),
+                "neighbours": labels(wall.neighbours(id)),
+            })
+        })
+        .collect();
+    json!({ "name": wall.name(), "levels": wall.levels(), "bricks": bricks, "warnings": wall.warnings() })
+}
+
+/// A number as JSON: whole values as integers.
+fn num(x: f64) -> Value {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        json!(x as i64)
+    } else {
+        json!(x)
+    }
+}
+
+/// The schedule as JSON (README: "Team schedule JSON").
+pub fn schedule_json(p: &TeamProblem<'_>, c: &CheckedSchedule, seed: u64) -> Value {
+    let wall = p.wall();
+    let o = &c.outcome;
+    let rows: Vec<Value> = o
+        .schedule
+        .iter()
+        .flat_map(|s| &s.placements)
+        .flat_map(|pl| {
+            pl.uavs.iter().map(move |&u| {
+                json!({
+                    "uav": u,
+                    "brick": wall.brick(pl.brick).label,
+                    "type": wall.brick(pl.brick).kind,
+                    "start_s": num(pl.start_s),
+                    "end_s": num(pl.start_s + p.place_s(pl.brick)),
+                })
+            })
+        })
+        .collect();
+    json!({
+        "objective": p.objective().name(),
+        "model": p.model().name,
+        "uavs": p.uavs(),
+        "budget_s": p.budget_s().map(num),
+        "uav_hazard_per_hour": match p.objective() { Objective::Expected { hazard_per_hour } => Some(hazard_per_hour), _ => None },
+        "seed": seed,
+        "reward": num(o.reward),
+        "expected_reward": o.expected_reward,
+        "bricks_placed": c.evaluation.bricks,
+        "bricks_total": wall.len(),
+        "makespan_s": num(o.makespan_s),
+        "bound": num(o.bound),
+        "gap": num(o.gap(p.objective())),
+        "status": o.status,
+        "schedule": rows,
+        "stats": {
+            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+            "decodes": o.stats.decodes,
+            "improvements": o.stats.improvements,
+        },
+        "team_model": p.model(),
+        "wall": wall_json(wall),
+    })
+}
+
+/// What a simulated mission was flown with: the head of `simulate --json`.
+pub struct RunSetting<'a> {
+    /// The wall.
+    pub wall: &'a Wall,
+    /// Team size.
+    pub uavs: usize,
+    /// Coordination policy.
+    pub coord: Coord,
+    /// The planner of the order, as on the command line.
+    pub planner: &'a str,
+    /// The shared build order.
+    pub order: &'a [BrickId],
+    /// The seed (of the first run, for a batch).
+    pub seed: u64,
+    /// The windows slot (s).
+    pub slot_s: f64,
+    /// The faults.
+    pub faults: &'a Faults,
+}
+
+/// One flown mission as `simulate --json` prints it: its setting, metrics and events.
+pub fn simulate_json(s: &RunSetting<'_>, r: &MissionResult, trace: &[Event]) -> Value {
+    let events: Vec<Value> = trace.iter().map(|e| event_json(s.wall, e)).collect();
+    json!({
+        "wall": s.wall.name(), "uavs": s.uavs, "coord": s.coord, "planner": s.planner,
+        "order": s.order.iter().map(|b| s.wall.brick(*b).label).collect::<Vec<_>>(),
+        "seed": s.seed, "slot_s": s.slot_s, "faults": s.faults,
+        "metrics": metrics_json(r), "events": events,
+    })
+}
+
+/// A Monte Carlo batch as `simulate --runs N --json` prints it.
+pub fn runs_json(s: &RunSetting<'_>, summary: &Summary) -> Value {
+    json!({
+        "wall": s.wall.name(), "uavs": s.uavs, "coord": s.coord, "planner": s.planner,
+        "first_seed": s.seed, "slot_s": s.slot_s, "faults": s.faults, "summary": summary,
     })
 }
 

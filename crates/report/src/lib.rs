@@ -34,7 +34,10 @@ pub use self::mcap::{
 };
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
-pub use json::{event_json, metrics_json};
+pub use json::{
+    event_json, metrics_json, plan_json, runs_json, schedule_json, simulate_json, wall_json,
+    RunSetting,
+};
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
 pub use reward::{reward_svg, Series};

@@ -27,6 +27,7 @@ pub mod generate;
 pub mod limits;
 mod png;
 mod raster;
+pub mod stop;
 mod text;
 mod wall;
 

@@ -3,9 +3,9 @@
 use crate::cmd::plan::{pretty, report_overrun, time_limit};
 use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
 use mason_crew::{
-    AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid, Instance, PathMethod,
-    PlanMetrics, PrmConfig, RefineConfig, Resolution, Status,
+    AssignMethod, Budget, Cell, CrewConfig, CrewOutcome, Grid, Instance, PlanMetrics, Status,
 };
+use mason_io::crew::{check_size, choices, RawChoices, LACAM_DEFAULT_LIMIT_S};
 use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::time::Duration;
@@ -150,111 +150,6 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
     exit_for(&result)
 }
 
-/// The parsed solver choices.
-pub struct CrewChoices {
-    /// The solver configuration.
-    pub config: CrewConfig,
-    /// Moves allowed.
-    pub connectivity: Connectivity,
-}
-
-/// The time limit of `--resolve lacam` when `--time-limit` is not given, in seconds.
-pub const LACAM_DEFAULT_LIMIT_S: f64 = 60.0;
-
-/// The solver flags as given.
-pub struct RawChoices<'a> {
-    /// `--assign`.
-    pub assign: Option<&'a str>,
-    /// `--paths`.
-    pub paths: &'a str,
-    /// `--resolve`.
-    pub resolve: Option<&'a str>,
-    /// `--connectivity`.
-    pub connectivity: &'a str,
-    /// `--seed`.
-    pub seed: u64,
-    /// `--refine-rounds`.
-    pub refine_rounds: Option<u64>,
-    /// `--refine-batch`.
-    pub refine_batch: Option<usize>,
-}
-
-/// The largest `--refine-batch`: more neighbourhoods than that per batch would mostly be
-/// planned against a stale plan.
-const MAX_REFINE_BATCH: usize = 64;
-
-/// Parses the solver options (usage errors exit 2).
-pub fn choices(raw: RawChoices<'_>, prm: PrmConfig, has_pairing: bool) -> CliResult<CrewChoices> {
-    let assign: AssignMethod = match raw.assign {
-        Some(a) => a
-            .parse()
-            .map_err(|e| input_error(format!("--assign: {e}")))?,
-        None if has_pairing => AssignMethod::Given,
-        None => AssignMethod::Joint,
-    };
-    let paths: PathMethod = raw
-        .paths
-        .parse()
-        .map_err(|e| input_error(format!("--paths: {e}")))?;
-    if assign == AssignMethod::Joint && raw.resolve.is_some() {
-        return Err(input_error(
-            "--assign joint plans the paths itself (TSWAP); drop --resolve, or choose another --assign",
-        ));
-    }
-    if assign == AssignMethod::Joint && paths != PathMethod::Astar {
-        return Err(input_error(
-            "--assign joint moves robots on the grid itself; drop --paths prm",
-        ));
-    }
-    let resolve: Resolution = raw
-        .resolve
-        .unwrap_or("st")
-        .parse()
-        .map_err(|e| input_error(format!("--resolve: {e}")))?;
-    let connectivity: Connectivity = raw
-        .connectivity
-        .parse()
-        .map_err(|e| input_error(format!("--connectivity: {e}")))?;
-    if prm.samples == 0 || prm.neighbours == 0 {
-        return Err(input_error("--samples and --neighbours must be at least 1"));
-    }
-    if prm.samples > MAX_PRM_SAMPLES || prm.neighbours > MAX_PRM_NEIGHBOURS {
-        return Err(input_error(format!(
-            "--samples is at most {MAX_PRM_SAMPLES} and --neighbours at most {MAX_PRM_NEIGHBOURS}"
-        )));
-    }
-    if raw.refine_rounds.is_some() && resolve != Resolution::Lacam {
-        return Err(input_error("--refine-rounds applies to --resolve lacam"));
-    }
-    if raw.refine_batch.is_some() && resolve != Resolution::Lacam {
-        return Err(input_error("--refine-batch applies to --resolve lacam"));
-    }
-    let mut refine = RefineConfig::default();
-    if let Some(r) = raw.refine_rounds {
-        refine.rounds = Some(r);
-        refine.stall = None;
-    }
-    if let Some(b) = raw.refine_batch {
-        if !(1..=MAX_REFINE_BATCH).contains(&b) {
-            return Err(input_error(format!(
-                "--refine-batch is 1 to {MAX_REFINE_BATCH}"
-            )));
-        }
-        refine.batch = b;
-    }
-    Ok(CrewChoices {
-        config: CrewConfig {
-            assign,
-            paths,
-            resolve,
-            prm,
-            seed: raw.seed,
-            refine,
-        },
-        connectivity,
-    })
-}
-
 /// "assign joint", "resolve lacam", … for titles.
 pub fn method_label(config: &CrewConfig) -> String {
     if config.assign == AssignMethod::Joint {
@@ -266,25 +161,6 @@ pub fn method_label(config: &CrewConfig) -> String {
         )
         .to_lowercase()
     }
-}
-
-/// The most PRM samples `--samples` accepts.
-pub const MAX_PRM_SAMPLES: usize = 1_000_000;
-/// The most PRM neighbours `--neighbours` accepts.
-pub const MAX_PRM_NEIGHBOURS: usize = 1_000;
-
-/// Refuses an instance over [`mason_crew::limits::MAX_AGENT_CELLS`] (robots × free cells).
-pub fn check_size(inst: &Instance, source: &str) -> CliResult<()> {
-    let size = inst.robot_count() as u64 * inst.grid.free_count() as u64;
-    let limit = mason_crew::limits::MAX_AGENT_CELLS;
-    if size > limit {
-        return Err(input_error(format!(
-            "{source}: {} robots × {} free cells is more than {limit} (mason_crew::limits::MAX_AGENT_CELLS); take fewer robots (--agents N) or a smaller map",
-            inst.robot_count(),
-            inst.grid.free_count()
-        )));
-    }
-    Ok(())
 }
 
 /// A solve with its validation.

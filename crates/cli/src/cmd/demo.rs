@@ -2,7 +2,7 @@
 
 use crate::cmd::crew::run_solve;
 use crate::cmd::mission::prepare;
-use crate::cmd::plan::{plan_json, solve, time_limit, Checked};
+use crate::cmd::plan::{solve, time_limit, Checked};
 use crate::cmd::simulate::{fly_many, fly_once};
 use crate::fail::{write_file, CliResult};
 use mason_bench::search_limit;
@@ -12,6 +12,7 @@ use mason_crew::{
 };
 use mason_mission::{summarise, Coord, MissionConfig, MissionInput, Window};
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
+use mason_report::plan_json;
 use mason_report::text::{clock, format_ms, spread_clock};
 use mason_report::{pre, Section, Series};
 use mason_wall::BUILTIN_WALLS;

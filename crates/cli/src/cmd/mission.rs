@@ -10,8 +10,7 @@ use mason_order::{BuildProblem, CheckedPlan, CostModel, PlannerSpec};
 use mason_wall::{BrickId, Wall};
 use std::path::{Path, PathBuf};
 
-/// What a planner may take to plan the order a mission flies (s).
-pub const ORDER_TIME_LIMIT_S: f64 = 60.0;
+use mason_mission::ORDER_TIME_LIMIT_S;
 
 /// The mission options shared by `simulate`, `agent` and `launch`.
 #[derive(clap::Args, Clone)]

@@ -4,8 +4,7 @@
 use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
 use crate::input::DesignArgs;
 use mason_order::{plan_checked, Budget, BuildProblem, CheckedPlan, PlannerSpec, Status};
-use mason_wall::Wall;
-use serde_json::{json, Value};
+use serde_json::Value;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -94,7 +93,7 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
     }
     write_all(&files)?;
     if a.json {
-        println!("{}", pretty(&plan_json(&problem, &checked)));
+        println!("{}", pretty(&mason_report::plan_json(&problem, &checked)));
     } else {
         print!("{}", plan_table(&problem, &checked));
     }
@@ -169,60 +168,6 @@ pub fn exit_for(checked: &Checked) -> CliResult<()> {
         ))),
         _ => Ok(()),
     }
-}
-
-/// The plan as the JSON of DESIGN §7, with the wall and the model so it can be checked alone.
-pub fn plan_json(problem: &BuildProblem<'_>, checked: &Checked) -> Value {
-    let wall = problem.wall();
-    let o = &checked.outcome;
-    let steps: Vec<Value> = checked
-        .evaluation
-        .iter()
-        .flat_map(|e| &e.steps)
-        .map(|s| {
-            json!({
-                "id": wall.brick(s.brick).label,
-                "placed_neighbours": s.placed_neighbours,
-                "cost": s.cost,
-            })
-        })
-        .collect();
-    json!({
-        "planner": o.planner,
-        "status": o.status,
-        "order": o.order.as_ref().map(|ord| ord.iter().map(|&b| wall.brick(b).label).collect::<Vec<_>>()),
-        "total_cost": checked.evaluation.as_ref().map(|e| e.total_cost),
-        "steps": steps,
-        "stats": {
-            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
-            "nodes": o.stats.nodes,
-            "leaves": o.stats.leaves,
-        },
-        "model": problem.model(),
-        "wall": wall_json(wall),
-    })
-}
-
-/// The wall's bricks with their supports and neighbours, by label.
-pub fn wall_json(wall: &Wall) -> Value {
-    let labels =
-        |ids: &[mason_wall::BrickId]| ids.iter().map(|&i| wall.brick(i).label).collect::<Vec<_>>();
-    let bricks: Vec<Value> = wall
-        .ids()
-        .map(|id| {
-            let b = wall.brick(id);
-            json!({
-                "id": b.label,
-                "type": b.kind,
-                "level": b.level,
-                "segment": b.segment,
-                "footprint": [b.footprint.x0, b.footprint.x1, b.footprint.y0, b.footprint.y1],
-                "supports": labels(wall.supports(id)),
-                "neighbours": labels(wall.neighbours(id)),
-            })
-        })
-        .collect();
-    json!({ "name": wall.name(), "levels": wall.levels(), "bricks": bricks, "warnings": wall.warnings() })
 }
 
 /// The plan as a table.

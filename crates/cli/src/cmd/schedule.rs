@@ -9,7 +9,6 @@ use mason_order::schedule::{
 use mason_order::Budget;
 use mason_order::CostModel;
 use mason_wall::{BrickId, Wall};
-use serde_json::{json, Value};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -61,7 +60,10 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
     }
     write_all(&files)?;
     if a.json {
-        println!("{}", pretty(&schedule_json(&problem, &checked, req.seed)));
+        println!(
+            "{}",
+            pretty(&mason_report::schedule_json(&problem, &checked, req.seed))
+        );
     } else {
         print!("{}", schedule_table(&problem, &checked));
     }
@@ -98,21 +100,8 @@ impl ScheduleRequest {
         seed: u64,
         limit: Option<f64>,
     ) -> CliResult<Self> {
-        let mut objective: Objective = objective
-            .parse()
-            .map_err(|e| input_error(format!("--objective: {e}")))?;
-        match (&mut objective, uav_hazard) {
-            (Objective::Expected { hazard_per_hour }, Some(h)) => *hazard_per_hour = h,
-            (Objective::Expected { .. }, None) => {
-                return Err(input_error(
-                    "--objective expected needs --uav-hazard λ (failures per hour)",
-                ))
-            }
-            (_, Some(_)) => return Err(input_error("--uav-hazard is for --objective expected")),
-            _ => {}
-        }
         Ok(ScheduleRequest {
-            objective,
+            objective: mason_io::objective(objective, uav_hazard)?,
             uavs,
             budget_s,
             time_limit: time_limit(limit)?,
@@ -145,13 +134,7 @@ pub fn problem<'w>(
 /// The schedule search's budget: until the deadline when there is a time limit, else the
 /// deterministic default.
 fn search_budget(limit: Option<f64>) -> Budget {
-    match limit {
-        Some(s) => Budget {
-            deadline: Budget::time(Duration::from_secs_f64(s)).deadline,
-            node_limit: Some(u64::MAX),
-        },
-        None => Budget::unlimited(),
-    }
+    Budget::anytime(limit.map(Duration::from_secs_f64))
 }
 
 /// Plans and validates (an invalid schedule is a bug: reported, exit 2).
@@ -160,60 +143,6 @@ pub fn solve(p: &TeamProblem<'_>, req: &ScheduleRequest) -> CliResult<CheckedSch
         input_error(format!(
             "internal error: the planner produced an invalid schedule: {e}"
         ))
-    })
-}
-
-fn num(x: f64) -> Value {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        json!(x as i64)
-    } else {
-        json!(x)
-    }
-}
-
-/// The schedule as JSON (README: "Team schedule JSON").
-pub fn schedule_json(p: &TeamProblem<'_>, c: &CheckedSchedule, seed: u64) -> Value {
-    let wall = p.wall();
-    let o = &c.outcome;
-    let rows: Vec<Value> = o
-        .schedule
-        .iter()
-        .flat_map(|s| &s.placements)
-        .flat_map(|pl| {
-            pl.uavs.iter().map(move |&u| {
-                json!({
-                    "uav": u,
-                    "brick": wall.brick(pl.brick).label,
-                    "type": wall.brick(pl.brick).kind,
-                    "start_s": num(pl.start_s),
-                    "end_s": num(pl.start_s + p.place_s(pl.brick)),
-                })
-            })
-        })
-        .collect();
-    json!({
-        "objective": p.objective().name(),
-        "model": p.model().name,
-        "uavs": p.uavs(),
-        "budget_s": p.budget_s().map(num),
-        "uav_hazard_per_hour": match p.objective() { Objective::Expected { hazard_per_hour } => Some(hazard_per_hour), _ => None },
-        "seed": seed,
-        "reward": num(o.reward),
-        "expected_reward": o.expected_reward,
-        "bricks_placed": c.evaluation.bricks,
-        "bricks_total": wall.len(),
-        "makespan_s": num(o.makespan_s),
-        "bound": num(o.bound),
-        "gap": num(o.gap(p.objective())),
-        "status": o.status,
-        "schedule": rows,
-        "stats": {
-            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
-            "decodes": o.stats.decodes,
-            "improvements": o.stats.improvements,
-        },
-        "team_model": p.model(),
-        "wall": crate::cmd::plan::wall_json(wall),
     })
 }
 

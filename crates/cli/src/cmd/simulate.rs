@@ -9,7 +9,6 @@ use mason_mission::{
     for_each_run, run_many, Coord, Event, MissionInput, MissionResult, MissionStatus, Summariser,
 };
 use mason_report::text::{policy_table, result_table, summary_table, PolicyRow};
-use mason_report::{event_json, metrics_json};
 use std::path::PathBuf;
 
 /// `mason simulate`'s options.
@@ -178,6 +177,17 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
     };
     let spec = mission.spec;
     let coord_text = coord_name(coord);
+    let planner = spec.to_string();
+    let setting = mason_report::RunSetting {
+        wall,
+        uavs: m.uavs,
+        coord,
+        planner: &planner,
+        order: &order,
+        seed: a.seed,
+        slot_s: slot,
+        faults: &config.faults,
+    };
     if a.runs == 1 {
         let (r, trace) = fly_once(input, coord, slot, a.seed)?;
         check_replans(replanner.as_ref())?;
@@ -218,13 +228,7 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
         }
         write_all(&files)?;
         if a.json {
-            let events: Vec<_> = trace.iter().map(|e| event_json(wall, e)).collect();
-            let v = serde_json::json!({
-                "wall": wall.name(), "uavs": m.uavs, "coord": coord, "planner": spec.to_string(),
-                "order": order.iter().map(|b| wall.brick(*b).label).collect::<Vec<_>>(),
-                "seed": a.seed, "slot_s": slot, "faults": config.faults,
-                "metrics": metrics_json(&r), "events": events,
-            });
+            let v = mason_report::simulate_json(&setting, &r, &trace);
             println!("{}", pretty(&v));
         } else {
             println!(
@@ -258,11 +262,7 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
     .summary();
     pb.finish_and_clear();
     if a.json {
-        let v = serde_json::json!({
-            "wall": wall.name(), "uavs": m.uavs, "coord": coord, "planner": spec.to_string(),
-            "first_seed": a.seed, "slot_s": slot, "faults": config.faults, "summary": summary,
-        });
-        println!("{}", pretty(&v));
+        println!("{}", pretty(&mason_report::runs_json(&setting, &summary)));
     } else {
         println!(
             "{}: {} UAVs, coord {}, order from {}, seeds {}..{}",

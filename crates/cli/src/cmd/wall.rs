@@ -31,7 +31,7 @@ pub fn run(command: WallCommand) -> CliResult<()> {
     if json {
         println!(
             "{}",
-            crate::cmd::plan::pretty(&crate::cmd::plan::wall_json(&wall))
+            crate::cmd::plan::pretty(&mason_report::wall_json(&wall))
         );
     } else {
         print!("{}", wall_table(&wall));

@@ -172,7 +172,7 @@ pub fn exhaustive_schedule(p: &TeamProblem<'_>, budget: &Budget) -> TeamOutcome 
         free: vec![0.0; p.uavs()],
         used: vec![false; p.uavs()],
         nodes: 0,
-        budget: *budget,
+        budget: budget.clone(),
         stopped: false,
         best: None,
     };

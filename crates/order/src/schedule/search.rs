@@ -22,7 +22,7 @@ use super::bounds::{
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoder, Mode};
-use crate::outcome::{Budget, Status};
+use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -309,6 +309,15 @@ fn positions(list: &[BrickId], n: usize) -> Vec<usize> {
     pos
 }
 
+/// What a search thread aims at: the objective's bound (`target`: stop there) and when the
+/// search started (for progress reports).
+#[derive(Clone, Copy)]
+struct Aim {
+    target: Option<f64>,
+    bound: f64,
+    started: Instant,
+}
+
 struct ThreadResult {
     mode: Mode,
     score: Score,
@@ -324,9 +333,14 @@ fn search_thread(
     budget: &Budget,
     seed: u64,
     mode: Mode,
-    target: Option<f64>,
+    aim: Aim,
     scen: Vec<Scenario>,
 ) -> ThreadResult {
+    let Aim {
+        target,
+        bound,
+        started: t0,
+    } = aim;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut s = Searcher {
         p,
@@ -352,6 +366,19 @@ fn search_thread(
             best_list = l.clone();
         }
     }
+    // The listener hears the objective itself: a makespan, or a (expected) reward.
+    let tell = |sc: &Score, decodes: u64| {
+        budget.better(Better {
+            value: match p.objective() {
+                Objective::Makespan => sc[0],
+                _ => -sc[0],
+            },
+            bound,
+            decodes,
+            elapsed_s: t0.elapsed().as_secs_f64(),
+        })
+    };
+    tell(&best, s.decodes);
     let mut timed_out = false;
     let n = p.len();
     let mut cur = best_list.clone();
@@ -360,7 +387,7 @@ fn search_thread(
     let mut stale = 0u64;
     let patience = (40 * n as u64).clamp(200, 4000);
     while !reached(&best) && s.decodes < cap && n > 1 {
-        if budget.deadline.is_some_and(|d| Instant::now() >= d) {
+        if budget.out_of_time() {
             timed_out = true;
             break;
         }
@@ -393,6 +420,7 @@ fn search_thread(
                 best = cur_score;
                 best_list = cur.clone();
                 s.improvements += 1;
+                tell(&best, s.decodes);
             }
         } else {
             stale += 1;
@@ -477,7 +505,11 @@ pub fn plan_schedule_with(
                         budget,
                         seed.wrapping_mul(2).wrapping_add(k),
                         mode,
-                        target,
+                        Aim {
+                            target,
+                            bound,
+                            started: t0,
+                        },
                         scen,
                     )
                 })

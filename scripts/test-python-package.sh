@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The Python package (#26): builds Mason's abi3 wheel with maturin, installs it into a venv
+# under target/ (${MASON_PYPKG_ENV:-target/pymason}; with PyPI's maturin, pytest, numpy and
+# dask at pinned versions, installed by this script), and runs crates/py/tests against it and
+# against the `mason` CLI (${MASON_BIN:-target/debug/mason}, built here if missing).
+# Run from anywhere; extra arguments go to pytest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ENV="${MASON_PYPKG_ENV:-target/pymason}"
+PY="$ENV/bin/python"
+if ! python3 -c "import venv, ensurepip" 2>/dev/null; then
+    SUDO=""
+    if [ "$(id -u)" != "0" ]; then
+        SUDO="sudo"
+    fi
+    export DEBIAN_FRONTEND=noninteractive
+    $SUDO apt-get update -qq
+    $SUDO apt-get install -y -qq --no-install-recommends python3-venv >/dev/null
+fi
+if [ ! -x "$PY" ]; then
+    python3 -m venv "$ENV"
+fi
+"$PY" -m pip install --quiet --disable-pip-version-check \
+    maturin==1.16.0 pytest==9.2.0 numpy==2.4.6 dask==2026.8.0 distributed==2026.8.0
+rm -rf target/wheels
+"$ENV/bin/maturin" build --release --quiet -m crates/py/Cargo.toml -i "$PY" -o target/wheels
+"$PY" -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/mason-*.whl
+export MASON_BIN="${MASON_BIN:-target/debug/mason}"
+if [ ! -x "$MASON_BIN" ]; then
+    cargo build -p mason-cli
+fi
+MASON_BIN="$(realpath "$MASON_BIN")"
+export MASON_BIN
+PY="$(realpath "$PY")"
+# The installed wheel, not the sources: run from a folder where `mason` is not a directory.
+cd crates/py/tests
+exec "$PY" -m pytest -q -p no:cacheprovider "$@" .
