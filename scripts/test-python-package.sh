@@ -31,7 +31,7 @@ if [ ! -x "$MASON_BIN" ]; then
 fi
 MASON_BIN="$(realpath "$MASON_BIN")"
 export MASON_BIN
-PY="$(realpath "$PY")"
+PY="$(realpath -s "$PY")"
 # The installed wheel, not the sources: run from a folder where `mason` is not a directory.
 cd crates/py/tests
 exec "$PY" -m pytest -q -p no:cacheprovider "$@" .

@@ -122,8 +122,9 @@ fn load_movingai<'py>(
     py: Python<'py>,
     map_path: PathBuf,
     scen_path: PathBuf,
-    agents: Option<usize>,
+    agents: Option<i64>,
 ) -> PyResult<Instance3<'py>> {
+    let agents = agents.map(|a| crate::count(py, "agents", a)).transpose()?;
     let map = map_path.to_string_lossy().into_owned();
     let input = mason_io::CrewInput {
         map: Some(&map),

@@ -59,6 +59,13 @@ pub(crate) fn internal(py: Python<'_>, message: impl std::fmt::Display) -> PyErr
     error(py, "MasonError", format!("internal error: {message}"))
 }
 
+/// A count argument (`uavs`, `runs`, `agents`) as a `usize`: a negative one is an
+/// `InputError` naming the argument, not an `OverflowError`.
+pub(crate) fn count(py: Python<'_>, name: &str, v: i64) -> PyResult<usize> {
+    usize::try_from(v)
+        .map_err(|_| input_error(py, format!("{name} {v}: expected a count, 0 or more")))
+}
+
 /// A JSON value as Python objects (dicts, lists, numbers, strings, None).
 pub(crate) fn to_py<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(v).map_err(|e| internal(py, e))?;

@@ -237,7 +237,7 @@ fn simulate(
     py: Python<'_>,
     wall: &PyWall,
     plan_or_schedule: Option<Bound<'_, PyAny>>,
-    uavs: usize,
+    uavs: i64,
     coord: &str,
     faults: Option<Bound<'_, PyAny>>,
     seed: u64,
@@ -249,7 +249,7 @@ fn simulate(
         py,
         wall,
         plan_or_schedule.as_ref(),
-        uavs,
+        crate::count(py, "uavs", uavs)?,
         coord,
         faults.as_ref(),
         model,
@@ -281,16 +281,17 @@ fn monte_carlo<'py>(
     py: Python<'py>,
     wall: &PyWall,
     plan_or_schedule: Option<Bound<'_, PyAny>>,
-    uavs: usize,
+    uavs: i64,
     coord: &str,
     faults: Option<Bound<'_, PyAny>>,
     seed: u64,
-    runs: usize,
+    runs: i64,
     model: Option<PathBuf>,
     mission: Option<PathBuf>,
     slot: Option<f64>,
     per_run: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let runs = crate::count(py, "runs", runs)?;
     if runs == 0 {
         return Err(input_error(py, "runs must be at least 1"));
     }
@@ -307,7 +308,7 @@ fn monte_carlo<'py>(
         py,
         wall,
         plan_or_schedule.as_ref(),
-        uavs,
+        crate::count(py, "uavs", uavs)?,
         coord,
         faults.as_ref(),
         model,

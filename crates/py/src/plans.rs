@@ -326,7 +326,7 @@ fn plan_schedule(
     py: Python<'_>,
     wall: &PyWall,
     objective: &str,
-    uavs: usize,
+    uavs: i64,
     model: &str,
     budget: Option<f64>,
     uav_hazard: Option<f64>,
@@ -334,6 +334,7 @@ fn plan_schedule(
     seed: u64,
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<PySchedule> {
+    let uavs = crate::count(py, "uavs", uavs)?;
     let objective = mason_io::objective(objective, uav_hazard).map_err(bad(py))?;
     let limit = self::time_limit(py, time_limit)?;
     let team = mason_io::load_team_model(Some(model)).map_err(bad(py))?;
