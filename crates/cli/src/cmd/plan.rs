@@ -68,8 +68,16 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
     let wall = a.design.load()?;
     let model = mason_io::load_model(a.model.as_deref().map(std::path::Path::new))?;
     let problem = BuildProblem::new(&wall, model).map_err(|e| input_error(e.to_string()))?;
-    let checked = solve(&problem, spec, limit)?;
-    let figure = mason_report::wall_svg(&wall, checked.outcome.order.as_deref());
+    // The limit counts from the start: the search gets what reading and printing leave.
+    let share = limit.map(|l| {
+        crate::cmd::schedule::search_share(l, started.elapsed(), wall.len()).as_secs_f64()
+    });
+    let checked = solve(&problem, spec, share)?;
+    let figure = if a.svg.is_some() || a.html.is_some() {
+        mason_report::wall_svg(&wall, checked.outcome.order.as_deref())
+    } else {
+        String::new()
+    };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if let Some(path) = a.svg {
         files.push((path, figure.clone().into_bytes()));

@@ -22,8 +22,9 @@
 //!   concave in the capacity, so by Jensen it bounds the expectation of every policy, even
 //!   one that knows the failure times.
 
-use super::closure::max_weight_closure;
+use super::closure::max_weight_closure_until;
 use super::problem::TeamProblem;
+use crate::outcome::Budget;
 use mason_wall::BrickId;
 
 /// The earliest each brick can be placed: its longest chain of placing phases.
@@ -192,8 +193,14 @@ fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
     }
 }
 
-/// A heaviest closed set of eligible bricks under reward − λ·weight.
-fn closure_at(p: &TeamProblem<'_>, k: &Knapsack, lambda: f64) -> (Vec<bool>, f64, f64) {
+/// A heaviest closed set of eligible bricks under reward − λ·weight (`None`: `search` ran out
+/// before it was found).
+fn closure_at(
+    p: &TeamProblem<'_>,
+    k: &Knapsack,
+    lambda: f64,
+    search: &Budget,
+) -> Option<(Vec<bool>, f64, f64)> {
     let n = p.len();
     let weight: Vec<f64> = (0..n)
         .map(|i| {
@@ -204,14 +211,14 @@ fn closure_at(p: &TeamProblem<'_>, k: &Knapsack, lambda: f64) -> (Vec<bool>, f64
             }
         })
         .collect();
-    let set = max_weight_closure(&weight, &k.requires);
+    let set = max_weight_closure_until(&weight, &k.requires, &|| search.out_of_time())?;
     let set: Vec<bool> = set.iter().zip(&k.eligible).map(|(&s, &e)| s && e).collect();
     let (mut r, mut w) = (0.0, 0.0);
     for i in (0..n).filter(|&i| set[i]) {
         r += p.reward(BrickId(i as u32));
         w += k.weight[i];
     }
-    (set, r, w)
+    Some((set, r, w))
 }
 
 /// The reward relaxation's result.
@@ -227,19 +234,31 @@ pub struct RewardBound {
     pub capacity: f64,
 }
 
-fn lagrangian(p: &TeamProblem<'_>, k: Knapsack) -> RewardBound {
+/// The Lagrangian dual of the knapsack over closed sets: every λ ≥ 0 gives an upper bound,
+/// so stopping early (`search` out of time) keeps a sound one, at worst the sum of the
+/// eligible bricks' rewards.
+fn lagrangian(p: &TeamProblem<'_>, k: Knapsack, search: &Budget) -> RewardBound {
     let n = p.len();
     let ratio_max = (0..n)
         .filter(|&i| k.eligible[i] && k.weight[i] > 0.0)
         .map(|i| p.reward(BrickId(i as u32)) / k.weight[i])
         .fold(0.0, f64::max);
     let (mut lo, mut hi) = (0.0f64, ratio_max + 1.0);
-    let mut best = f64::INFINITY;
+    // Every brick placed by T is eligible: their rewards together bound any schedule.
+    let mut best: f64 = (0..n)
+        .filter(|&i| k.eligible[i])
+        .map(|i| p.reward(BrickId(i as u32)).max(0.0))
+        .sum();
     let mut fitting = vec![false; n];
     let mut fitting_reward = -1.0;
     for _ in 0..60 {
+        if search.out_of_time() {
+            break;
+        }
         let lambda = (lo + hi) / 2.0;
-        let (set, r, w) = closure_at(p, &k, lambda);
+        let Some((set, r, w)) = closure_at(p, &k, lambda, search) else {
+            break;
+        };
         best = best.min(lambda * k.capacity + r - lambda * w);
         if w <= k.capacity + 1e-9 {
             if r > fitting_reward {
@@ -255,9 +274,10 @@ fn lagrangian(p: &TeamProblem<'_>, k: Knapsack) -> RewardBound {
         }
     }
     // λ = 0 also bounds: everything eligible.
-    let (_, all, w_all) = closure_at(p, &k, 0.0);
-    if w_all <= k.capacity + 1e-9 {
-        best = all;
+    if let Some((_, all, w_all)) = closure_at(p, &k, 0.0, search) {
+        if w_all <= k.capacity + 1e-9 {
+            best = all;
+        }
     }
     RewardBound {
         bound: best,
@@ -270,7 +290,12 @@ fn lagrangian(p: &TeamProblem<'_>, k: Knapsack) -> RewardBound {
 /// An upper bound on the reward any valid schedule places by `budget`.
 /// Rounded down when every reward is a whole number.
 pub fn reward_upper_bound(p: &TeamProblem<'_>, budget: f64) -> RewardBound {
-    let mut b = lagrangian(p, knapsack(p, budget, budget));
+    reward_upper_bound_within(p, budget, &Budget::unlimited())
+}
+
+/// [`reward_upper_bound`], looser but still sound when `search` runs out first.
+pub fn reward_upper_bound_within(p: &TeamProblem<'_>, budget: f64, search: &Budget) -> RewardBound {
+    let mut b = lagrangian(p, knapsack(p, budget, budget), search);
     if p.wall().ids().all(|id| p.reward(id).fract() == 0.0) {
         b.bound = (b.bound + 1e-6).floor();
     }
@@ -280,6 +305,16 @@ pub fn reward_upper_bound(p: &TeamProblem<'_>, budget: f64) -> RewardBound {
 /// An upper bound on the expected reward by `budget` when each UAV fails at
 /// `hazard_per_hour` (exponential), for any policy.
 pub fn expected_reward_upper_bound(p: &TeamProblem<'_>, budget: f64, hazard_per_hour: f64) -> f64 {
+    expected_reward_upper_bound_within(p, budget, hazard_per_hour, &Budget::unlimited())
+}
+
+/// [`expected_reward_upper_bound`], looser but still sound when `search` runs out first.
+pub fn expected_reward_upper_bound_within(
+    p: &TeamProblem<'_>,
+    budget: f64,
+    hazard_per_hour: f64,
+    search: &Budget,
+) -> f64 {
     let rate = hazard_per_hour / 3600.0;
     // (1 − e^(−rT))/r, written with exp_m1 so that a tiny rate keeps its precision (with
     // `1 − exp` a rate of 1e-18/h gave 0 and a bound far below the reward), and never more
@@ -290,5 +325,5 @@ pub fn expected_reward_upper_bound(p: &TeamProblem<'_>, budget: f64, hazard_per_
         budget
     };
     // The expectation need not be a whole number: no rounding.
-    lagrangian(p, knapsack(p, budget, uav_time)).bound
+    lagrangian(p, knapsack(p, budget, uav_time), search).bound
 }

@@ -92,17 +92,34 @@ impl Network {
         }
     }
 
-    fn max_flow(&mut self, s: usize, t: usize) {
+    /// Dinic's phases until no augmenting path is left (true), or until `stop` says so,
+    /// looked at every 1024 augmentations (false: the flow is not maximal).
+    fn max_flow(&mut self, s: usize, t: usize, stop: &dyn Fn() -> bool) -> bool {
+        let mut paths = 0u64;
         while self.levels(s, t) {
+            if stop() {
+                return false;
+            }
             self.next.fill(0);
-            while self.augment(s, t) > EPS {}
+            while self.augment(s, t) > EPS {
+                paths += 1;
+                if paths % 1024 == 0 && stop() {
+                    return false;
+                }
+            }
         }
+        true
     }
 }
 
 /// The heaviest closure: `weight[v]` per node, `requires[v]` the nodes `v` needs. Returns a
-/// membership flag per node (nodes of weight ≤ 0 with nothing above them stay out).
-pub fn max_weight_closure(weight: &[f64], requires: &[Vec<usize>]) -> Vec<bool> {
+/// membership flag per node (nodes of weight ≤ 0 with nothing above them stay out), or `None`
+/// when `stop` says so before the flow is maximal.
+pub fn max_weight_closure_until(
+    weight: &[f64],
+    requires: &[Vec<usize>],
+    stop: &dyn Fn() -> bool,
+) -> Option<Vec<bool>> {
     let n = weight.len();
     let (s, t) = (n, n + 1);
     let mut net = Network::new(n + 2);
@@ -116,7 +133,9 @@ pub fn max_weight_closure(weight: &[f64], requires: &[Vec<usize>]) -> Vec<bool> 
             net.add(v, w, INF);
         }
     }
-    net.max_flow(s, t);
+    if !net.max_flow(s, t, stop) {
+        return None;
+    }
     // The closure: nodes still reachable from s in the residual network.
     let mut inside = vec![false; n + 2];
     inside[s] = true;
@@ -131,12 +150,16 @@ pub fn max_weight_closure(weight: &[f64], requires: &[Vec<usize>]) -> Vec<bool> 
         }
     }
     inside.truncate(n);
-    inside
+    Some(inside)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn max_weight_closure(weight: &[f64], requires: &[Vec<usize>]) -> Vec<bool> {
+        max_weight_closure_until(weight, requires, &|| false).expect("no stop")
+    }
 
     /// Every subset of a small DAG, closed ones only, heaviest by enumeration.
     fn brute(weight: &[f64], requires: &[Vec<usize>]) -> f64 {

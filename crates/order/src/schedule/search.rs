@@ -17,8 +17,8 @@
 //!   (decodes per thread) or at its deadline (`Timeout`, best so far).
 
 use super::bounds::{
-    earliest_end, expected_reward_upper_bound, makespan_lower_bound, reward_upper_bound,
-    RewardBound,
+    earliest_end, expected_reward_upper_bound_within, makespan_lower_bound,
+    reward_upper_bound_within, RewardBound,
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoder, Mode};
@@ -202,9 +202,18 @@ fn chain_list(p: &TeamProblem<'_>) -> Vec<BrickId> {
     l
 }
 
+/// Node visits that [`knapsack_list`]'s greedy additions may make in all (a start list is a
+/// heuristic: past this, or past the deadline, it stops adding and lists the rest by ratio).
+const KNAPSACK_WORK: u64 = 50_000_000;
+
 /// Under a budget: the knapsack closure first (level order), then greedy additions by reward
 /// per weight of the brick and its missing supports, then everything else.
-fn knapsack_list(p: &TeamProblem<'_>, budget: f64, rb: &RewardBound) -> Vec<BrickId> {
+fn knapsack_list(
+    p: &TeamProblem<'_>,
+    budget_s: f64,
+    rb: &RewardBound,
+    search: &Budget,
+) -> Vec<BrickId> {
     let wall = p.wall();
     let head = earliest_end(p);
     let mut chosen = rb.fitting.clone();
@@ -212,22 +221,40 @@ fn knapsack_list(p: &TeamProblem<'_>, budget: f64, rb: &RewardBound) -> Vec<Bric
         .filter(|&i| chosen[i])
         .map(|i| rb.weight[i])
         .sum();
-    loop {
+    // Group membership by stamp: each group gets a fresh one.
+    let mut stamp = vec![0u64; p.len()];
+    let mut next_stamp = 0u64;
+    let mut work = 0u64;
+    'rounds: loop {
+        if search.out_of_time() {
+            break;
+        }
         // Best addable group: a brick with its unchosen ancestors.
         let mut best: Option<(f64, Vec<usize>)> = None;
         for b in wall.ids() {
-            if chosen[b.index()] || head[b.index()] > budget + 1e-9 {
+            if chosen[b.index()]
+                || head[b.index()] > budget_s + 1e-9
+                // Weights are never negative: a group weighs at least its brick.
+                || used + rb.weight[b.index()] > rb.capacity + 1e-9
+            {
                 continue;
             }
+            next_stamp += 1;
+            stamp[b.index()] = next_stamp;
             let mut group = vec![b.index()];
             let mut k = 0;
             while k < group.len() {
                 for s in wall.supports(BrickId(group[k] as u32)) {
-                    if !chosen[s.index()] && !group.contains(&s.index()) {
+                    if !chosen[s.index()] && stamp[s.index()] != next_stamp {
+                        stamp[s.index()] = next_stamp;
                         group.push(s.index());
                     }
                 }
                 k += 1;
+            }
+            work += group.len() as u64;
+            if work > KNAPSACK_WORK {
+                break 'rounds;
             }
             let w: f64 = group.iter().map(|&i| rb.weight[i]).sum();
             if used + w > rb.capacity + 1e-9 {
@@ -357,9 +384,14 @@ fn search_thread(
         .unwrap_or(DEFAULT_DECODES.max(2_000_000 / p.len().max(1) as u64) / per_score);
     // The primary objective at its bound: nothing can beat it.
     let reached = |sc: &Score| target.is_some_and(|t| sc[0] <= t + 1e-9);
+    let mut timed_out = false;
     let mut best_list = starts[0].clone();
     let mut best = s.score(&best_list);
     for l in &starts[1..] {
+        if budget.out_of_time() {
+            timed_out = true;
+            break;
+        }
         let sc = s.score(l);
         if better(&sc, &best) {
             best = sc;
@@ -379,7 +411,6 @@ fn search_thread(
         })
     };
     tell(&best, s.decodes);
-    let mut timed_out = false;
     let n = p.len();
     let mut cur = best_list.clone();
     let mut cur_score = best;
@@ -467,10 +498,10 @@ pub fn plan_schedule_with(
     let reward_bound = p
         .budget_s()
         .filter(|_| whole)
-        .map(|b| (b, reward_upper_bound(p, b)));
+        .map(|b| (b, reward_upper_bound_within(p, b, budget)));
     let mut starts: Vec<Vec<BrickId>> = extra_starts.to_vec();
     if let Some((b, rb)) = &reward_bound {
-        starts.push(knapsack_list(p, *b, rb));
+        starts.push(knapsack_list(p, *b, rb, budget));
     }
     starts.push(level_list(p));
     starts.push(chain_list(p));
@@ -483,9 +514,10 @@ pub fn plan_schedule_with(
             (lb, Some(lb))
         }
         (Objective::Reward, Some((_, rb))) => (rb.bound, None),
-        (Objective::Expected { hazard_per_hour }, Some((b, _))) => {
-            (expected_reward_upper_bound(p, *b, hazard_per_hour), None)
-        }
+        (Objective::Expected { hazard_per_hour }, Some((b, _))) => (
+            expected_reward_upper_bound_within(p, *b, hazard_per_hour, budget),
+            None,
+        ),
         (_, None) => unreachable!("TeamProblem::new requires a budget for reward and expected"),
     };
     let scen = match p.objective() {
