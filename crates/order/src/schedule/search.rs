@@ -28,8 +28,27 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 
-/// Decodes per thread when the budget sets no node cap.
+/// Decodes per thread when the budget sets no node cap, for walls up to [`FULL_DECODES_UP_TO`]
+/// bricks.
 pub const DEFAULT_DECODES: u64 = 4000;
+
+/// Walls up to this size get the full [`DEFAULT_DECODES`] (more for small walls); larger ones
+/// get fewer in proportion, so that the deterministic search's work stays that of a
+/// 2048-brick wall (at least [`LEAST_DECODES`]).
+pub const FULL_DECODES_UP_TO: u64 = 2048;
+
+/// The fewest decodes per thread of the deterministic search.
+pub const LEAST_DECODES: u64 = 16;
+
+/// Decodes per thread of the deterministic search (no node cap, no deadline) on `n` bricks.
+pub fn default_decodes(n: usize) -> u64 {
+    let n = n.max(1) as u64;
+    if n <= FULL_DECODES_UP_TO {
+        DEFAULT_DECODES.max(2_000_000 / n)
+    } else {
+        (DEFAULT_DECODES * FULL_DECODES_UP_TO / n).max(LEAST_DECODES)
+    }
+}
 
 /// Failure scenarios sampled for the `expected` objective.
 pub const SCENARIOS: usize = 32;
@@ -381,7 +400,7 @@ fn search_thread(
     let per_score = 1 + s.scenarios.len() as u64;
     let cap = budget
         .node_limit
-        .unwrap_or(DEFAULT_DECODES.max(2_000_000 / p.len().max(1) as u64) / per_score);
+        .unwrap_or(default_decodes(p.len()) / per_score);
     // The primary objective at its bound: nothing can beat it.
     let reached = |sc: &Score| target.is_some_and(|t| sc[0] <= t + 1e-9);
     let mut timed_out = false;
