@@ -5,7 +5,9 @@
 //! diagonals in one 2×2 square, counting the time robots rest on their goals afterwards.
 
 use crate::grid::{Cell, Connectivity, Grid};
+use mason_wall::violations::Violations;
 use rustc_hash::FxHashMap;
+use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// What is wrong with a plan. Robots are 0-based; steps count from 0.
@@ -87,6 +89,16 @@ pub enum PlanError {
         /// The step the moves start at.
         step: usize,
     },
+    /// A stated sum of costs or makespan that the plan does not give.
+    #[error("the plan states {what} {claimed} but gives {actual}")]
+    Claim {
+        /// `sum of costs` or `makespan`.
+        what: &'static str,
+        /// Stated.
+        claimed: u64,
+        /// Recomputed.
+        actual: u64,
+    },
     /// Two robots crossing diagonals of one 2×2 square.
     #[error("robots {a} and {b} cross diagonals between steps {step} and {}", step + 1)]
     Crossing {
@@ -114,7 +126,8 @@ pub fn arrival(path: &[Cell]) -> usize {
     path.iter().rposition(|&c| c != goal).map_or(0, |i| i + 1)
 }
 
-/// Checks `paths` (robot i from `starts[i]` to `goals[i]`) and returns its metrics.
+/// Checks `paths` (robot i from `starts[i]` to `goals[i]`) and returns its metrics; stops at
+/// the first broken rule ([`plan_violations`] lists every one).
 pub fn validate(
     grid: &Grid,
     conn: Connectivity,
@@ -122,47 +135,132 @@ pub fn validate(
     goals: &[Cell],
     paths: &[Vec<Cell>],
 ) -> Result<PlanMetrics, PlanError> {
+    let mut found = Violations::first();
+    match walk(grid, conn, starts, goals, paths, &mut found) {
+        ControlFlow::Continue(()) => found.into_result(metrics(paths)),
+        ControlFlow::Break(()) => Err(found.into_vec().remove(0)),
+    }
+}
+
+/// Every rule of [`validate`] that `paths` break: each robot's own rules (start, goal, cells,
+/// moves) robot by robot, then the conflicts step by step. A wrong path count stops the check;
+/// so does a path that is empty or leaves the grid, before the conflicts.
+pub fn plan_violations(
+    grid: &Grid,
+    conn: Connectivity,
+    starts: &[Cell],
+    goals: &[Cell],
+    paths: &[Vec<Cell>],
+) -> Vec<PlanError> {
+    let mut found = Violations::every();
+    let _ = walk(grid, conn, starts, goals, paths, &mut found);
+    found.into_vec()
+}
+
+/// The stated figures that `metrics` (recomputed by [`validate`]) does not bear out.
+pub fn claim_violations(
+    metrics: &PlanMetrics,
+    sum_of_costs: Option<u64>,
+    makespan: Option<u64>,
+) -> Vec<PlanError> {
+    let stated = [
+        ("sum of costs", sum_of_costs, metrics.sum_of_costs),
+        ("makespan", makespan, metrics.makespan),
+    ];
+    stated
+        .into_iter()
+        .filter_map(|(what, claimed, actual)| {
+            let claimed = claimed?;
+            (claimed != actual).then_some(PlanError::Claim {
+                what,
+                claimed,
+                actual,
+            })
+        })
+        .collect()
+}
+
+fn metrics(paths: &[Vec<Cell>]) -> PlanMetrics {
+    let arrivals: Vec<u64> = paths.iter().map(|p| arrival(p) as u64).collect();
+    PlanMetrics {
+        sum_of_costs: arrivals.iter().sum(),
+        makespan: arrivals.iter().copied().max().unwrap_or(0),
+    }
+}
+
+fn walk(
+    grid: &Grid,
+    conn: Connectivity,
+    starts: &[Cell],
+    goals: &[Cell],
+    paths: &[Vec<Cell>],
+    found: &mut Violations<PlanError>,
+) -> ControlFlow<()> {
     if paths.len() != starts.len() || goals.len() != starts.len() {
-        return Err(PlanError::PathCount {
+        return found.report(PlanError::PathCount {
             paths: paths.len(),
             robots: starts.len(),
         });
     }
-    let xy = |c: Cell| grid.xy(c);
+    let on_grid = |c: Cell| (c.0 as usize) < grid.len();
+    // Cells off the grid are shown as they are; they have no (x, y).
+    let xy = |c: Cell| {
+        if on_grid(c) {
+            grid.xy(c)
+        } else {
+            (c.0, u32::MAX)
+        }
+    };
+    let mut well_formed = true;
     for (r, path) in paths.iter().enumerate() {
         let (Some(&first), Some(&last)) = (path.first(), path.last()) else {
-            return Err(PlanError::EmptyPath { robot: r });
+            found.report(PlanError::EmptyPath { robot: r })?;
+            well_formed = false;
+            continue;
         };
         if first != starts[r] {
-            return Err(PlanError::WrongStart {
+            found.report(PlanError::WrongStart {
                 robot: r,
                 found: xy(first),
                 expected: xy(starts[r]),
-            });
+            })?;
         }
         if last != goals[r] {
-            return Err(PlanError::WrongGoal {
+            found.report(PlanError::WrongGoal {
                 robot: r,
                 found: xy(last),
                 expected: xy(goals[r]),
-            });
+            })?;
         }
         for (t, &c) in path.iter().enumerate() {
-            if c.0 as usize >= grid.len() || !grid.is_free(c) {
-                return Err(PlanError::Blocked { robot: r, step: t });
+            if !on_grid(c) || !grid.is_free(c) {
+                found.report(PlanError::Blocked { robot: r, step: t })?;
+                well_formed &= on_grid(c);
             }
         }
         for (t, w) in path.windows(2).enumerate() {
-            if w[0] != w[1] && !grid.is_move(w[0], w[1], conn) {
-                return Err(PlanError::IllegalMove {
+            if w[0] != w[1] && on_grid(w[0]) && on_grid(w[1]) && !grid.is_move(w[0], w[1], conn) {
+                found.report(PlanError::IllegalMove {
                     robot: r,
                     step: t,
                     from: xy(w[0]),
                     to: xy(w[1]),
-                });
+                })?;
             }
         }
     }
+    if !well_formed {
+        return ControlFlow::Continue(());
+    }
+    conflicts(grid, paths, found)
+}
+
+fn conflicts(
+    grid: &Grid,
+    paths: &[Vec<Cell>],
+    found: &mut Violations<PlanError>,
+) -> ControlFlow<()> {
+    let xy = |c: Cell| grid.xy(c);
     let end = paths.iter().map(Vec::len).max().unwrap_or(1);
     let at = |r: usize, t: usize| paths[r][t.min(paths[r].len() - 1)];
     let mut cells: FxHashMap<Cell, usize> = FxHashMap::default();
@@ -170,13 +268,15 @@ pub fn validate(
     for t in 0..end {
         cells.clear();
         for r in 0..paths.len() {
-            if let Some(b) = cells.insert(at(r, t), r) {
-                return Err(PlanError::Vertex {
+            if let Some(&b) = cells.get(&at(r, t)) {
+                found.report(PlanError::Vertex {
                     a: b,
                     b: r,
                     cell: xy(at(r, t)),
                     step: t,
-                });
+                })?;
+            } else {
+                cells.insert(at(r, t), r);
             }
         }
         if t + 1 == end {
@@ -195,31 +295,32 @@ pub fn validate(
                 continue;
             }
             if let Some(&o) = moves.get(&(b, a)) {
-                return Err(PlanError::Swap {
-                    a: o.min(r),
-                    b: o.max(r),
-                    step: t,
-                });
+                // Each pair once, from its lower robot (the first to see it).
+                if r < o {
+                    found.report(PlanError::Swap {
+                        a: o.min(r),
+                        b: o.max(r),
+                        step: t,
+                    })?;
+                }
             }
             let ((ax, ay), (bx, by)) = (xy(a), xy(b));
             if ax != bx && ay != by {
                 let c = grid.cell(bx as i64, ay as i64).expect("inside");
                 let d = grid.cell(ax as i64, by as i64).expect("inside");
                 if let Some(&o) = moves.get(&(c, d)).or_else(|| moves.get(&(d, c))) {
-                    return Err(PlanError::Crossing {
-                        a: o.min(r),
-                        b: o.max(r),
-                        step: t,
-                    });
+                    if r < o {
+                        found.report(PlanError::Crossing {
+                            a: o.min(r),
+                            b: o.max(r),
+                            step: t,
+                        })?;
+                    }
                 }
             }
         }
     }
-    let arrivals: Vec<u64> = paths.iter().map(|p| arrival(p) as u64).collect();
-    Ok(PlanMetrics {
-        sum_of_costs: arrivals.iter().sum(),
-        makespan: arrivals.iter().copied().max().unwrap_or(0),
-    })
+    ControlFlow::Continue(())
 }
 
 #[cfg(test)]

@@ -6,10 +6,12 @@
 //!   trace ends (a time limit).
 
 use crate::state::{Event, EventKind, Observer, UavState};
+use mason_wall::violations::Violations;
 use mason_wall::{BrickId, Wall};
+use std::ops::ControlFlow;
 use thiserror::Error;
 
-/// A broken rule, with the time it was broken.
+/// A broken rule, with the time it was broken. Bricks are named by their labels.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum TraceError {
     /// Events out of time order.
@@ -43,9 +45,9 @@ pub enum TraceError {
     Precedence {
         /// Time.
         t: f64,
-        /// The brick (dense id).
+        /// The brick (its label).
         brick: u32,
-        /// The missing support.
+        /// The missing support (its label).
         support: u32,
     },
     /// A brick placed twice, or not held, or outside the zone.
@@ -59,6 +61,14 @@ pub enum TraceError {
         brick: u32,
         /// What is wrong.
         what: &'static str,
+    },
+    /// An event of a UAV outside the team, or naming a brick outside the wall.
+    #[error("t = {t}: {what}")]
+    Unknown {
+        /// Time.
+        t: f64,
+        /// What it names.
+        what: String,
     },
     /// A grasp while holding, or a brick left unaccounted.
     #[error("UAV {uav}: brick {brick} {what}")]
@@ -93,12 +103,25 @@ pub struct TraceChecker<'w> {
     last_state: Vec<UavState>,
     last_t: f64,
     summary: TraceSummary,
-    error: Option<TraceError>,
+    found: Violations<TraceError>,
+    stopped: bool,
 }
 
 impl<'w> TraceChecker<'w> {
-    /// A checker for a team of `uavs` building `wall`.
+    /// A checker for a team of `uavs` building `wall` that stops at the first broken rule.
     pub fn new(wall: &'w Wall, uavs: usize) -> Self {
+        Self::with(wall, uavs, Violations::first())
+    }
+
+    /// A checker that goes on after a broken rule and lists every one
+    /// ([`TraceChecker::violations`]). After a violation it keeps the facts the event states:
+    /// a brick placed against a rule is on the wall, a UAV that entered against a rule is in
+    /// the zone.
+    pub fn every(wall: &'w Wall, uavs: usize) -> Self {
+        Self::with(wall, uavs, Violations::every())
+    }
+
+    fn with(wall: &'w Wall, uavs: usize, found: Violations<TraceError>) -> Self {
         TraceChecker {
             wall,
             placed: vec![false; wall.len()],
@@ -107,112 +130,64 @@ impl<'w> TraceChecker<'w> {
             last_state: vec![UavState::Check; uavs],
             last_t: 0.0,
             summary: TraceSummary::default(),
-            error: None,
+            found,
+            stopped: false,
         }
     }
 
-    fn check(&mut self, e: &Event) -> Result<(), TraceError> {
+    fn check(&mut self, e: &Event) -> ControlFlow<()> {
         let t = e.t;
         let u = e.uav as usize;
         if t < self.last_t {
-            return Err(TraceError::OutOfOrder { t });
+            self.found.report(TraceError::OutOfOrder { t })?;
         }
-        self.last_t = t;
+        self.last_t = self.last_t.max(t);
+        if u >= self.holding.len() {
+            return self.found.report(TraceError::Unknown {
+                t,
+                what: format!("UAV {u} is not in the team of {}", self.holding.len()),
+            });
+        }
+        let brick = match e.kind {
+            EventKind::Grasp { brick } | EventKind::Place { brick } | EventKind::Lost { brick } => {
+                Some(brick)
+            }
+            _ => None,
+        };
+        if let Some(b) = brick.filter(|b| b.index() >= self.wall.len()) {
+            return self.found.report(TraceError::Unknown {
+                t,
+                what: format!(
+                    "brick index {} is not in the wall of {} bricks",
+                    b.0,
+                    self.wall.len()
+                ),
+            });
+        }
         match e.kind {
             EventKind::State { state, .. } => self.last_state[u] = state,
             EventKind::Grasp { brick } => {
                 if self.holding[u].is_some() {
-                    return Err(TraceError::Unaccounted {
+                    self.found.report(TraceError::Unaccounted {
                         uav: e.uav,
-                        brick: brick.0,
+                        brick: self.wall.brick(brick).label,
                         what: "grasped while holding another",
-                    });
+                    })?;
                 }
                 self.holding[u] = Some(brick);
             }
-            EventKind::ZoneEnter => {
-                if self.in_zone[u] {
-                    return Err(TraceError::Zone {
-                        t,
-                        uav: e.uav,
-                        what: "enters the zone twice",
-                    });
-                }
-                let Some(b) = self.holding[u] else {
-                    return Err(TraceError::Zone {
-                        t,
-                        uav: e.uav,
-                        what: "enters the zone without a brick",
-                    });
-                };
-                self.in_zone[u] = true;
-                let inside: Vec<usize> = (0..self.in_zone.len())
-                    .filter(|&i| self.in_zone[i])
-                    .collect();
-                if inside.len() > 1 {
-                    let pair = inside.len() == 2
-                        && self.wall.brick(b).kind.uavs_needed() == 2
-                        && inside.iter().all(|&i| self.holding[i] == Some(b));
-                    if !pair {
-                        let other = inside
-                            .iter()
-                            .copied()
-                            .find(|&i| i != u)
-                            .expect("two inside");
-                        return Err(TraceError::ZoneShared {
-                            t,
-                            a: other as u32,
-                            b: e.uav,
-                        });
-                    }
-                }
-            }
+            EventKind::ZoneEnter => self.enter(t, u)?,
             EventKind::ZoneLeave => {
                 if !self.in_zone[u] {
-                    return Err(TraceError::Zone {
+                    self.found.report(TraceError::Zone {
                         t,
                         uav: e.uav,
                         what: "leaves a zone it is not in",
-                    });
+                    })?;
                 }
                 self.in_zone[u] = false;
             }
-            EventKind::Place { brick } => {
-                let err = |what| TraceError::Placement {
-                    t,
-                    uav: e.uav,
-                    brick: brick.0,
-                    what,
-                };
-                if self.placed[brick.index()] {
-                    return Err(err("placed twice"));
-                }
-                if self.holding[u] != Some(brick) {
-                    return Err(err("the UAV does not hold it"));
-                }
-                if !self.in_zone[u] {
-                    return Err(err("the UAV is not in the zone"));
-                }
-                if let Some(s) = self
-                    .wall
-                    .supports(brick)
-                    .iter()
-                    .find(|s| !self.placed[s.index()])
-                {
-                    return Err(TraceError::Precedence {
-                        t,
-                        brick: brick.0,
-                        support: s.0,
-                    });
-                }
-                self.placed[brick.index()] = true;
-                self.summary.placed += 1;
-                for h in &mut self.holding {
-                    if *h == Some(brick) {
-                        *h = None;
-                    }
-                }
-            }
+            EventKind::Place { brick } => self.place(t, u, brick)?,
             EventKind::Lost { brick } => {
                 self.summary.lost += 1;
                 // The UAV lets go of it; an orange brick falls for both of its pair.
@@ -225,47 +200,144 @@ impl<'w> TraceChecker<'w> {
             }
             EventKind::Fail | EventKind::Comm { .. } | EventKind::Replan { .. } => {}
         }
-        Ok(())
+        ControlFlow::Continue(())
     }
 
-    /// The verdict.
-    pub fn finish(mut self) -> Result<TraceSummary, TraceError> {
-        if let Some(e) = self.error {
-            return Err(e);
+    fn enter(&mut self, t: f64, u: usize) -> ControlFlow<()> {
+        let uav = u as u32;
+        if self.in_zone[u] {
+            return self.found.report(TraceError::Zone {
+                t,
+                uav,
+                what: "enters the zone twice",
+            });
         }
-        for (u, h) in self.holding.iter().enumerate() {
-            if let Some(b) = h {
-                if matches!(self.last_state[u], UavState::Landed | UavState::Down) {
-                    return Err(TraceError::Unaccounted {
-                        uav: u as u32,
-                        brick: b.0,
-                        what: "is neither placed nor lost",
-                    });
+        self.in_zone[u] = true;
+        let Some(b) = self.holding[u] else {
+            return self.found.report(TraceError::Zone {
+                t,
+                uav,
+                what: "enters the zone without a brick",
+            });
+        };
+        let inside: Vec<usize> = (0..self.in_zone.len())
+            .filter(|&i| self.in_zone[i])
+            .collect();
+        if inside.len() > 1 {
+            let pair = inside.len() == 2
+                && self.wall.brick(b).kind.uavs_needed() == 2
+                && inside.iter().all(|&i| self.holding[i] == Some(b));
+            if !pair {
+                for &other in inside.iter().filter(|&&i| i != u) {
+                    self.found.report(TraceError::ZoneShared {
+                        t,
+                        a: other as u32,
+                        b: uav,
+                    })?;
                 }
-                self.summary.in_flight += 1;
             }
         }
-        Ok(self.summary)
+        ControlFlow::Continue(())
+    }
+
+    fn place(&mut self, t: f64, u: usize, brick: BrickId) -> ControlFlow<()> {
+        let label = self.wall.brick(brick).label;
+        let err = |what| TraceError::Placement {
+            t,
+            uav: u as u32,
+            brick: label,
+            what,
+        };
+        if self.placed[brick.index()] {
+            return self.found.report(err("placed twice"));
+        }
+        if self.holding[u] != Some(brick) {
+            self.found.report(err("the UAV does not hold it"))?;
+        }
+        if !self.in_zone[u] {
+            self.found.report(err("the UAV is not in the zone"))?;
+        }
+        let wall = self.wall;
+        for s in wall.supports(brick) {
+            if self.placed[s.index()] {
+                continue;
+            }
+            self.found.report(TraceError::Precedence {
+                t,
+                brick: label,
+                support: wall.brick(*s).label,
+            })?;
+        }
+        self.placed[brick.index()] = true;
+        self.summary.placed += 1;
+        for h in &mut self.holding {
+            if *h == Some(brick) {
+                *h = None;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// The verdict: the summary, or the first broken rule.
+    pub fn finish(self) -> Result<TraceSummary, TraceError> {
+        let (summary, found) = self.close();
+        found.into_result(summary)
+    }
+
+    /// Every broken rule, in the order found, those of the end (a brick neither placed nor
+    /// lost) last; empty when the trace is valid. Meant for [`TraceChecker::every`].
+    pub fn violations(self) -> Vec<TraceError> {
+        self.close().1.into_vec()
+    }
+
+    fn close(mut self) -> (TraceSummary, Violations<TraceError>) {
+        if !self.stopped {
+            for (u, h) in self.holding.iter().enumerate() {
+                if let Some(b) = h {
+                    if matches!(self.last_state[u], UavState::Landed | UavState::Down) {
+                        let e = TraceError::Unaccounted {
+                            uav: u as u32,
+                            brick: self.wall.brick(*b).label,
+                            what: "is neither placed nor lost",
+                        };
+                        if self.found.report(e).is_break() {
+                            break;
+                        }
+                    } else {
+                        self.summary.in_flight += 1;
+                    }
+                }
+            }
+        }
+        (self.summary, self.found)
     }
 }
 
 impl Observer for TraceChecker<'_> {
     fn event(&mut self, e: &Event) {
-        if self.error.is_none() {
-            if let Err(err) = self.check(e) {
-                self.error = Some(err);
-            }
+        if !self.stopped && self.check(e).is_break() {
+            self.stopped = true;
         }
     }
 }
 
-/// Checks a whole trace of a team of `uavs` building `wall`.
+/// Checks a whole trace of a team of `uavs` building `wall`: the first broken rule, or what
+/// the trace shows ([`trace_violations`] lists every broken rule).
 pub fn check_trace(wall: &Wall, uavs: usize, events: &[Event]) -> Result<TraceSummary, TraceError> {
     let mut c = TraceChecker::new(wall, uavs);
     for e in events {
         c.event(e);
     }
     c.finish()
+}
+
+/// Every rule of [`check_trace`] that `events` break, in order.
+pub fn trace_violations(wall: &Wall, uavs: usize, events: &[Event]) -> Vec<TraceError> {
+    let mut c = TraceChecker::every(wall, uavs);
+    for e in events {
+        c.event(e);
+    }
+    c.violations()
 }
 
 #[cfg(test)]

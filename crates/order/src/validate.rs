@@ -2,8 +2,10 @@
 //! planners. It is the oracle in tests and runs after every plan in the CLI.
 
 use crate::model::CostModel;
+use mason_wall::violations::Violations;
 use mason_wall::{BrickId, Wall};
 use serde::Serialize;
+use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// One placement of a checked order.
@@ -74,38 +76,63 @@ pub enum OrderError {
 }
 
 /// Checks that `order` places every brick of `wall` exactly once, each after its supports, and
-/// recomputes every step's cost from the model's formula.
+/// recomputes every step's cost from the model's formula. Stops at the first broken rule
+/// ([`order_violations`] lists every one).
 pub fn validate(
     wall: &Wall,
     model: &CostModel,
     order: &[BrickId],
 ) -> Result<Evaluation, OrderError> {
+    let mut found = Violations::first();
+    match walk(wall, model, order, &mut found) {
+        ControlFlow::Continue(eval) => found.into_result(eval),
+        ControlFlow::Break(()) => Err(found.into_vec().remove(0)),
+    }
+}
+
+/// Every rule `order` breaks, in order of the steps (a wrong length first): the rules of
+/// [`validate`], which stops at the first. A brick placed before its supports still counts as
+/// placed afterwards; an unknown or repeated entry is skipped.
+pub fn order_violations(wall: &Wall, model: &CostModel, order: &[BrickId]) -> Vec<OrderError> {
+    let mut found = Violations::every();
+    let _ = walk(wall, model, order, &mut found);
+    found.into_vec()
+}
+
+fn walk(
+    wall: &Wall,
+    model: &CostModel,
+    order: &[BrickId],
+    found: &mut Violations<OrderError>,
+) -> ControlFlow<(), Evaluation> {
     if order.len() != wall.len() {
-        return Err(OrderError::WrongLength {
+        found.report(OrderError::WrongLength {
             found: order.len(),
             expected: wall.len(),
-        });
+        })?;
     }
     let mut placed = vec![false; wall.len()];
     let mut steps = Vec::with_capacity(order.len());
     let mut total = 0.0;
     for (step, &b) in order.iter().enumerate() {
         if b.index() >= wall.len() {
-            return Err(OrderError::UnknownBrick { step, index: b.0 });
+            found.report(OrderError::UnknownBrick { step, index: b.0 })?;
+            continue;
         }
         let brick = wall.brick(b);
         if placed[b.index()] {
-            return Err(OrderError::Repeated {
+            found.report(OrderError::Repeated {
                 step,
                 label: brick.label,
-            });
+            })?;
+            continue;
         }
-        if let Some(&s) = wall.supports(b).iter().find(|s| !placed[s.index()]) {
-            return Err(OrderError::Unsupported {
+        for &s in wall.supports(b).iter().filter(|s| !placed[s.index()]) {
+            found.report(OrderError::Unsupported {
                 step,
                 label: brick.label,
                 support: wall.brick(s).label,
-            });
+            })?;
         }
         let k = wall
             .neighbours(b)
@@ -124,7 +151,7 @@ pub fn validate(
         });
         placed[b.index()] = true;
     }
-    Ok(Evaluation {
+    ControlFlow::Continue(Evaluation {
         steps,
         total_cost: total,
     })

@@ -28,6 +28,7 @@ pub mod limits;
 mod png;
 mod raster;
 mod text;
+pub mod violations;
 mod wall;
 
 pub use brick::{

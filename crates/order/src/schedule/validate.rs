@@ -4,7 +4,9 @@
 
 use super::model::{Concurrency, TeamModel};
 use super::problem::{Schedule, TeamStart};
+use mason_wall::violations::Violations;
 use mason_wall::{BrickId, Wall, BRICK_HEIGHT};
+use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// Times are compared with this slack (s), so that sums of decimal durations pass.
@@ -127,6 +129,18 @@ pub enum ScheduleError {
         /// The bound.
         bound: f64,
     },
+    /// A row's stated end is not its start plus the placing time of its brick's type.
+    #[error("UAV {uav}: brick {brick} is said to be placed at {claimed} s but its placing phase ends at {actual} s")]
+    End {
+        /// The brick.
+        brick: u32,
+        /// The UAV of the row.
+        uav: usize,
+        /// The end stated.
+        claimed: f64,
+        /// Start + placing time.
+        actual: f64,
+    },
     /// The reported reward or makespan is not what the schedule gives.
     #[error("reported {what} {claimed} but the schedule gives {actual}")]
     Claim {
@@ -158,7 +172,49 @@ pub fn validate_schedule(
     budget_s: Option<f64>,
     schedule: &Schedule,
 ) -> Result<ScheduleEvaluation, ScheduleError> {
-    check(wall, model, uavs, budget_s, schedule, None)
+    let mut found = Violations::first();
+    let eval = check(wall, model, uavs, budget_s, schedule, None, &mut found);
+    first_of(eval, found)
+}
+
+/// Every rule of [`validate_schedule`] that `schedule` breaks (it stops at the first). A
+/// placement with an unknown brick, a repeated brick, a wrong crew or a bad start is skipped
+/// after it is reported; every other broken rule is reported once per pair of bricks or UAV
+/// cycle that breaks it.
+pub fn schedule_violations(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    schedule: &Schedule,
+) -> Vec<ScheduleError> {
+    let mut found = Violations::every();
+    let _ = check(wall, model, uavs, budget_s, schedule, None, &mut found);
+    found.into_vec()
+}
+
+/// Every rule of [`validate_continuation`] that `schedule` breaks.
+pub fn continuation_violations(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    start: &TeamStart,
+    schedule: &Schedule,
+) -> Vec<ScheduleError> {
+    let mut found = Violations::every();
+    let _ = continuation(wall, model, uavs, budget_s, start, schedule, &mut found);
+    found.into_vec()
+}
+
+fn first_of(
+    eval: ControlFlow<(), ScheduleEvaluation>,
+    found: Violations<ScheduleError>,
+) -> Result<ScheduleEvaluation, ScheduleError> {
+    match eval {
+        ControlFlow::Continue(eval) => found.into_result(eval),
+        ControlFlow::Break(()) => Err(found.into_vec().remove(0)),
+    }
 }
 
 /// Checks a schedule planned from a [`TeamStart`] (a replan; times from then): the same rules,
@@ -176,16 +232,34 @@ pub fn validate_continuation(
     start: &TeamStart,
     schedule: &Schedule,
 ) -> Result<ScheduleEvaluation, ScheduleError> {
+    let mut found = Violations::first();
+    let eval = continuation(wall, model, uavs, budget_s, start, schedule, &mut found);
+    first_of(eval, found)
+}
+
+fn continuation(
+    wall: &Wall,
+    model: &TeamModel,
+    uavs: usize,
+    budget_s: Option<f64>,
+    start: &TeamStart,
+    schedule: &Schedule,
+    found: &mut Violations<ScheduleError>,
+) -> ControlFlow<(), ScheduleEvaluation> {
     for c in &start.committed {
         let kept = schedule
             .placements
             .iter()
             .any(|p| p.brick == c.brick && p.uavs == c.uavs && p.start_s >= c.start_s - TIME_EPS);
         if !kept {
-            return Err(ScheduleError::Committed(wall.brick(c.brick).label));
+            let label = wall
+                .bricks()
+                .get(c.brick.index())
+                .map_or(c.brick.0, |b| b.label);
+            found.report(ScheduleError::Committed(label))?;
         }
     }
-    check(wall, model, uavs, budget_s, schedule, Some(start))
+    check(wall, model, uavs, budget_s, schedule, Some(start), found)
 }
 
 fn check(
@@ -195,7 +269,8 @@ fn check(
     budget_s: Option<f64>,
     schedule: &Schedule,
     before: Option<&TeamStart>,
-) -> Result<ScheduleEvaluation, ScheduleError> {
+    found: &mut Violations<ScheduleError>,
+) -> ControlFlow<(), ScheduleEvaluation> {
     let n = wall.len();
     let label = |i: usize| wall.bricks()[i].label;
     let mut start: Vec<Option<f64>> = vec![None; n];
@@ -208,13 +283,15 @@ fn check(
     for (index, p) in schedule.placements.iter().enumerate() {
         let i = p.brick.index();
         if i >= n {
-            return Err(ScheduleError::UnknownBrick {
+            found.report(ScheduleError::UnknownBrick {
                 index,
                 brick: p.brick.0,
-            });
+            })?;
+            continue;
         }
         if start[i].is_some() {
-            return Err(ScheduleError::Twice(label(i)));
+            found.report(ScheduleError::Twice(label(i)))?;
+            continue;
         }
         let committed = before.is_some_and(|st| {
             st.committed
@@ -230,29 +307,31 @@ fn check(
             || crew.is_empty()
             || crew.iter().any(|&u| u >= uavs)
         {
-            return Err(ScheduleError::Crew {
+            found.report(ScheduleError::Crew {
                 brick: label(i),
                 uavs: p.uavs.clone(),
                 needed,
                 team: uavs,
-            });
+            })?;
+            continue;
         }
         if !(p.start_s.is_finite() && (p.start_s >= 0.0 || committed)) {
-            return Err(ScheduleError::Start {
+            found.report(ScheduleError::Start {
                 brick: label(i),
                 start_s: p.start_s,
-            });
+            })?;
+            continue;
         }
         if let (Some(st), false) = (before, committed) {
             for &u in &crew {
                 let ready = st.uav_ready_s.get(u).copied().unwrap_or(f64::INFINITY);
                 if p.start_s < ready - TIME_EPS {
-                    return Err(ScheduleError::NotReady {
+                    found.report(ScheduleError::NotReady {
                         uav: u,
                         brick: label(i),
                         start_s: p.start_s,
                         ready_s: ready,
-                    });
+                    })?;
                 }
             }
         }
@@ -271,13 +350,13 @@ fn check(
             let (s1, i1) = w[1];
             let ready = s0 + times(i0).cycle_s();
             if s1 < ready - TIME_EPS {
-                return Err(ScheduleError::Cycle {
+                found.report(ScheduleError::Cycle {
                     uav: u,
                     prev: label(i0),
                     ready,
                     next: label(i1),
                     next_start: s1,
-                });
+                })?;
             }
         }
     }
@@ -287,12 +366,12 @@ fn check(
         for sup in wall.supports(BrickId(i as u32)) {
             let e = end(sup.index());
             if e.is_none_or(|e| e > s + TIME_EPS) {
-                return Err(ScheduleError::Precedence {
+                found.report(ScheduleError::Precedence {
                     brick: label(i),
                     start: s,
                     support: label(sup.index()),
                     support_end: e,
-                });
+                })?;
             }
         }
     }
@@ -328,7 +407,7 @@ fn check(
                 }
             };
             if let Some(why) = why {
-                return Err(ScheduleError::Concurrent {
+                found.report(ScheduleError::Concurrent {
                     a: label(j),
                     a_start: rs,
                     a_end: re,
@@ -336,7 +415,7 @@ fn check(
                     b_start: s,
                     b_end: e,
                     why,
-                });
+                })?;
             }
         }
         running.push((s, e, i));
@@ -357,17 +436,18 @@ fn check(
                 continue;
             }
             if e > t + TIME_EPS {
-                return Err(ScheduleError::Budget {
+                found.report(ScheduleError::Budget {
                     brick: label(i),
                     end: e,
                     budget: t,
-                });
+                })?;
+                continue;
             }
         }
         eval.reward += times(i).reward;
         eval.makespan_s = eval.makespan_s.max(e);
     }
-    Ok(eval)
+    ControlFlow::Continue(eval)
 }
 
 /// [`validate_schedule`], then checks the reported reward and makespan.
@@ -381,19 +461,71 @@ pub fn validate_schedule_claim(
     makespan_s: f64,
 ) -> Result<ScheduleEvaluation, ScheduleError> {
     let eval = validate_schedule(wall, model, uavs, budget_s, schedule)?;
-    if (eval.reward - reward).abs() > 1e-6 {
-        return Err(ScheduleError::Claim {
-            what: "reward",
-            claimed: reward,
-            actual: eval.reward,
-        });
+    match claim_violations(&eval, Some(reward), Some(makespan_s))
+        .into_iter()
+        .next()
+    {
+        Some(e) => Err(e),
+        None => Ok(eval),
     }
-    if (eval.makespan_s - makespan_s).abs() > TIME_EPS {
-        return Err(ScheduleError::Claim {
-            what: "makespan",
-            claimed: makespan_s,
-            actual: eval.makespan_s,
-        });
+}
+
+/// The claims (reported reward, makespan) that a recomputed evaluation does not bear out:
+/// the reward within 1e-6, the makespan within [`TIME_EPS`].
+pub fn claim_violations(
+    eval: &ScheduleEvaluation,
+    reward: Option<f64>,
+    makespan_s: Option<f64>,
+) -> Vec<ScheduleError> {
+    let mut out = Vec::new();
+    if let Some(reward) = reward {
+        if (eval.reward - reward).abs() > 1e-6 {
+            out.push(ScheduleError::Claim {
+                what: "reward",
+                claimed: reward,
+                actual: eval.reward,
+            });
+        }
     }
-    Ok(eval)
+    if let Some(makespan_s) = makespan_s {
+        if (eval.makespan_s - makespan_s).abs() > TIME_EPS {
+            out.push(ScheduleError::Claim {
+                what: "makespan",
+                claimed: makespan_s,
+                actual: eval.makespan_s,
+            });
+        }
+    }
+    out
+}
+
+/// One UAV's row of a schedule file that also states when the brick is placed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClaimedEnd {
+    /// The brick.
+    pub brick: BrickId,
+    /// The UAV of the row.
+    pub uav: usize,
+    /// The start given.
+    pub start_s: f64,
+    /// The end given.
+    pub end_s: f64,
+}
+
+/// The rows whose end is not start + the placing time of their brick's type (within
+/// [`TIME_EPS`]), as [`ScheduleError::End`]. Rows naming a brick outside the wall are left to
+/// [`validate_schedule`].
+pub fn end_violations(wall: &Wall, model: &TeamModel, ends: &[ClaimedEnd]) -> Vec<ScheduleError> {
+    ends.iter()
+        .filter_map(|c| {
+            let b = wall.bricks().get(c.brick.index())?;
+            let actual = c.start_s + model.of(b.kind).place_s;
+            ((c.end_s - actual).abs() > TIME_EPS).then_some(ScheduleError::End {
+                brick: b.label,
+                uav: c.uav,
+                claimed: c.end_s,
+                actual,
+            })
+        })
+        .collect()
 }
