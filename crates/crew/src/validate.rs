@@ -331,6 +331,255 @@ mod tests {
         xy.iter().map(|&(x, y)| g.cell(x, y).unwrap()).collect()
     }
 
+    /// A 6×4 room with one obstacle at (2,1): robot 0 goes along the top row from (0,0) to
+    /// (4,0); robot 1 goes down from (5,0) to (5,3) and waits there; robot 2 rests on (0,3).
+    struct Plan {
+        grid: Grid,
+        starts: Vec<Cell>,
+        goals: Vec<Cell>,
+        paths: Vec<Vec<Cell>>,
+    }
+
+    fn base() -> Plan {
+        let mut grid = Grid::open(6, 4);
+        grid.set_blocked(grid.cell(2, 1).unwrap(), true);
+        let paths = vec![
+            cells(&grid, &[(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)]),
+            cells(&grid, &[(5, 0), (5, 1), (5, 2), (5, 3)]),
+            cells(&grid, &[(0, 3)]),
+        ];
+        Plan {
+            starts: paths.iter().map(|p| p[0]).collect(),
+            goals: paths.iter().map(|p| p[p.len() - 1]).collect(),
+            grid,
+            paths,
+        }
+    }
+
+    /// The rules `plan` breaks (8-connected), checked both ways.
+    fn broken(plan: &Plan) -> Vec<String> {
+        let e8 = Connectivity::Eight;
+        let (g, s, goals, p) = (&plan.grid, &plan.starts, &plan.goals, &plan.paths);
+        let every = plan_violations(g, e8, s, goals, p);
+        let first = validate(g, e8, s, goals, p);
+        assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
+        every
+            .iter()
+            .map(|e| {
+                format!("{e:?}")
+                    .chars()
+                    .take_while(char::is_ascii_alphanumeric)
+                    .collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn one_broken_plan_per_rule_reports_exactly_that_rule() {
+        let ok = base();
+        assert!(broken(&ok).is_empty());
+        let m = validate(
+            &ok.grid,
+            Connectivity::Eight,
+            &ok.starts,
+            &ok.goals,
+            &ok.paths,
+        );
+        assert_eq!(
+            m,
+            Ok(PlanMetrics {
+                sum_of_costs: 4 + 3,
+                makespan: 4
+            })
+        );
+        let g = &ok.grid;
+        let at = |x, y| g.cell(x, y).unwrap();
+        type Edit<'a> = Box<dyn Fn(&mut Plan) + 'a>;
+        let cases: Vec<(&str, Edit<'_>, &str)> = vec![
+            (
+                "one path too few",
+                Box::new(|p: &mut Plan| {
+                    p.paths.pop();
+                }),
+                "PathCount",
+            ),
+            (
+                "one goal too few",
+                Box::new(|p: &mut Plan| {
+                    p.goals.pop();
+                }),
+                "PathCount",
+            ),
+            (
+                "robot 2 has no path",
+                Box::new(|p: &mut Plan| p.paths[2].clear()),
+                "EmptyPath",
+            ),
+            (
+                "robot 2 should start on (1,3)",
+                Box::new(move |p: &mut Plan| p.starts[2] = at(1, 3)),
+                "WrongStart",
+            ),
+            (
+                "robot 1 should end on (4,3)",
+                Box::new(move |p: &mut Plan| p.goals[1] = at(4, 3)),
+                "WrongGoal",
+            ),
+            (
+                "robot 2 stands on the obstacle",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[2] = vec![at(2, 1)];
+                    p.starts[2] = at(2, 1);
+                    p.goals[2] = at(2, 1);
+                }),
+                "Blocked",
+            ),
+            (
+                "robot 2 stands off the grid",
+                Box::new(|p: &mut Plan| {
+                    p.paths[2] = vec![Cell(1000)];
+                    p.starts[2] = Cell(1000);
+                    p.goals[2] = Cell(1000);
+                }),
+                "Blocked",
+            ),
+            (
+                "robot 0 jumps from (1,0) to (3,0)",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[0].remove(2);
+                }),
+                "IllegalMove",
+            ),
+            (
+                "robot 0 cuts the obstacle's corner, (1,2) to (2,1)'s diagonal neighbour",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[2] = vec![at(1, 2), at(2, 1 + 1), at(3, 1)];
+                    p.starts[2] = at(1, 2);
+                    p.goals[2] = at(3, 1);
+                }),
+                "IllegalMove",
+            ),
+            (
+                "robot 2 rests on (3,0), on robot 0's way",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[2] = vec![at(3, 0)];
+                    p.starts[2] = at(3, 0);
+                    p.goals[2] = at(3, 0);
+                }),
+                "Vertex",
+            ),
+            (
+                "robot 2 and robot 0 exchange (0,1) and (0,0)",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[2] = vec![at(0, 1), at(0, 0)];
+                    p.starts[2] = at(0, 1);
+                    p.goals[2] = at(0, 0);
+                    p.paths[0] = vec![at(0, 0), at(0, 1), at(1, 2), at(2, 3)];
+                    p.goals[0] = at(2, 3);
+                }),
+                "Swap",
+            ),
+            (
+                "robot 2 crosses robot 0's diagonal",
+                Box::new(move |p: &mut Plan| {
+                    p.paths[2] = vec![at(1, 0), at(0, 1)];
+                    p.starts[2] = at(1, 0);
+                    p.goals[2] = at(0, 1);
+                    p.paths[0] = vec![at(0, 0), at(1, 1), at(1, 2)];
+                    p.goals[0] = at(1, 2);
+                }),
+                "Crossing",
+            ),
+        ];
+        for (what, edit, want) in cases {
+            let mut plan = base();
+            edit(&mut plan);
+            assert_eq!(broken(&plan), [want], "{what}");
+        }
+    }
+
+    #[test]
+    fn stated_figures_are_checked_against_the_recomputed_ones() {
+        let ok = base();
+        let m = validate(
+            &ok.grid,
+            Connectivity::Eight,
+            &ok.starts,
+            &ok.goals,
+            &ok.paths,
+        )
+        .unwrap();
+        assert!(claim_violations(&m, Some(7), Some(4)).is_empty());
+        assert!(claim_violations(&m, None, None).is_empty());
+        assert_eq!(
+            claim_violations(&m, Some(6), Some(5)),
+            [
+                PlanError::Claim {
+                    what: "sum of costs",
+                    claimed: 6,
+                    actual: 7
+                },
+                PlanError::Claim {
+                    what: "makespan",
+                    claimed: 5,
+                    actual: 4
+                }
+            ]
+        );
+    }
+
+    #[test]
+    fn plans_from_every_solver_pass() {
+        use crate::{solve, AssignMethod, Budget, CrewConfig, Instance, PathMethod, Resolution};
+        let mut grid = Grid::open(9, 7);
+        for y in 1..6 {
+            grid.set_blocked(grid.cell(4, y).unwrap(), true);
+        }
+        let robots = cells(&grid, &[(0, 0), (8, 0), (0, 6), (8, 6), (2, 3)]);
+        let goals = cells(&grid, &[(8, 6), (0, 6), (8, 0), (0, 0), (6, 3)]);
+        let combos = [
+            (AssignMethod::Given, PathMethod::Astar, Resolution::Paper),
+            (AssignMethod::Perm, PathMethod::Astar, Resolution::St),
+            (AssignMethod::Hungarian, PathMethod::Prm, Resolution::Paper),
+            (AssignMethod::Path, PathMethod::Astar, Resolution::St),
+            (AssignMethod::Given, PathMethod::Astar, Resolution::Lacam),
+            (AssignMethod::Joint, PathMethod::Astar, Resolution::St),
+        ];
+        let mut planned = 0;
+        for conn in [Connectivity::Four, Connectivity::Eight] {
+            let pairing = Some((0..robots.len()).collect());
+            let inst = Instance::new(
+                grid.clone(),
+                conn,
+                robots.clone(),
+                goals.clone(),
+                pairing,
+                "room",
+            )
+            .unwrap();
+            for (assign, paths, resolve) in combos {
+                let mut config = CrewConfig {
+                    assign,
+                    paths,
+                    resolve,
+                    ..CrewConfig::default()
+                };
+                config.refine.rounds = Some(20);
+                let out = solve(&inst, &config, &Budget::unlimited()).unwrap();
+                let what = format!("{assign:?} {paths:?} {resolve:?} {conn:?}");
+                // The paper's priority waits may meet a deadlock, and say so.
+                let Some(plan) = out.paths else {
+                    assert_eq!(resolve, Resolution::Paper, "{what}: {:?}", out.reason);
+                    continue;
+                };
+                planned += 1;
+                let found = plan_violations(&inst.grid, conn, &inst.robots, &out.goals, &plan);
+                assert!(found.is_empty(), "{what}: {found:?}");
+            }
+        }
+        assert!(planned >= 2 * combos.len() - 2, "{planned} plans");
+    }
+
     #[test]
     fn finds_each_conflict() {
         let g = Grid::open(4, 4);

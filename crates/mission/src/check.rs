@@ -350,6 +350,285 @@ mod tests {
         Event { t, uav, kind }
     }
 
+    use crate::state::UavState;
+
+    /// The rule a violation breaks, and what it says (`Zone` alone says little).
+    fn rules(found: &[TraceError]) -> Vec<String> {
+        found
+            .iter()
+            .map(|e| {
+                let name: String = format!("{e:?}")
+                    .chars()
+                    .take_while(char::is_ascii_alphanumeric)
+                    .collect();
+                match e {
+                    TraceError::Zone { what, .. }
+                    | TraceError::Placement { what, .. }
+                    | TraceError::Unaccounted { what, .. } => format!("{name}: {what}"),
+                    _ => name,
+                }
+            })
+            .collect()
+    }
+
+    fn landed(t: f64, uav: u32) -> Event {
+        at(
+            t,
+            uav,
+            EventKind::State {
+                state: UavState::Landed,
+                outcome: "landed",
+                x: 0.0,
+                y: 0.0,
+            },
+        )
+    }
+
+    /// Bricks of the thesis 2×5 wall: `b0` supports the level-2 brick `top` and `other` is the
+    /// one more support `top` needs; `b1` and `b3` are further level-1 bricks.
+    struct Bricks {
+        b0: BrickId,
+        b1: BrickId,
+        b3: BrickId,
+        top: BrickId,
+        other: BrickId,
+    }
+
+    fn bricks(wall: &Wall) -> Bricks {
+        let top = wall
+            .ids()
+            .find(|&b| wall.brick(b).level == 2 && wall.supports(b).len() == 2)
+            .expect("a level-2 brick on two supports");
+        let (b0, other) = (wall.supports(top)[0], wall.supports(top)[1]);
+        let mut rest = wall
+            .ids()
+            .filter(|&b| wall.brick(b).level == 1 && b != b0 && b != other);
+        Bricks {
+            b0,
+            b1: rest.next().unwrap(),
+            b3: rest.next().unwrap(),
+            top,
+            other,
+        }
+    }
+
+    /// A valid trace of two UAVs: UAV 0 places `b0` (in the zone 2–4 s), UAV 1 places `b1`
+    /// (5–7 s), both land at 10 s. `extra` events are merged in by time (stable: an extra
+    /// event at the time of a base event comes after it).
+    fn trace(b: &Bricks, extra: &[Event], drop: &[usize]) -> Vec<Event> {
+        let base = [
+            at(1.0, 0, EventKind::Grasp { brick: b.b0 }),
+            at(1.0, 1, EventKind::Grasp { brick: b.b1 }),
+            at(2.0, 0, EventKind::ZoneEnter),
+            at(3.0, 0, EventKind::Place { brick: b.b0 }),
+            at(4.0, 0, EventKind::ZoneLeave),
+            at(5.0, 1, EventKind::ZoneEnter),
+            at(6.0, 1, EventKind::Place { brick: b.b1 }),
+            at(7.0, 1, EventKind::ZoneLeave),
+            landed(10.0, 0),
+            landed(10.0, 1),
+        ];
+        let mut out: Vec<Event> = base
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !drop.contains(i))
+            .map(|(_, e)| *e)
+            .collect();
+        out.extend_from_slice(extra);
+        out.sort_by(|a, b| a.t.total_cmp(&b.t));
+        out
+    }
+
+    /// Checks `events` both ways: the first broken rule and every one.
+    fn broken(wall: &Wall, events: &[Event]) -> Vec<String> {
+        let every = trace_violations(wall, 2, events);
+        let first = check_trace(wall, 2, events);
+        assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
+        rules(&every)
+    }
+
+    #[test]
+    fn the_base_trace_is_valid() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let b = bricks(&wall);
+        let s = check_trace(&wall, 2, &trace(&b, &[], &[])).unwrap();
+        assert_eq!((s.placed, s.lost, s.in_flight), (2, 0, 0));
+        assert!(trace_violations(&wall, 2, &trace(&b, &[], &[])).is_empty());
+        // A UAV still flying at the end may hold its brick (a time limit).
+        let flying = trace(&b, &[at(8.0, 1, EventKind::Grasp { brick: b.b3 })], &[9]);
+        assert_eq!(check_trace(&wall, 2, &flying).unwrap().in_flight, 1);
+    }
+
+    #[test]
+    fn one_broken_trace_per_rule_reports_exactly_that_rule() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let b = bricks(&wall);
+        let comm = EventKind::Comm {
+            mode: crate::state::CommMode::Windows,
+        };
+        let cases: Vec<(&str, Vec<Event>, &str)> = vec![
+            (
+                "an event earlier than the one before",
+                {
+                    let mut t = trace(&b, &[], &[]);
+                    t.insert(5, at(0.5, 1, comm));
+                    t
+                },
+                "OutOfOrder",
+            ),
+            (
+                "UAV 1 enters at 3.5 s while UAV 0 is inside",
+                trace(&b, &[at(3.5, 1, EventKind::ZoneEnter)], &[5]),
+                "ZoneShared",
+            ),
+            (
+                "UAV 0 enters twice",
+                trace(&b, &[at(2.5, 0, EventKind::ZoneEnter)], &[]),
+                "Zone: enters the zone twice",
+            ),
+            (
+                "UAV 1 enters without a brick after placing",
+                trace(
+                    &b,
+                    &[
+                        at(8.0, 1, EventKind::ZoneEnter),
+                        at(9.0, 1, EventKind::ZoneLeave),
+                    ],
+                    &[],
+                ),
+                "Zone: enters the zone without a brick",
+            ),
+            (
+                "UAV 1 leaves again",
+                trace(&b, &[at(8.0, 1, EventKind::ZoneLeave)], &[]),
+                "Zone: leaves a zone it is not in",
+            ),
+            (
+                "UAV 1 places the level-2 brick with one of its supports missing",
+                {
+                    let mut t = trace(&b, &[], &[]);
+                    for e in &mut t {
+                        match &mut e.kind {
+                            EventKind::Grasp { brick } | EventKind::Place { brick }
+                                if *brick == b.b1 =>
+                            {
+                                *brick = b.top
+                            }
+                            _ => {}
+                        }
+                    }
+                    t
+                },
+                "Precedence",
+            ),
+            (
+                "UAV 1 grasps b0 once it is placed, places it again, lets go of it",
+                trace(
+                    &b,
+                    &[
+                        at(4.5, 1, EventKind::Grasp { brick: b.b0 }),
+                        at(6.0, 1, EventKind::Place { brick: b.b0 }),
+                        at(6.5, 1, EventKind::Lost { brick: b.b0 }),
+                    ],
+                    &[1, 6],
+                ),
+                "Placement: placed twice",
+            ),
+            (
+                "UAV 1 places b3, which it does not hold, then lets go of b1",
+                trace(
+                    &b,
+                    &[
+                        at(6.0, 1, EventKind::Place { brick: b.b3 }),
+                        at(6.5, 1, EventKind::Lost { brick: b.b1 }),
+                    ],
+                    &[6],
+                ),
+                "Placement: the UAV does not hold it",
+            ),
+            (
+                "UAV 1 places after leaving the zone",
+                trace(&b, &[at(7.5, 1, EventKind::Place { brick: b.b1 })], &[6]),
+                "Placement: the UAV is not in the zone",
+            ),
+            (
+                "UAV 1 grasps b1 while holding b3",
+                trace(&b, &[at(0.5, 1, EventKind::Grasp { brick: b.b3 })], &[]),
+                "Unaccounted: grasped while holding another",
+            ),
+            (
+                "UAV 1 lands holding b3",
+                trace(&b, &[at(8.0, 1, EventKind::Grasp { brick: b.b3 })], &[]),
+                "Unaccounted: is neither placed nor lost",
+            ),
+            (
+                "a third UAV in a team of two",
+                trace(&b, &[at(8.0, 2, comm)], &[]),
+                "Unknown",
+            ),
+            (
+                "a brick outside the wall",
+                trace(
+                    &b,
+                    &[at(8.0, 1, EventKind::Grasp { brick: BrickId(99) })],
+                    &[],
+                ),
+                "Unknown",
+            ),
+        ];
+        for (what, events, rule) in cases {
+            assert_eq!(broken(&wall, &events), [rule], "{what}");
+        }
+        // The support the level-2 brick misses is named, by label.
+        let other = wall.brick(b.other).label;
+        let mut t = trace(&b, &[], &[]);
+        for e in &mut t {
+            if let EventKind::Grasp { brick } | EventKind::Place { brick } = &mut e.kind {
+                if *brick == b.b1 {
+                    *brick = b.top;
+                }
+            }
+        }
+        assert!(matches!(
+            check_trace(&wall, 2, &t),
+            Err(TraceError::Precedence { support, t, .. }) if support == other && t == 6.0
+        ));
+    }
+
+    #[test]
+    fn an_orange_pair_shares_the_zone_and_a_third_uav_may_not() {
+        let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+        let o = wall
+            .ids()
+            .find(|&b| wall.brick(b).kind.uavs_needed() == 2 && wall.supports(b).is_empty())
+            .unwrap();
+        let red = wall
+            .ids()
+            .find(|&b| wall.brick(b).kind.uavs_needed() == 1 && wall.supports(b).is_empty())
+            .unwrap();
+        let pair = [
+            at(1.0, 0, EventKind::Grasp { brick: o }),
+            at(1.0, 1, EventKind::Grasp { brick: o }),
+            at(1.0, 2, EventKind::Grasp { brick: red }),
+            at(2.0, 0, EventKind::ZoneEnter),
+            at(2.0, 1, EventKind::ZoneEnter),
+            at(3.0, 0, EventKind::Place { brick: o }),
+            at(3.0, 0, EventKind::ZoneLeave),
+            at(3.0, 1, EventKind::ZoneLeave),
+        ];
+        assert_eq!(check_trace(&wall, 3, &pair).unwrap().placed, 1);
+        let mut third = pair.to_vec();
+        third.insert(5, at(2.5, 2, EventKind::ZoneEnter));
+        let found = trace_violations(&wall, 3, &third);
+        assert_eq!(
+            found,
+            [
+                TraceError::ZoneShared { t: 2.5, a: 0, b: 2 },
+                TraceError::ZoneShared { t: 2.5, a: 1, b: 2 }
+            ]
+        );
+    }
+
     #[test]
     fn a_brick_lost_by_one_uav_is_not_lost_by_another_holding_a_copy() {
         // Two UAVs grasped copies of one red brick (a claim settled late); one puts its copy

@@ -529,3 +529,341 @@ pub fn end_violations(wall: &Wall, model: &TeamModel, ends: &[ClaimedEnd]) -> Ve
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    //! One broken schedule per rule: a valid schedule with exactly one rule broken, and that
+    //! rule alone reported, by the first-error check and by the all-violations one alike.
+    use super::*;
+    use crate::schedule::{exhaustive_schedule, plan_schedule, Objective, Placement, TeamProblem};
+    use crate::Budget;
+
+    fn wall() -> Wall {
+        mason_wall::builtin("thesis-2x5").unwrap().wall()
+    }
+
+    /// A build order of the wall: level by level.
+    fn order(wall: &Wall) -> Vec<BrickId> {
+        let mut ids: Vec<BrickId> = wall.ids().collect();
+        ids.sort_by_key(|&b| (wall.brick(b).level, b));
+        ids
+    }
+
+    /// A slow, valid schedule for 3 UAVs: brick k of [`order`] starts at k·C (C three times
+    /// the longest cycle) with UAV k mod 2; UAV 2 stays idle. Every rule holds with room.
+    fn base(wall: &Wall, model: &TeamModel) -> (Schedule, f64) {
+        let c = 3.0
+            * wall
+                .bricks()
+                .iter()
+                .map(|b| model.of(b.kind).cycle_s())
+                .fold(0.0, f64::max);
+        let placements = order(wall)
+            .into_iter()
+            .enumerate()
+            .map(|(k, brick)| Placement {
+                brick,
+                uavs: vec![k % 2],
+                start_s: k as f64 * c,
+            })
+            .collect();
+        (Schedule { placements }, c)
+    }
+
+    fn rule(e: &ScheduleError) -> String {
+        format!("{e:?}")
+            .chars()
+            .take_while(char::is_ascii_alphanumeric)
+            .collect()
+    }
+
+    /// The rules `s` breaks (3 UAVs, `budget`), checked both ways.
+    fn broken(wall: &Wall, model: &TeamModel, budget: Option<f64>, s: &Schedule) -> Vec<String> {
+        let every = schedule_violations(wall, model, 3, budget, s);
+        let first = validate_schedule(wall, model, 3, budget, s);
+        // Debug text, so that a NaN start compares equal to itself.
+        let first = format!("{:?}", first.err());
+        assert_eq!(
+            first,
+            format!("{:?}", every.first().cloned()),
+            "first and all agree"
+        );
+        every.iter().map(rule).collect()
+    }
+
+    #[test]
+    fn the_base_schedule_is_valid_and_recomputed() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, c) = base(&w, &m);
+        let eval = validate_schedule(&w, &m, 3, None, &s).unwrap();
+        let last = w.brick(*order(&w).last().unwrap());
+        assert_eq!(eval.bricks, w.len());
+        assert_eq!(eval.makespan_s, 9.0 * c + m.of(last.kind).place_s);
+        let reward: f64 = w.bricks().iter().map(|b| m.of(b.kind).reward).sum();
+        assert_eq!(eval.reward, reward);
+        assert!(schedule_violations(&w, &m, 3, None, &s).is_empty());
+    }
+
+    #[test]
+    fn one_broken_schedule_per_rule_reports_exactly_that_rule() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, c) = base(&w, &m);
+        let n = s.placements.len();
+        let ord = order(&w);
+        let place = |b: BrickId| m.of(w.brick(b).kind).place_s;
+        let cycle = |b: BrickId| m.of(w.brick(b).kind).cycle_s();
+        let with = |f: &dyn Fn(&mut Vec<Placement>)| {
+            let mut p = s.placements.clone();
+            f(&mut p);
+            Schedule { placements: p }
+        };
+        let top = ord[n - 1];
+        assert!(
+            w.ids().all(|b| !w.supports(b).contains(&top)),
+            "the last brick supports none"
+        );
+        // The top brick's support placed last, and the placement just before it.
+        let j = (0..n)
+            .rev()
+            .find(|&j| w.supports(top).contains(&ord[j]))
+            .unwrap();
+        let cases: Vec<(&str, Schedule, Option<f64>, &str)> = vec![
+            (
+                "a brick outside the wall",
+                with(&|p| p.push(Placement { brick: BrickId(99), uavs: vec![2], start_s: 0.0 })),
+                None,
+                "UnknownBrick",
+            ),
+            (
+                "the first brick again, at the end, by the idle UAV",
+                with(&|p| p.push(Placement { brick: ord[0], uavs: vec![2], start_s: n as f64 * c })),
+                None,
+                "Twice",
+            ),
+            (
+                "the top brick by UAV 5 of 3",
+                with(&|p| p[n - 1].uavs = vec![5]),
+                None,
+                "Crew",
+            ),
+            (
+                "the top brick by the idle UAV twice over",
+                with(&|p| p[n - 1].uavs = vec![2, 2]),
+                None,
+                "Crew",
+            ),
+            (
+                "the top brick at -1 s",
+                with(&|p| p[n - 1].start_s = -1.0),
+                None,
+                "Start",
+            ),
+            (
+                "the top brick at NaN s",
+                with(&|p| p[n - 1].start_s = f64::NAN),
+                None,
+                "Start",
+            ),
+            (
+                "the top brick by the UAV of the brick before, after its placing phase but before its cycle ends",
+                with(&|p| {
+                    let prev = ord[n - 2];
+                    p[n - 1].uavs = p[n - 2].uavs.clone();
+                    p[n - 1].start_s = p[n - 2].start_s + (place(prev) + cycle(prev)) / 2.0;
+                }),
+                None,
+                "Cycle",
+            ),
+            (
+                "the top brick by the idle UAV, before its last support starts",
+                with(&|p| {
+                    p[n - 1].uavs = vec![2];
+                    p[n - 1].start_s = (j as f64 - 1.0) * c + place(ord[j - 1]) + 1.0;
+                }),
+                None,
+                "Precedence",
+            ),
+            (
+                "the top brick by the idle UAV, while the brick before is placing (zone rule)",
+                with(&|p| {
+                    p[n - 1].uavs = vec![2];
+                    p[n - 1].start_s = p[n - 2].start_s + place(ord[n - 2]) / 2.0;
+                }),
+                None,
+                "Concurrent",
+            ),
+            (
+                "a budget that ends 1 s before the top brick is placed",
+                s.clone(),
+                Some((n - 1) as f64 * c + place(top) - 1.0),
+                "Budget",
+            ),
+        ];
+        assert!(
+            !w.supports(top).contains(&ord[n - 2]),
+            "the zone case must not break precedence"
+        );
+        for (what, schedule, budget, want) in cases {
+            assert_eq!(broken(&w, &m, budget, &schedule), [want], "{what}");
+        }
+    }
+
+    #[test]
+    fn the_distance_rule_names_the_pair_that_is_too_close() {
+        let w = wall();
+        let m = TeamModel::cmcp();
+        let (mut s, _) = base(&w, &m);
+        // Two neighbours of one level whose centres are 0.30 m apart (the red 103 and 104),
+        // by two UAVs at once.
+        let (a, b) = (s.placements[2].clone(), s.placements[3].clone());
+        assert_eq!((w.brick(a.brick).label, w.brick(b.brick).label), (103, 104));
+        s.placements[3].start_s = a.start_s;
+        let found = schedule_violations(&w, &m, 3, None, &s);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(
+            matches!(&found[0], ScheduleError::Concurrent { a: x, b: y, why, .. }
+                if *x == w.brick(a.brick).label && *y == w.brick(b.brick).label && why.contains("closer than 0.8")),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn stated_figures_and_ends_are_checked_apart() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, _) = base(&w, &m);
+        let eval = validate_schedule(&w, &m, 3, None, &s).unwrap();
+        assert!(claim_violations(&eval, Some(eval.reward), Some(eval.makespan_s)).is_empty());
+        assert!(claim_violations(&eval, None, None).is_empty());
+        let wrong = claim_violations(&eval, Some(eval.reward + 1.0), Some(eval.makespan_s));
+        assert_eq!(
+            wrong,
+            [ScheduleError::Claim {
+                what: "reward",
+                claimed: eval.reward + 1.0,
+                actual: eval.reward
+            }]
+        );
+        let wrong = claim_violations(&eval, None, Some(eval.makespan_s - 1.0));
+        assert!(matches!(
+            wrong[..],
+            [ScheduleError::Claim {
+                what: "makespan",
+                ..
+            }]
+        ));
+        assert!(
+            validate_schedule_claim(&w, &m, 3, None, &s, eval.reward, eval.makespan_s + 1.0)
+                .is_err()
+        );
+        assert!(validate_schedule_claim(&w, &m, 3, None, &s, eval.reward, eval.makespan_s).is_ok());
+        let p = &s.placements[0];
+        let place = m.of(w.brick(p.brick).kind).place_s;
+        let end = |end_s| ClaimedEnd {
+            brick: p.brick,
+            uav: 0,
+            start_s: p.start_s,
+            end_s,
+        };
+        assert!(end_violations(&w, &m, &[end(p.start_s + place)]).is_empty());
+        let found = end_violations(&w, &m, &[end(p.start_s + place + 1.0)]);
+        assert_eq!(
+            found,
+            [ScheduleError::End {
+                brick: w.brick(p.brick).label,
+                uav: 0,
+                claimed: p.start_s + place + 1.0,
+                actual: p.start_s + place
+            }]
+        );
+        let outside = ClaimedEnd {
+            brick: BrickId(99),
+            uav: 0,
+            start_s: 0.0,
+            end_s: 1.0,
+        };
+        assert!(
+            end_violations(&w, &m, &[outside]).is_empty(),
+            "left to validate_schedule"
+        );
+    }
+
+    #[test]
+    fn one_broken_continuation_per_rule_reports_exactly_that_rule() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, _) = base(&w, &m);
+        let ready = TeamStart {
+            placed: vec![],
+            committed: vec![],
+            uav_ready_s: vec![0.0; 3],
+        };
+        let check = |st: &TeamStart| {
+            let every = continuation_violations(&w, &m, 3, None, st, &s);
+            let first = validate_continuation(&w, &m, 3, None, st, &s);
+            assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
+            every.iter().map(rule).collect::<Vec<_>>()
+        };
+        assert!(check(&ready).is_empty());
+        // UAV 0 is ready 1 s after its first start.
+        let late = TeamStart {
+            uav_ready_s: vec![s.placements[0].start_s + 1.0, 0.0, 0.0],
+            ..ready.clone()
+        };
+        assert_eq!(check(&late), ["NotReady"]);
+        // The first brick was on its way and may not start before 1 s.
+        let p = s.placements[0].clone();
+        let on_its_way = TeamStart {
+            committed: vec![Placement {
+                start_s: p.start_s + 1.0,
+                ..p.clone()
+            }],
+            ..ready.clone()
+        };
+        assert_eq!(check(&on_its_way), ["Committed"]);
+        // Kept as committed, it passes.
+        let kept = TeamStart {
+            committed: vec![p],
+            ..ready.clone()
+        };
+        assert!(check(&kept).is_empty());
+        // A brick already on the wall is placed again.
+        let placed = TeamStart {
+            placed: vec![s.placements[0].brick],
+            ..ready
+        };
+        assert_eq!(check(&placed), ["Twice"]);
+    }
+
+    #[test]
+    fn schedules_from_every_planner_pass() {
+        let w = wall();
+        for model in [TeamModel::thesis(), TeamModel::cmcp()] {
+            for (objective, budget) in [
+                (Objective::Makespan, None),
+                (Objective::Reward, Some(400.0)),
+                (
+                    Objective::Expected {
+                        hazard_per_hour: 2.0,
+                    },
+                    Some(400.0),
+                ),
+            ] {
+                let p = TeamProblem::new(&w, model.clone(), 3, budget, objective).unwrap();
+                let searched = plan_schedule(&p, &Budget::unlimited(), 1);
+                let small = mason_wall::builtin("thesis-2x5").unwrap().wall();
+                let q = TeamProblem::new(&small, model.clone(), 2, budget, objective).unwrap();
+                let exhaustive = exhaustive_schedule(&q, &Budget::nodes(200_000));
+                for (wall, uavs, o) in [(&w, 3, searched), (&small, 2, exhaustive)] {
+                    let s = o.schedule.expect("a schedule");
+                    let found = schedule_violations(wall, &model, uavs, budget, &s);
+                    assert!(found.is_empty(), "{} {objective}: {found:?}", model.name);
+                    let eval = validate_schedule(wall, &model, uavs, budget, &s).unwrap();
+                    assert!(claim_violations(&eval, Some(o.reward), Some(o.makespan_s)).is_empty());
+                }
+            }
+        }
+    }
+}
