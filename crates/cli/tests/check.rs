@@ -526,3 +526,71 @@ fn malformed_result_files_name_the_file_and_line() {
         assert_input_error(&mason(&["check", "crew", &map, &path]), &[name, reason]);
     }
 }
+
+#[test]
+fn garbage_and_extreme_values_are_refused_in_one_line() {
+    let wall = "builtin:thesis-2x5";
+    let cases: [(&str, &str, &[u8], &[&str]); 7] = [
+        ("schedule", "binary.csv", b"\x00\xff\xfe", &["binary.csv", "not UTF-8"]),
+        ("schedule", "empty.csv", b"uav,brick,start\n", &["empty.csv", "no rows"]),
+        ("order", "empty.txt", b"", &["empty.txt:1:", "no brick ids"]),
+        ("trace", "empty.json", b"", &["empty.json:1:", "EOF"]),
+        ("trace", "huge-t.json", b"[{\"t\": 1e400, \"uav\": 0, \"kind\": \"fail\"}]", &["huge-t.json:1:", "out of range"]),
+        (
+            "trace",
+            "huge-uav.json",
+            b"[{\"t\": 1, \"uav\": 4294967295, \"kind\": \"fail\"}]",
+            &["huge-uav.json:1:", "UAV 4294967295", "at most 1024"],
+        ),
+        (
+            "trace",
+            "huge-uav.jsonl",
+            b"{\"t\": 1, \"uav\": 0, \"kind\": \"fail\"}\n{\"t\": 1, \"uav\": 4294967295, \"kind\": \"fail\"}\n",
+            &["huge-uav.jsonl:2:", "UAV 4294967295", "at most 1024"],
+        ),
+    ];
+    for (what, name, contents, needles) in cases {
+        let dir = std::env::temp_dir().join(format!("mason-check-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, contents).unwrap();
+        let o = mason(&["check", what, wall, &path.to_string_lossy()]);
+        assert_input_error(&o, needles);
+    }
+    assert_input_error(
+        &mason(&["check", "order", wall, "/dev/zero"]),
+        &["/dev/zero", "not a regular file"],
+    );
+    let csv = data("schedule-thesis-2x5-cmcp.csv");
+    for (flag, value, needle) in [
+        ("--uavs", "0", "--uavs 0"),
+        ("--uavs", "5000", "--uavs 5000"),
+        ("--budget", "-1", "--budget -1"),
+        ("--budget", "NaN", "--budget NaN"),
+    ] {
+        let o = mason(&[
+            "check", "schedule", wall, &csv, "--model", "cmcp", flag, value,
+        ]);
+        assert_input_error(&o, &[needle]);
+    }
+    // A start of 10^308 s is a finite time: valid, and shown short.
+    let path = file("far.csv", "0,101,1e308\n");
+    let o = mason(&["check", "schedule", wall, &path]);
+    assert_valid(&o, &["makespan 1e308 s"]);
+    let o = mason(&[
+        "check",
+        "crew",
+        &data("crew-room.map"),
+        &file("r.txt", "solution=\n0:(0,0),(99999999999999999999,0)\n"),
+    ]);
+    assert_input_error(&o, &["r.txt:2:", "is not a cell"]);
+    let o = mason(&[
+        "check",
+        "crew",
+        &data("crew-room.map"),
+        &data("crew-room-result.txt"),
+        "--connectivity",
+        "6",
+    ]);
+    assert_input_error(&o, &["--connectivity", "4 or 8"]);
+}

@@ -135,6 +135,15 @@ fn broken<E: Debug + Display>(file: &Path, all: bool, found: &[E]) -> CliResult<
     )))
 }
 
+/// A number as a person writes it: plain when short, scientific when huge.
+fn short(x: f64) -> String {
+    if x.abs() < 1e12 {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// `x` beside what the file states, when it states something.
 fn beside<T: Display>(x: T, stated: Option<T>) -> String {
     match stated {
@@ -240,10 +249,10 @@ fn schedule(a: ScheduleArgs, all: bool) -> CliResult<()> {
         file.format,
         eval.bricks,
         wall.len(),
-        beside(eval.reward, file.claims.reward),
+        beside(short(eval.reward), file.claims.reward.map(short)),
         beside(
-            format!("{} s", eval.makespan_s),
-            file.claims.makespan_s.map(|m| format!("{m} s"))
+            format!("{} s", short(eval.makespan_s)),
+            file.claims.makespan_s.map(|m| format!("{} s", short(m)))
         ),
         model.name,
         uavs,
@@ -259,6 +268,16 @@ fn trace(a: TraceArgs, all: bool) -> CliResult<()> {
     let file = if artefacts::is_json_lines(&text) {
         let events = mason_fleet::parse_trace(&text, &a.trace, false)
             .map_err(|e| input_error(e.to_string()))?;
+        // One event per line: event i is on line i + 1.
+        if let Some((i, e)) = (events.iter().enumerate()).find(|(_, e)| e.uav as usize >= MAX_UAVS)
+        {
+            return Err(input_error(format!(
+                "{}:{}: UAV {}: a team has at most {MAX_UAVS} UAVs",
+                a.trace.display(),
+                i + 1,
+                e.uav
+            )));
+        }
         let uavs = events.iter().map(|e| e.uav as usize + 1).max().unwrap_or(1);
         artefacts::TraceFile {
             events,
@@ -302,7 +321,7 @@ fn trace(a: TraceArgs, all: bool) -> CliResult<()> {
         wall.len(),
         summary.lost,
         summary.in_flight,
-        last_place,
+        short(last_place),
         file.claimed_check
             .map(|c| format!(" · the file states check_trace: {c}"))
             .unwrap_or_default()

@@ -105,7 +105,14 @@ pub fn parse_schedule(text: &str, path: &Path, wall: &Wall) -> InputResult<Sched
         };
         (rows, claims, "plan --json")
     } else {
-        (csv_rows(text, path)?, ScheduleClaims::default(), "csv")
+        let rows = csv_rows(text, path)?;
+        if rows.is_empty() {
+            return Err(InputError::bad(format!(
+                "{}: no rows (expected uav,brick,start[,end] lines)",
+                path.display()
+            )));
+        }
+        (rows, ScheduleClaims::default(), "csv")
     };
     assemble(rows, claims, format, path, wall)
 }
@@ -282,6 +289,10 @@ mod tests {
             (
                 "uav,brick,start\nuav,brick,start\n",
                 "s.csv:2: UAV `uav` is not a whole number ≥ 0",
+            ),
+            (
+                "uav,brick,start\n# none\n",
+                "s.csv: no rows (expected uav,brick,start[,end] lines)",
             ),
         ];
         for (text, want) in cases {

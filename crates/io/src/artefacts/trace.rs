@@ -77,13 +77,17 @@ pub fn parse_trace_json(text: &str, path: &Path, wall: &Wall) -> InputResult<Tra
         {
             *b = brick(wall, b.0, path, line)?;
         }
-        let team = uavs.unwrap_or(MAX_UAVS);
-        if record.uav as usize >= team {
-            return Err(at(
-                path,
-                line,
-                format!("UAV {}: the team has {team} UAVs (0..{team})", record.uav),
-            ));
+        let uav = record.uav;
+        match uavs {
+            Some(team) if uav as usize >= team => {
+                let why = format!("UAV {uav}: the team has {team} UAVs (0..{team})");
+                return Err(at(path, line, why));
+            }
+            None if uav as usize >= MAX_UAVS => {
+                let why = format!("UAV {uav}: a team has at most {MAX_UAVS} UAVs");
+                return Err(at(path, line, why));
+            }
+            _ => {}
         }
         seen = seen.max(record.uav as usize + 1);
         events.push(
