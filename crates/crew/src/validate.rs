@@ -444,6 +444,16 @@ mod tests {
                 "Blocked",
             ),
             (
+                "robot 2 stands just past the last cell",
+                Box::new(|p: &mut Plan| {
+                    let past = Cell(p.grid.len() as u32);
+                    p.paths[2] = vec![past];
+                    p.starts[2] = past;
+                    p.goals[2] = past;
+                }),
+                "Blocked",
+            ),
+            (
                 "robot 0 jumps from (1,0) to (3,0)",
                 Box::new(move |p: &mut Plan| {
                     p.paths[0].remove(2);
@@ -496,6 +506,130 @@ mod tests {
             edit(&mut plan);
             assert_eq!(broken(&plan), [want], "{what}");
         }
+    }
+
+    #[test]
+    fn robots_off_the_grid_are_not_checked_for_conflicts() {
+        // Two robots on one cell off the grid: two blocked cells, no conflict to check.
+        let mut plan = base();
+        let off = Cell(1000);
+        for r in [1, 2] {
+            plan.paths[r] = vec![off];
+            plan.starts[r] = off;
+            plan.goals[r] = off;
+        }
+        assert_eq!(broken(&plan), ["Blocked", "Blocked"]);
+    }
+
+    #[test]
+    fn the_first_conflict_is_the_lowest_robots_and_each_pair_is_reported_once() {
+        // In one step robots 0 and 3 swap, and so do robots 1 and 2.
+        let g = Grid::open(6, 3);
+        let paths = vec![
+            cells(&g, &[(0, 0), (1, 0)]),
+            cells(&g, &[(3, 0), (4, 0)]),
+            cells(&g, &[(4, 0), (3, 0)]),
+            cells(&g, &[(1, 0), (0, 0)]),
+        ];
+        let starts: Vec<Cell> = paths.iter().map(|p| p[0]).collect();
+        let goals: Vec<Cell> = paths.iter().map(|p| p[1]).collect();
+        let e8 = Connectivity::Eight;
+        let first = validate(&g, e8, &starts, &goals, &paths);
+        assert_eq!(
+            first,
+            Err(PlanError::Swap {
+                a: 0,
+                b: 3,
+                step: 0
+            })
+        );
+        let all = plan_violations(&g, e8, &starts, &goals, &paths);
+        assert_eq!(
+            all,
+            [
+                PlanError::Swap {
+                    a: 0,
+                    b: 3,
+                    step: 0
+                },
+                PlanError::Swap {
+                    a: 1,
+                    b: 2,
+                    step: 0
+                }
+            ]
+        );
+        // Two pairs crossing diagonals: 0 with 3 in the left square, 1 with 2 in the right.
+        let paths = vec![
+            cells(&g, &[(0, 0), (1, 1)]),
+            cells(&g, &[(3, 0), (4, 1)]),
+            cells(&g, &[(4, 0), (3, 1)]),
+            cells(&g, &[(1, 0), (0, 1)]),
+        ];
+        let starts: Vec<Cell> = paths.iter().map(|p| p[0]).collect();
+        let goals: Vec<Cell> = paths.iter().map(|p| p[1]).collect();
+        let first = validate(&g, e8, &starts, &goals, &paths);
+        assert_eq!(
+            first,
+            Err(PlanError::Crossing {
+                a: 0,
+                b: 3,
+                step: 0
+            })
+        );
+        let all = plan_violations(&g, e8, &starts, &goals, &paths);
+        assert_eq!(
+            all,
+            [
+                PlanError::Crossing {
+                    a: 0,
+                    b: 3,
+                    step: 0
+                },
+                PlanError::Crossing {
+                    a: 1,
+                    b: 2,
+                    step: 0
+                }
+            ]
+        );
+        // Three robots on one cell: the first there is named with each of the others.
+        let paths = vec![
+            cells(&g, &[(0, 0), (1, 0)]),
+            cells(&g, &[(2, 0), (1, 0)]),
+            cells(&g, &[(1, 1), (1, 0)]),
+        ];
+        let starts: Vec<Cell> = paths.iter().map(|p| p[0]).collect();
+        let goals: Vec<Cell> = paths.iter().map(|p| p[1]).collect();
+        let all = plan_violations(&g, e8, &starts, &goals, &paths);
+        let cell = (1, 0);
+        assert_eq!(
+            all,
+            [
+                PlanError::Vertex {
+                    a: 0,
+                    b: 1,
+                    cell,
+                    step: 1
+                },
+                PlanError::Vertex {
+                    a: 0,
+                    b: 2,
+                    cell,
+                    step: 1
+                }
+            ]
+        );
+    }
+
+    #[test]
+    fn arrival_counts_the_steps_until_the_last_arrival() {
+        let g = Grid::open(4, 1);
+        let at = |x| g.cell(x, 0).unwrap();
+        assert_eq!(arrival(&[at(0)]), 0);
+        assert_eq!(arrival(&[at(0), at(1), at(1)]), 1);
+        // Leaving the goal and coming back counts until the return.
+        assert_eq!(arrival(&[at(1), at(0), at(1), at(1)]), 2);
     }
 
     #[test]

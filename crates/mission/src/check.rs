@@ -567,6 +567,21 @@ mod tests {
                 "Unknown",
             ),
             (
+                "the brick just past the wall's last",
+                trace(
+                    &b,
+                    &[at(
+                        8.0,
+                        1,
+                        EventKind::Lost {
+                            brick: BrickId(wall.len() as u32),
+                        },
+                    )],
+                    &[],
+                ),
+                "Unknown",
+            ),
+            (
                 "a brick outside the wall",
                 trace(
                     &b,
@@ -593,6 +608,68 @@ mod tests {
             check_trace(&wall, 2, &t),
             Err(TraceError::Precedence { support, t, .. }) if support == other && t == 6.0
         ));
+    }
+
+    #[test]
+    fn lost_bricks_are_counted_and_a_downed_uav_must_account_for_its_brick() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let b = bricks(&wall);
+        let lost = trace(
+            &b,
+            &[
+                at(8.0, 1, EventKind::Grasp { brick: b.b3 }),
+                at(9.0, 1, EventKind::Lost { brick: b.b3 }),
+            ],
+            &[],
+        );
+        let s = check_trace(&wall, 2, &lost).unwrap();
+        assert_eq!((s.placed, s.lost, s.in_flight), (2, 1, 0));
+        let down = |t| {
+            at(
+                t,
+                1,
+                EventKind::State {
+                    state: UavState::Down,
+                    outcome: "down",
+                    x: 0.0,
+                    y: 0.0,
+                },
+            )
+        };
+        let held = trace(
+            &b,
+            &[at(8.0, 1, EventKind::Grasp { brick: b.b3 }), down(10.5)],
+            &[9],
+        );
+        assert_eq!(
+            check_trace(&wall, 2, &held),
+            Err(TraceError::Unaccounted {
+                uav: 1,
+                brick: wall.brick(b.b3).label,
+                what: "is neither placed nor lost"
+            })
+        );
+    }
+
+    #[test]
+    fn after_events_out_of_order_time_goes_on_from_the_latest() {
+        let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
+        let b = bricks(&wall);
+        let comm = EventKind::Comm {
+            mode: crate::state::CommMode::Comm,
+        };
+        // 0.5 s comes after 3 s, then 2 s: both go back in time (from 3 s).
+        let mut t = trace(&b, &[], &[]);
+        t.insert(4, at(0.5, 1, comm));
+        t.insert(5, at(2.0, 1, comm));
+        let found = trace_violations(&wall, 2, &t);
+        assert_eq!(
+            found,
+            [
+                TraceError::OutOfOrder { t: 0.5 },
+                TraceError::OutOfOrder { t: 2.0 }
+            ]
+        );
     }
 
     #[test]

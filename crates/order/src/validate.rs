@@ -276,6 +276,10 @@ mod tests {
         let sum: f64 = eval.steps.iter().map(|s| s.cost).sum();
         assert_eq!(eval.total_cost, sum);
         assert!(validate_claim(&w, &model, &ok, eval.total_cost).is_ok());
+        // The slack is relative: 10⁻⁹ of the total (here about 10⁻⁶), not 10⁻⁹ of one.
+        let near = eval.total_cost * (1.0 + 5e-10);
+        assert!(eval.total_cost - near < -1e-9);
+        assert!(validate_claim(&w, &model, &ok, near).is_ok());
         assert_eq!(
             validate_claim(&w, &model, &ok, eval.total_cost + 1.0),
             Err(OrderError::CostMismatch {

@@ -838,6 +838,205 @@ mod tests {
     }
 
     #[test]
+    fn a_crew_of_the_wrong_size_is_refused_unless_it_was_on_its_way() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (mut s, _) = base(&w, &m);
+        let n = s.placements.len();
+        // Two distinct UAVs of the team for a brick that needs one.
+        s.placements[n - 1].uavs = vec![1, 2];
+        assert_eq!(broken(&w, &m, None, &s), ["Crew"]);
+        // Nobody at all.
+        s.placements[n - 1].uavs = vec![];
+        assert_eq!(broken(&w, &m, None, &s), ["Crew"]);
+    }
+
+    #[test]
+    fn a_brick_on_its_way_keeps_its_crew_and_may_start_before_now() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (mut s, c) = base(&w, &m);
+        // Brick 0 is being placed by UAV 0 since 5 s ago.
+        s.placements[0].start_s = -5.0;
+        let first = s.placements[0].clone();
+        let start = TeamStart {
+            placed: vec![],
+            committed: vec![first.clone()],
+            uav_ready_s: vec![1.0, 0.0, 0.0],
+        };
+        let found = |st: &TeamStart, s: &Schedule| {
+            let every = continuation_violations(&w, &m, 3, None, st, s);
+            let first = validate_continuation(&w, &m, 3, None, st, s);
+            assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
+            every.iter().map(rule).collect::<Vec<_>>()
+        };
+        assert!(found(&start, &s).is_empty());
+        // UAV 0's next brick (at 2C) may not start before UAV 0 is ready.
+        let late = TeamStart {
+            uav_ready_s: vec![2.0 * c + 1.0, 0.0, 0.0],
+            ..start.clone()
+        };
+        assert_eq!(found(&late, &s), ["NotReady"]);
+        // Not on its way, the same start is before 0 (and the brick is not placed).
+        assert_eq!(broken(&w, &m, None, &s)[0], "Start");
+        // Kept no earlier than given, within the time slack.
+        let (mut t, _) = base(&w, &m);
+        let second = t.placements[1].clone();
+        let slack = TeamStart {
+            committed: vec![Placement {
+                start_s: second.start_s + TIME_EPS / 2.0,
+                ..second.clone()
+            }],
+            uav_ready_s: vec![0.0; 3],
+            placed: vec![],
+        };
+        assert!(found(&slack, &t).is_empty());
+        t.placements[1].start_s -= 2.0 * TIME_EPS;
+        let early = TeamStart {
+            committed: vec![second],
+            ..slack
+        };
+        assert_eq!(found(&early, &t), ["Committed"]);
+    }
+
+    /// A start `s` with `s + TIME_EPS == e` exactly, or below `e - TIME_EPS` by one step.
+    fn at_the_slack(e: f64) -> f64 {
+        let mut s = e - TIME_EPS;
+        for _ in 0..64 {
+            if s + TIME_EPS == e {
+                return s;
+            }
+            s = if s + TIME_EPS < e {
+                s.next_up()
+            } else {
+                s.next_down()
+            };
+        }
+        panic!("no start {TIME_EPS} s before {e}")
+    }
+
+    #[test]
+    fn the_time_slack_is_allowed_and_not_more() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, c) = base(&w, &m);
+        let n = s.placements.len();
+        let ord = order(&w);
+        // UAV 0 ready TIME_EPS after its first start: within the slack.
+        let ready = TeamStart {
+            placed: vec![],
+            committed: vec![],
+            uav_ready_s: vec![TIME_EPS, 0.0, 0.0],
+        };
+        assert!(continuation_violations(&w, &m, 3, None, &ready, &s).is_empty());
+        // The top brick by UAV 2, starting exactly one slack before its support is placed.
+        let top = ord[n - 1];
+        let support = *w.supports(top).iter().max().unwrap();
+        let support_end = (ord.iter().position(|&b| b == support).unwrap() as f64) * c
+            + m.of(w.brick(support).kind).place_s;
+        let mut prec = s.clone();
+        prec.placements[n - 1].uavs = vec![2];
+        prec.placements[n - 1].start_s = at_the_slack(support_end);
+        assert!(schedule_violations(&w, &m, 3, None, &prec).is_empty());
+        prec.placements[n - 1].start_s = at_the_slack(support_end).next_down();
+        // (It then also overlaps its support's placing phase: the zone rule's slack is the same.)
+        assert_eq!(broken(&w, &m, None, &prec), ["Precedence", "Concurrent"]);
+        // A UAV starting again one slack before its cycle ends.
+        let mut again = s.clone();
+        let prev = &s.placements[n - 2];
+        again.placements[n - 1].uavs = prev.uavs.clone();
+        let free = prev.start_s + m.of(w.brick(prev.brick).kind).cycle_s();
+        again.placements[n - 1].start_s = at_the_slack(free);
+        assert!(schedule_violations(&w, &m, 3, None, &again).is_empty());
+        again.placements[n - 1].start_s = at_the_slack(free).next_down();
+        assert_eq!(broken(&w, &m, None, &again), ["Cycle"]);
+    }
+
+    /// A 3-D wall of red bricks (CMCP format: id type x y z yaw): pairs side by side in y,
+    /// and pairs a level apart.
+    fn spread() -> Wall {
+        let text = "\
+1 1 0 0 0.1 0
+2 1 0 0.5 0.1 0
+3 1 3 0 0.1 0
+4 1 3 0.9 0.1 0
+5 1 6 0 0.1 0
+6 1 6.78 0 0.3 0
+7 1 9 0 0.1 0
+8 1 9.5 0 0.3 0
+9 1 0 5 0.1 0
+10 1 0.8 5 0.1 0
+";
+        mason_wall::parse_cmcp(text, "spread", mason_wall::CmcpSizes::Yaml).unwrap()
+    }
+
+    #[test]
+    fn the_distance_rule_measures_all_three_axes() {
+        let w = spread();
+        let m = TeamModel::cmcp();
+        let together = |a: u32, b: u32| Schedule {
+            placements: vec![
+                Placement {
+                    brick: w.by_label(a).unwrap(),
+                    uavs: vec![0],
+                    start_s: 0.0,
+                },
+                Placement {
+                    brick: w.by_label(b).unwrap(),
+                    uavs: vec![1],
+                    start_s: 0.0,
+                },
+            ],
+        };
+        let rules = |a, b| {
+            let found = schedule_violations(&w, &m, 3, None, &together(a, b));
+            found.iter().map(rule).collect::<Vec<_>>()
+        };
+        // 0.5 m apart in y: too close; 0.9 m: far enough.
+        assert_eq!(rules(1, 2), ["Concurrent"]);
+        assert!(rules(3, 4).is_empty());
+        // 0.78 m in x and a level (0.2 m) up: 0.805 m, far enough; 0.5 m and a level: too close.
+        assert!(rules(5, 6).is_empty());
+        assert_eq!(rules(7, 8), ["Concurrent"]);
+        // Exactly D apart is not closer than D.
+        let centre = |l: u32| crate::schedule::brick_centre(w.brick(w.by_label(l).unwrap()));
+        let (a, b) = (centre(9), centre(10));
+        assert_eq!(((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt(), 0.8);
+        assert!(rules(9, 10).is_empty());
+    }
+
+    #[test]
+    fn a_brick_on_its_way_may_end_after_the_budget_and_earns_nothing() {
+        let w = wall();
+        let m = TeamModel::thesis();
+        let (s, c) = base(&w, &m);
+        let n = s.placements.len();
+        let top = s.placements[n - 1].clone();
+        let kind = m.of(w.brick(top.brick).kind);
+        let end = (n - 1) as f64 * c + kind.place_s;
+        let budget = Some(end - 1.0);
+        assert_eq!(broken(&w, &m, budget, &s), ["Budget"]);
+        let start = TeamStart {
+            placed: vec![],
+            committed: vec![top],
+            uav_ready_s: vec![0.0; 3],
+        };
+        assert!(continuation_violations(&w, &m, 3, budget, &start, &s).is_empty());
+        let eval = validate_continuation(&w, &m, 3, budget, &start, &s).unwrap();
+        let all = validate_schedule(&w, &m, 3, None, &s).unwrap();
+        assert_eq!(eval.reward, all.reward - kind.reward);
+        assert_eq!(eval.makespan_s, end);
+        // Placed by the budget, within the slack, it earns its reward.
+        let budget = Some(at_the_slack(end));
+        let eval = validate_continuation(&w, &m, 3, budget, &start, &s).unwrap();
+        assert_eq!(eval.reward, all.reward);
+        assert_eq!(
+            validate_schedule(&w, &m, 3, budget, &s).unwrap().reward,
+            all.reward
+        );
+    }
+
+    #[test]
     fn schedules_from_every_planner_pass() {
         let w = wall();
         for model in [TeamModel::thesis(), TeamModel::cmcp()] {
