@@ -778,6 +778,10 @@ mod tests {
                 actual: p.start_s + place
             }]
         );
+        // At exactly the slack (from an empty schedule's 0 reward and 0 s), a claim holds.
+        let none = validate_schedule(&w, &m, 3, None, &Schedule::default()).unwrap();
+        assert_eq!((none.reward, none.makespan_s), (0.0, 0.0));
+        assert!(claim_violations(&none, Some(1e-6), Some(TIME_EPS)).is_empty());
         let outside = ClaimedEnd {
             brick: BrickId(99),
             uav: 0,
@@ -966,6 +970,8 @@ mod tests {
 8 1 9.5 0 0.3 0
 9 1 0 5 0.1 0
 10 1 0.8 5 0.1 0
+11 1 12 0 0.1 0
+12 1 12.75 0 0.3 0
 ";
         mason_wall::parse_cmcp(text, "spread", mason_wall::CmcpSizes::Yaml).unwrap()
     }
@@ -998,6 +1004,8 @@ mod tests {
         // 0.78 m in x and a level (0.2 m) up: 0.805 m, far enough; 0.5 m and a level: too close.
         assert!(rules(5, 6).is_empty());
         assert_eq!(rules(7, 8), ["Concurrent"]);
+        // 0.75 m and a level: 0.776 m (0.85 m were a level counted 0.4 m).
+        assert_eq!(rules(11, 12), ["Concurrent"]);
         // Exactly D apart is not closer than D.
         let centre = |l: u32| crate::schedule::brick_centre(w.brick(w.by_label(l).unwrap()));
         let (a, b) = (centre(9), centre(10));
