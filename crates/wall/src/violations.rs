@@ -75,3 +75,26 @@ impl<E> Violations<E> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_stops_and_every_goes_on() {
+        let mut first = Violations::first();
+        assert!(first.is_empty());
+        assert_eq!(first.report("a"), ControlFlow::Break(()));
+        assert!(!first.is_empty());
+        assert_eq!(first.clone().into_result(7), Err("a"));
+        assert_eq!(first.into_vec(), ["a"]);
+        let mut every = Violations::every();
+        assert_eq!(every.report("a"), ControlFlow::Continue(()));
+        assert_eq!(every.report("b"), ControlFlow::Continue(()));
+        assert_eq!(every.clone().into_result(7), Err("a"));
+        assert_eq!(every.into_vec(), ["a", "b"]);
+        let none: Violations<&str> = Violations::every();
+        assert!(none.is_empty());
+        assert_eq!(none.into_result(7), Ok(7));
+    }
+}
