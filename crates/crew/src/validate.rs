@@ -279,9 +279,7 @@ fn conflicts(
                 cells.insert(at(r, t), r);
             }
         }
-        if t + 1 == end {
-            break;
-        }
+        // At the last step every robot rests (at() holds it on its last cell): no moves.
         moves.clear();
         for r in 0..paths.len() {
             let (a, b) = (at(r, t), at(r, t + 1));
