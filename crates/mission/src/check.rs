@@ -223,18 +223,17 @@ impl<'w> TraceChecker<'w> {
         let inside: Vec<usize> = (0..self.in_zone.len())
             .filter(|&i| self.in_zone[i])
             .collect();
-        if inside.len() > 1 {
-            let pair = inside.len() == 2
-                && self.wall.brick(b).kind.uavs_needed() == 2
-                && inside.iter().all(|&i| self.holding[i] == Some(b));
-            if !pair {
-                for &other in inside.iter().filter(|&&i| i != u) {
-                    self.found.report(TraceError::ZoneShared {
-                        t,
-                        a: other as u32,
-                        b: uav,
-                    })?;
-                }
+        // Alone, the UAV shares the zone with nobody; two carrying one orange brick are a pair.
+        let pair = inside.len() == 2
+            && self.wall.brick(b).kind.uavs_needed() == 2
+            && inside.iter().all(|&i| self.holding[i] == Some(b));
+        if !pair {
+            for &other in inside.iter().filter(|&&i| i != u) {
+                self.found.report(TraceError::ZoneShared {
+                    t,
+                    a: other as u32,
+                    b: uav,
+                })?;
             }
         }
         ControlFlow::Continue(())
@@ -694,6 +693,28 @@ mod tests {
             at(3.0, 1, EventKind::ZoneLeave),
         ];
         assert_eq!(check_trace(&wall, 3, &pair).unwrap().placed, 1);
+        // Two UAVs with copies of one red brick are no pair.
+        let copies = [
+            at(1.0, 0, EventKind::Grasp { brick: red }),
+            at(1.0, 1, EventKind::Grasp { brick: red }),
+            at(2.0, 0, EventKind::ZoneEnter),
+            at(2.0, 1, EventKind::ZoneEnter),
+        ];
+        assert_eq!(
+            trace_violations(&wall, 3, &copies),
+            [TraceError::ZoneShared { t: 2.0, a: 0, b: 1 }]
+        );
+        // Three UAVs with copies of one orange brick are one too many.
+        let mut three = pair.to_vec();
+        three[2] = at(1.0, 2, EventKind::Grasp { brick: o });
+        three.insert(5, at(2.5, 2, EventKind::ZoneEnter));
+        assert_eq!(
+            trace_violations(&wall, 3, &three),
+            [
+                TraceError::ZoneShared { t: 2.5, a: 0, b: 2 },
+                TraceError::ZoneShared { t: 2.5, a: 1, b: 2 }
+            ]
+        );
         let mut third = pair.to_vec();
         third.insert(5, at(2.5, 2, EventKind::ZoneEnter));
         let found = trace_violations(&wall, 3, &third);
