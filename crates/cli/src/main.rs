@@ -44,6 +44,9 @@ enum Command {
     Launch(cmd::launch::LaunchArgs),
     /// Assign ground robots to goals and plan collision-free paths (seen from a UAV)
     Crew(cmd::crew::CrewArgs),
+    /// Check a build order, team schedule, mission trace or crew plan, Mason's or another
+    /// tool's, with the validator of its domain (exit 1 naming the first broken rule)
+    Check(cmd::check::CheckArgs),
     /// Reproduce published comparisons and measure throughput
     Bench {
         #[command(subcommand)]
@@ -62,6 +65,7 @@ fn run(cli: Cli) -> fail::CliResult<()> {
         Command::Agent(a) => cmd::agent::run(a, quiet),
         Command::Launch(a) => cmd::launch::run(a, quiet),
         Command::Crew(a) => cmd::crew::run(a),
+        Command::Check(a) => cmd::check::run(a),
         Command::Bench { suite } => cmd::bench::run(suite, quiet),
     }
 }

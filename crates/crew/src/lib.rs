@@ -81,4 +81,4 @@ pub use outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 pub use prm::PrmConfig;
 pub use refine::RefineConfig;
 pub use solve::{solve, CrewConfig, PathMethod, Resolution, SetupError};
-pub use validate::{validate, PlanError, PlanMetrics};
+pub use validate::{claim_violations, plan_violations, validate, PlanError, PlanMetrics};

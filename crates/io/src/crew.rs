@@ -6,8 +6,8 @@ use crate::files::{read_input, MAX_INPUT_BYTES};
 use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
-    AssignMethod, Connectivity, CrewConfig, Grid, Instance, PathMethod, PrmConfig, RefineConfig,
-    Resolution,
+    AssignMethod, Cell, Connectivity, CrewConfig, Grid, Instance, PathMethod, PrmConfig,
+    RefineConfig, Resolution,
 };
 use std::path::Path;
 
@@ -51,19 +51,8 @@ pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Inst
         (Some(map), Some(scen), None) => {
             let grid = load_grid(map)?;
             let scen_name = scen.display().to_string();
-            if input.agents == Some(0) {
-                return Err(InputError::bad("--agents must be at least 1"));
-            }
-            let agents = parse_scen(
-                &read_text(scen)?,
-                &scen_name,
-                &grid,
-                input.agents.unwrap_or(usize::MAX),
-            )
-            .map_err(bad)?;
-            let robots = agents.iter().map(|a| a.start).collect();
-            let goals = agents.iter().map(|a| a.goal).collect();
-            let pairing = Some((0..agents.len()).collect());
+            let (robots, goals) = load_scenario(scen, &grid, input.agents)?;
+            let pairing = Some((0..robots.len()).collect());
             let inst =
                 Instance::new(grid, conn, robots, goals, pairing, &scen_name).map_err(bad)?;
             Ok((inst, map.to_string()))
@@ -78,7 +67,24 @@ pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Inst
     }
 }
 
-fn load_grid(map: &str) -> InputResult<Grid> {
+/// The starts and goals of a MovingAI scenario's first `agents` agents (all when `None`), in
+/// order, on `grid`.
+pub fn load_scenario(
+    scen: &Path,
+    grid: &Grid,
+    agents: Option<usize>,
+) -> InputResult<(Vec<Cell>, Vec<Cell>)> {
+    if agents == Some(0) {
+        return Err(InputError::bad("--agents must be at least 1"));
+    }
+    let name = scen.display().to_string();
+    let agents = parse_scen(&read_text(scen)?, &name, grid, agents.unwrap_or(usize::MAX))
+        .map_err(|e| InputError::bad(e.to_string()))?;
+    Ok(agents.iter().map(|a| (a.start, a.goal)).unzip())
+}
+
+/// A grid from a MovingAI `.map` file or an occupancy PNG (by its `.png` extension).
+pub fn load_grid(map: &str) -> InputResult<Grid> {
     let path = Path::new(map);
     let bytes = read(path)?;
     let is_png = path

@@ -10,6 +10,8 @@
 //! - [`faults`]: the one parser of `U@T` ([`parse_at`]) and of `A-B` ([`parse_window`]), fault
 //!   settings as flags or a TOML file ([`FaultSpec`]), and mission files ([`read_mission`]).
 //!
+//! - [`artefacts`]: plans, schedules, traces and crew plans read back for checking, from
+//!   Mason's JSON or plain formats (an order list, a schedule CSV, a MAPF result file).
 //! - [`output`]: outputs checked before any work and written all or none, atomically, and
 //!   never renamed over a device, FIFO or socket ([`write_files`]).
 //!
@@ -27,6 +29,7 @@
 
 #![deny(missing_docs)]
 
+pub mod artefacts;
 pub mod crew;
 pub mod design;
 pub mod error;
@@ -35,7 +38,9 @@ pub mod files;
 pub mod models;
 pub mod output;
 
-pub use crew::{check_size, choices, load_crew, CrewChoices, CrewInput, RawChoices};
+pub use crew::{
+    check_size, choices, load_crew, load_grid, load_scenario, CrewChoices, CrewInput, RawChoices,
+};
 pub use design::{load_wall, Format, LoadedWall, Sizes};
 pub use error::InputError;
 pub use faults::check_uav;

@@ -62,7 +62,7 @@ pub mod windows;
 pub use altitude::{altitude, altitude_during, climb_fraction, cruise_altitude};
 pub use arena::{Arena, Point};
 pub use bus::killed_events;
-pub use check::{check_trace, TraceChecker, TraceError, TraceSummary};
+pub use check::{check_trace, trace_violations, TraceChecker, TraceError, TraceSummary};
 pub use checked::fly_checked;
 pub use config::{
     ConfigError, Faults, MissionConfig, UavFailure, UavModel, Window, MAX_MISSION_TIME_S,

@@ -1,8 +1,8 @@
 //! Mission scenarios, with `check_trace` as the oracle on every run.
 
 use mason_mission::{
-    check_trace, make_policy, simulate, slot_length, Coord, Event, EventKind, MissionConfig,
-    MissionInput, MissionResult, MissionStatus, UavFailure, Window,
+    check_trace, make_policy, simulate, slot_length, trace_violations, Coord, Event, EventKind,
+    MissionConfig, MissionInput, MissionResult, MissionStatus, TraceError, UavFailure, Window,
 };
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_wall::Wall;
@@ -41,6 +41,8 @@ fn fly(
     let r = simulate(input, make_policy(coord, slot).as_mut(), seed, &mut trace);
     let summary = check_trace(wall, config.uavs, &trace);
     assert!(summary.is_ok(), "{coord:?} seed {seed}: {summary:?}");
+    let all = trace_violations(wall, config.uavs, &trace);
+    assert!(all.is_empty(), "{coord:?} seed {seed}: {all:?}");
     (r, trace)
 }
 
@@ -196,29 +198,49 @@ fn check_trace_rejects_a_shared_zone_and_a_premature_placement() {
     let w = wall("thesis-2x5");
     let config = MissionConfig::with_uavs(3);
     let (_, trace) = fly(&w, &config, Coord::Comm, 0);
-    // Forge: a second UAV enters while the first is inside.
+    assert!(trace_violations(&w, 3, &trace).is_empty());
+    // Forge: a second UAV, which holds a brick, enters while the first is inside.
     let i = trace
         .iter()
         .position(|e| e.kind == EventKind::ZoneEnter)
         .unwrap();
-    let holder = trace[..i].iter().rev().find_map(|e| match e.kind {
-        EventKind::Grasp { brick } if e.uav != trace[i].uav => Some((e.uav, brick)),
-        _ => None,
-    });
-    if let Some((other, _)) = holder {
-        let mut forged = trace.clone();
-        let mut e = forged[i];
-        e.uav = other;
-        forged.insert(i + 1, e);
-        assert!(check_trace(&w, 3, &forged).is_err());
-    }
-    // Forge: drop the first placement, so a later brick lands before its support.
+    let (other, _) = trace[..i]
+        .iter()
+        .rev()
+        .find_map(|e| match e.kind {
+            EventKind::Grasp { brick } if e.uav != trace[i].uav => Some((e.uav, brick)),
+            _ => None,
+        })
+        .expect("another UAV holds a brick when the first enters the zone");
+    let mut forged = trace.clone();
+    let mut e = forged[i];
+    e.uav = other;
+    forged.insert(i + 1, e);
+    assert_eq!(
+        check_trace(&w, 3, &forged),
+        Err(TraceError::ZoneShared {
+            t: e.t,
+            a: trace[i].uav,
+            b: other
+        })
+    );
+    // Forge: drop the first placement, so that a later brick lands before its support.
     let mut forged = trace.clone();
     let first = forged
         .iter()
         .position(|e| matches!(e.kind, EventKind::Place { .. }))
         .unwrap();
-    forged.remove(first);
+    let EventKind::Place { brick: dropped } = forged.remove(first).kind else {
+        unreachable!()
+    };
+    let label = w.brick(dropped).label;
+    let found = trace_violations(&w, 3, &forged);
+    assert!(
+        found
+            .iter()
+            .any(|e| matches!(e, TraceError::Precedence { support, .. } if *support == label)),
+        "{found:?}"
+    );
     assert!(check_trace(&w, 3, &forged).is_err());
 }
 

@@ -46,4 +46,4 @@ pub use model::{CostModel, ModelError, TypeTimes};
 pub use outcome::{Better, Budget, OnBetter, Outcome, Stats, Status};
 pub use planner::{PlannerParseError, PlannerSpec};
 pub use problem::BuildProblem;
-pub use validate::{validate, validate_claim, Evaluation, OrderError, Step};
+pub use validate::{order_violations, validate, validate_claim, Evaluation, OrderError, Step};

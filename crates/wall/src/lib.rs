@@ -29,6 +29,7 @@ mod png;
 mod raster;
 pub mod stop;
 mod text;
+pub mod violations;
 mod wall;
 
 pub use brick::{

@@ -40,6 +40,7 @@ pub use problem::{
 };
 pub use search::{plan_schedule, plan_schedule_with};
 pub use validate::{
-    validate_continuation, validate_schedule, validate_schedule_claim, ScheduleError,
+    claim_violations, continuation_violations, end_violations, schedule_violations,
+    validate_continuation, validate_schedule, validate_schedule_claim, ClaimedEnd, ScheduleError,
     ScheduleEvaluation, TIME_EPS,
 };

@@ -1,0 +1,46 @@
+//! JSON documents read with their line numbers: serde's errors carry one, and the values kept
+//! raw ([`RawValue`]) know where they sit in the text.
+
+use super::at;
+use crate::error::InputError;
+use serde::de::DeserializeOwned;
+use serde::Deserialize;
+use serde_json::value::RawValue;
+use std::path::Path;
+
+/// The line (1-based) where `part`, a slice of `text`, begins.
+pub(super) fn line_of(text: &str, part: &str) -> usize {
+    let offset = (part.as_ptr() as usize)
+        .saturating_sub(text.as_ptr() as usize)
+        .min(text.len());
+    text[..offset].matches('\n').count() + 1
+}
+
+/// A serde error as `path:line: reason` (the line counted from `first_line`).
+fn error(path: &Path, first_line: usize, e: &serde_json::Error) -> InputError {
+    let reason = e.to_string();
+    // serde_json ends its messages with " at line L column C": the line is given apart.
+    let reason = reason
+        .split(" at line ")
+        .next()
+        .unwrap_or(&reason)
+        .to_string();
+    at(path, first_line + e.line().max(1) - 1, reason)
+}
+
+/// `text` (the whole file) as `T`.
+pub(super) fn document<'a, T: Deserialize<'a>>(
+    text: &'a str,
+    path: &Path,
+) -> Result<T, InputError> {
+    serde_json::from_str(text).map_err(|e| error(path, 1, &e))
+}
+
+/// One raw value of `text` as `T`; errors name its line in the file.
+pub(super) fn value<T: DeserializeOwned>(
+    text: &str,
+    raw: &RawValue,
+    path: &Path,
+) -> Result<T, InputError> {
+    serde_json::from_str(raw.get()).map_err(|e| error(path, line_of(text, raw.get()), &e))
+}
