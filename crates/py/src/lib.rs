@@ -20,6 +20,7 @@ use std::time::Duration;
 mod crew;
 mod missions;
 mod plans;
+mod validators;
 mod walls;
 
 /// How often a thread waiting on a solve looks for Ctrl-C and progress.
@@ -139,6 +140,7 @@ fn _mason(m: &Bound<'_, PyModule>) -> PyResult<()> {
     walls::register(m)?;
     plans::register(m)?;
     missions::register(m)?;
+    validators::register(m)?;
     crew::register(m)?;
     Ok(())
 }

@@ -190,6 +190,13 @@ pub struct PyTrace {
     json: serde_json::Value,
 }
 
+impl PyTrace {
+    /// The JSON the CLI prints, compact.
+    pub(crate) fn json_text(&self) -> String {
+        self.json.to_string()
+    }
+}
+
 #[pymethods]
 impl PyTrace {
     /// The run's metrics (`makespan_s`, `bricks_placed`, `reward`, …), a dict.

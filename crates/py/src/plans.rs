@@ -69,6 +69,13 @@ pub struct PyPlan {
     json: serde_json::Value,
 }
 
+impl PyPlan {
+    /// The JSON the CLI prints, compact.
+    pub(crate) fn json_text(&self) -> String {
+        self.json.to_string()
+    }
+}
+
 #[pymethods]
 impl PyPlan {
     /// The build order: a numpy int64 array of brick ids, first placed first.
@@ -196,6 +203,13 @@ pub struct PySchedule {
     gap: f64,
     ends: Vec<f64>,
     json: serde_json::Value,
+}
+
+impl PySchedule {
+    /// The JSON the CLI prints, compact.
+    pub(crate) fn json_text(&self) -> String {
+        self.json.to_string()
+    }
 }
 
 #[pymethods]

@@ -104,14 +104,6 @@ pub fn run(a: CheckArgs) -> CliResult<()> {
     }
 }
 
-/// The rule a violation breaks: its variant's name.
-fn rule<E: Debug>(e: &E) -> String {
-    format!("{e:?}")
-        .chars()
-        .take_while(char::is_ascii_alphanumeric)
-        .collect()
-}
-
 /// Exit 1 naming the first violation; with `all`, every one listed on stdout first.
 fn broken<E: Debug + Display>(file: &Path, all: bool, found: &[E]) -> CliResult<()> {
     let Some(first) = found.first() else {
@@ -119,19 +111,19 @@ fn broken<E: Debug + Display>(file: &Path, all: bool, found: &[E]) -> CliResult<
     };
     if all {
         for e in found {
-            println!("{}: {e}", rule(e));
+            println!("{}: {e}", artefacts::rule(e));
         }
         return Err(no_solution(format!(
             "{}: {} violation(s); the first: {}: {first}",
             file.display(),
             found.len(),
-            rule(first)
+            artefacts::rule(first)
         )));
     }
     Err(no_solution(format!(
         "{}: breaks {}: {first}",
         file.display(),
-        rule(first)
+        artefacts::rule(first)
     )))
 }
 
@@ -156,24 +148,10 @@ fn order(a: OrderArgs, all: bool) -> CliResult<()> {
     let wall = a.design.load()?;
     let model = mason_io::load_model(a.model.as_deref())?;
     let file = artefacts::read_order(&a.plan, &wall)?;
-    let eval = match mason_order::validate(&wall, &model, &file.order) {
+    let eval = match file.check(&wall, &model, all) {
         Ok(eval) => eval,
-        Err(first) => {
-            let found = if all {
-                mason_order::order_violations(&wall, &model, &file.order)
-            } else {
-                vec![first]
-            };
-            return broken(&a.plan, all, &found);
-        }
+        Err(found) => return broken(&a.plan, all, &found),
     };
-    if let Some(claimed) = file.total_cost {
-        let found: Vec<_> = mason_order::validate_claim(&wall, &model, &file.order, claimed)
-            .err()
-            .into_iter()
-            .collect();
-        broken(&a.plan, all, &found)?;
-    }
     println!(
         "{}: valid build order ({}) of the {} bricks of {} · total cost {} (recomputed with {})",
         a.plan.display(),
@@ -194,55 +172,14 @@ fn order(a: OrderArgs, all: bool) -> CliResult<()> {
 }
 
 fn schedule(a: ScheduleArgs, all: bool) -> CliResult<()> {
-    use mason_order::schedule::{self as sch, MAX_UAVS};
     let wall = a.design.load()?;
     let file = artefacts::read_schedule(&a.schedule, &wall)?;
-    let model_name = match (&a.model, &file.claims.model) {
-        (Some(m), _) => Some(m.as_str()),
-        (None, Some(m)) if sch::TeamModel::builtin(m).is_some() => Some(m.as_str()),
-        (None, Some(m)) => {
-            return Err(input_error(format!(
-                "{}: planned with team model `{m}`: give it with --model",
-                a.schedule.display()
-            )))
-        }
-        (None, None) => None,
-    };
-    let model = mason_io::load_team_model(model_name)?;
-    let uavs = a.uavs.or(file.claims.uavs).unwrap_or(file.uavs_seen.max(1));
-    if uavs == 0 || uavs > MAX_UAVS {
-        return Err(input_error(format!(
-            "--uavs {uavs}: expected 1 to {MAX_UAVS}"
-        )));
-    }
-    let budget = a.budget.or(file.claims.budget_s);
-    if let Some(t) = budget.filter(|t| !(*t > 0.0 && *t <= 1e9)) {
-        return Err(input_error(format!(
-            "--budget {t}: expected a number of seconds in (0, 10⁹]"
-        )));
-    }
-    let s = &file.schedule;
-    let eval = match sch::validate_schedule(&wall, &model, uavs, budget, s) {
+    let setting = file.setting(&a.schedule, a.model.as_deref(), a.uavs, a.budget)?;
+    let eval = match file.check(&wall, &setting, all) {
         Ok(eval) => eval,
-        Err(first) => {
-            let mut found = if all {
-                sch::schedule_violations(&wall, &model, uavs, budget, s)
-            } else {
-                vec![first]
-            };
-            if all {
-                found.extend(sch::end_violations(&wall, &model, &file.ends));
-            }
-            return broken(&a.schedule, all, &found);
-        }
+        Err(found) => return broken(&a.schedule, all, &found),
     };
-    let mut found = sch::end_violations(&wall, &model, &file.ends);
-    found.extend(sch::claim_violations(
-        &eval,
-        file.claims.reward,
-        file.claims.makespan_s,
-    ));
-    broken(&a.schedule, all, &found)?;
+    let (model, uavs, budget) = (&setting.model, setting.uavs, setting.budget_s);
     println!(
         "{}: valid team schedule ({}) · {} of {} bricks placed · reward {} · makespan {} (recomputed) · model {}, {} UAVs, budget {}",
         a.schedule.display(),
@@ -294,16 +231,9 @@ fn trace(a: TraceArgs, all: bool) -> CliResult<()> {
             "--uavs {uavs}: expected 1 to {MAX_UAVS}"
         )));
     }
-    let summary = match mason_mission::check_trace(&wall, uavs, &file.events) {
+    let summary = match file.check(&wall, uavs, all) {
         Ok(s) => s,
-        Err(first) => {
-            let found = if all {
-                mason_mission::trace_violations(&wall, uavs, &file.events)
-            } else {
-                vec![first]
-            };
-            return broken(&a.trace, all, &found);
-        }
+        Err(found) => return broken(&a.trace, all, &found),
     };
     let last_place = file
         .events

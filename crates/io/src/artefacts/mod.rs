@@ -23,12 +23,20 @@ pub mod trace;
 
 pub use crew_plan::{crew_instance, parse_crew_plan, read_crew_plan, CrewInstance, CrewPlanFile};
 pub use order::{parse_order, read_order, OrderFile};
-pub use schedule::{parse_schedule, read_schedule, ScheduleClaims, ScheduleFile};
+pub use schedule::{parse_schedule, read_schedule, ScheduleClaims, ScheduleFile, ScheduleSetting};
 pub use trace::{is_json_lines, parse_trace_json, read_trace_json, TraceFile};
 
 use crate::error::InputError;
 use mason_wall::{BrickId, Wall};
 use std::path::Path;
+
+/// The name of a broken rule: its error variant (`Unsupported`, `ZoneShared`, `Conflict`, …).
+pub fn rule<E: std::fmt::Debug>(e: &E) -> String {
+    format!("{e:?}")
+        .chars()
+        .take_while(char::is_ascii_alphanumeric)
+        .collect()
+}
 
 /// `path:line: reason`, the one-line error of a bad artefact line.
 fn at(path: &Path, line: usize, reason: impl std::fmt::Display) -> InputError {

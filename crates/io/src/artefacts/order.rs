@@ -87,6 +87,29 @@ pub fn parse_order(text: &str, path: &Path, wall: &Wall) -> InputResult<OrderFil
     })
 }
 
+impl OrderFile {
+    /// Checks the order with `order::validate` and, when the file states a total cost, that
+    /// claim: the evaluation, or the broken rules (the first one; with `all`, every one).
+    pub fn check(
+        &self,
+        wall: &Wall,
+        model: &mason_order::CostModel,
+        all: bool,
+    ) -> Result<mason_order::Evaluation, Vec<mason_order::OrderError>> {
+        let eval = match mason_order::validate(wall, model, &self.order) {
+            Ok(eval) => eval,
+            Err(first) if !all => return Err(vec![first]),
+            Err(_) => return Err(mason_order::order_violations(wall, model, &self.order)),
+        };
+        match self.total_cost {
+            Some(claimed) => mason_order::validate_claim(wall, model, &self.order, claimed)
+                .map(|_| eval)
+                .map_err(|e| vec![e]),
+            None => Ok(eval),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

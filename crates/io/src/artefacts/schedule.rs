@@ -228,6 +228,97 @@ fn too_many(path: &Path, line: usize, uav: usize) -> InputError {
     )
 }
 
+/// What a schedule is checked against: the team model, the team size and the budget.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScheduleSetting {
+    /// The team model.
+    pub model: mason_order::schedule::TeamModel,
+    /// Team size.
+    pub uavs: usize,
+    /// The budget T (s), if any.
+    pub budget_s: Option<f64>,
+}
+
+impl ScheduleFile {
+    /// The setting to check against: what is given, else what the file states (a model it
+    /// names must be built in, else it must be given), else the UAVs its rows use and no
+    /// budget. Errors name `path` and the option (`--model`, `--uavs`, `--budget`).
+    pub fn setting(
+        &self,
+        path: &Path,
+        model: Option<&str>,
+        uavs: Option<usize>,
+        budget_s: Option<f64>,
+    ) -> InputResult<ScheduleSetting> {
+        use mason_order::schedule::TeamModel;
+        let name = match (model, &self.claims.model) {
+            (Some(m), _) => Some(m),
+            (None, Some(m)) if TeamModel::builtin(m).is_some() => Some(m.as_str()),
+            (None, Some(m)) => {
+                return Err(InputError::bad(format!(
+                    "{}: planned with team model `{m}`: give it with --model",
+                    path.display()
+                )))
+            }
+            (None, None) => None,
+        };
+        let model = crate::load_team_model(name)?;
+        let uavs = uavs.or(self.claims.uavs).unwrap_or(self.uavs_seen.max(1));
+        if uavs == 0 || uavs > MAX_UAVS {
+            return Err(InputError::bad(format!(
+                "--uavs {uavs}: expected 1 to {MAX_UAVS}"
+            )));
+        }
+        let budget_s = budget_s.or(self.claims.budget_s);
+        if let Some(t) = budget_s.filter(|t| !(*t > 0.0 && *t <= 1e9)) {
+            return Err(InputError::bad(format!(
+                "--budget {t}: expected a number of seconds in (0, 10⁹]"
+            )));
+        }
+        Ok(ScheduleSetting {
+            model,
+            uavs,
+            budget_s,
+        })
+    }
+
+    /// Checks the schedule with `validate_schedule` in `setting`, the ends its rows state and
+    /// the reward and makespan the file claims: the evaluation, or the broken rules (the
+    /// first one; with `all`, every one).
+    pub fn check(
+        &self,
+        wall: &Wall,
+        setting: &ScheduleSetting,
+        all: bool,
+    ) -> Result<mason_order::schedule::ScheduleEvaluation, Vec<mason_order::schedule::ScheduleError>>
+    {
+        use mason_order::schedule as sch;
+        let s = &setting;
+        let eval = match sch::validate_schedule(wall, &s.model, s.uavs, s.budget_s, &self.schedule)
+        {
+            Ok(eval) => eval,
+            Err(first) if !all => return Err(vec![first]),
+            Err(_) => {
+                let mut found =
+                    sch::schedule_violations(wall, &s.model, s.uavs, s.budget_s, &self.schedule);
+                found.extend(sch::end_violations(wall, &s.model, &self.ends));
+                return Err(found);
+            }
+        };
+        let mut found = sch::end_violations(wall, &s.model, &self.ends);
+        found.extend(sch::claim_violations(
+            &eval,
+            self.claims.reward,
+            self.claims.makespan_s,
+        ));
+        if found.is_empty() {
+            Ok(eval)
+        } else {
+            Err(found)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -114,6 +114,23 @@ pub fn is_json_lines(text: &str) -> bool {
     })
 }
 
+impl TraceFile {
+    /// Checks the events with `mission::check_trace` for a team of `uavs` (default: the
+    /// file's): the summary, or the broken rules (the first one; with `all`, every one).
+    pub fn check(
+        &self,
+        wall: &Wall,
+        uavs: usize,
+        all: bool,
+    ) -> Result<mason_mission::TraceSummary, Vec<mason_mission::TraceError>> {
+        match mason_mission::check_trace(wall, uavs, &self.events) {
+            Ok(summary) => Ok(summary),
+            Err(first) if !all => Err(vec![first]),
+            Err(_) => Err(mason_mission::trace_violations(wall, uavs, &self.events)),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

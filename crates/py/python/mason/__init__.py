@@ -14,11 +14,14 @@ from ._mason import (
     Wall,
     __version__,
     builtin_walls,
+    check_trace,
     monte_carlo,
     plan_order,
     plan_schedule,
     simulate,
     summarise,
+    validate_order,
+    validate_schedule,
 )
 from . import crew
 
@@ -33,10 +36,13 @@ __all__ = [
     "Wall",
     "__version__",
     "builtin_walls",
+    "check_trace",
     "crew",
     "monte_carlo",
     "plan_order",
     "plan_schedule",
     "simulate",
     "summarise",
+    "validate_order",
+    "validate_schedule",
 ]

@@ -23,7 +23,9 @@ class NoSolutionError(MasonError):
     """No solution within the budget, or none exists (the CLI's exit code 1)."""
 
 class ValidationError(MasonError, ValueError):
-    """A validator found a broken rule."""
+    """A validator found a broken rule; `violations` lists "Rule: message" lines."""
+
+    violations: list[str]
 
 def builtin_walls() -> list[str]:
     """The names of the built-in walls."""
@@ -162,3 +164,29 @@ def monte_carlo(
 
 def summarise(runs: np.ndarray) -> dict[str, Any]:
     """The summary of per-run rows from monte_carlo(..., per_run=True)."""
+
+def validate_order(
+    wall: Wall,
+    plan: Union[Plan, dict[str, Any], str, list[int]],
+    model: Optional[PathLike] = None,
+    all: bool = False,
+) -> dict[str, Any]:
+    """Checks a build order (a Plan, plan --json as dict or text, or brick ids); raises ValidationError."""
+
+def validate_schedule(
+    wall: Wall,
+    schedule: Union[Schedule, dict[str, Any], str],
+    model: Optional[str] = None,
+    uavs: Optional[int] = None,
+    budget: Optional[float] = None,
+    all: bool = False,
+) -> dict[str, Any]:
+    """Checks a team schedule (a Schedule, plan --objective --json, or uav,brick,start[,end] CSV text)."""
+
+def check_trace(
+    wall: Wall,
+    trace: Union[Trace, dict[str, Any], str, list[dict[str, Any]]],
+    uavs: Optional[int] = None,
+    all: bool = False,
+) -> dict[str, int]:
+    """Checks a mission trace (a Trace, simulate --json, launch's trace.json, or a list of events)."""
