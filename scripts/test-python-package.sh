@@ -7,21 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ENV="${MASON_PYPKG_ENV:-target/pymason}"
-PY="$ENV/bin/python"
-if ! python3 -c "import venv, ensurepip" 2>/dev/null; then
-    SUDO=""
-    if [ "$(id -u)" != "0" ]; then
-        SUDO="sudo"
-    fi
-    export DEBIAN_FRONTEND=noninteractive
-    $SUDO apt-get update -qq
-    $SUDO apt-get install -y -qq --no-install-recommends python3-venv >/dev/null
-fi
-if [ ! -x "$PY" ]; then
-    python3 -m venv "$ENV"
-fi
+# The venv (made, with python3-venv from Debian's packages if missing) and maturin.
+PY="$(MASON_PYENV="$ENV" scripts/install-python.sh maturin 1.16.0 | tail -n 1)"
 "$PY" -m pip install --quiet --disable-pip-version-check \
-    maturin==1.16.0 pytest==9.2.0 numpy==2.4.6 dask==2026.8.0 distributed==2026.8.0
+    pytest==9.2.0 numpy==2.4.6 dask==2026.8.0 distributed==2026.8.0
 rm -rf target/wheels
 "$ENV/bin/maturin" build --release --quiet -m crates/py/Cargo.toml -i "$PY" -o target/wheels
 "$PY" -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps target/wheels/mason-*.whl
