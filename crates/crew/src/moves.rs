@@ -21,20 +21,28 @@ pub struct MoveGraph {
 impl MoveGraph {
     /// The moves of `grid` under `conn`. O(cells).
     pub fn new(grid: &Grid, conn: Connectivity) -> Self {
+        Self::new_until(grid, conn, &|| false).expect("never stopped")
+    }
+
+    /// [`MoveGraph::new`], or `None` when `stop` says so (looked at every 65 536 cells).
+    pub fn new_until(grid: &Grid, conn: Connectivity, stop: &dyn Fn() -> bool) -> Option<Self> {
         let mut offsets = Vec::with_capacity(grid.len() + 1);
         let mut targets = Vec::new();
         offsets.push(0);
         for c in 0..grid.len() as u32 {
+            if c % 65_536 == 0 && stop() {
+                return None;
+            }
             if grid.is_free(Cell(c)) {
                 grid.for_each_move(Cell(c), conn, |n, _| targets.push(n.0));
             }
             offsets.push(targets.len() as u32);
         }
-        MoveGraph {
+        Some(MoveGraph {
             width: grid.width(),
             offsets,
             targets,
-        }
+        })
     }
 
     /// Number of cells (free or not).
@@ -52,6 +60,17 @@ impl MoveGraph {
     /// [`crate::distance::UNREACHABLE`] where no path goes. `source` must be free.
     /// Breadth-first search, O(cells).
     pub fn distances_from(&self, source: u32) -> Vec<u32> {
+        self.distances_from_until(source, &|| false)
+            .unwrap_or_default()
+    }
+
+    /// [`MoveGraph::distances_from`], or `None` when `stop` says so (looked at every 65 536
+    /// cells).
+    pub fn distances_from_until(
+        &self,
+        source: u32,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Vec<u32>> {
         let mut dist = vec![NIL; self.cells()];
         dist[source as usize] = 0;
         let mut queue = Vec::with_capacity(self.cells());
@@ -60,6 +79,9 @@ impl MoveGraph {
         while head < queue.len() {
             let c = queue[head];
             head += 1;
+            if head % 65_536 == 0 && stop() {
+                return None;
+            }
             let d = dist[c as usize] + 1;
             for &m in self.neighbours(c) {
                 if dist[m as usize] == NIL {
@@ -68,7 +90,7 @@ impl MoveGraph {
                 }
             }
         }
-        dist
+        Some(dist)
     }
 
     /// For a diagonal move `a → b`, the two other corners of its 2×2 square; `None` for a
@@ -90,9 +112,18 @@ pub fn goal_distances(grid: &Grid, conn: Connectivity, goals: &[Cell]) -> Vec<Ve
 /// [`goal_distances`] on a move graph the caller has already built (on a large map the graph
 /// is a good part of the setup's time and memory: build it once).
 pub fn distances_to_goals(graph: &MoveGraph, goals: &[Cell]) -> Vec<Vec<u32>> {
+    distances_to_goals_until(graph, goals, &|| false).unwrap_or_default()
+}
+
+/// [`distances_to_goals`], or `None` when `stop` says so before every table is done.
+pub fn distances_to_goals_until(
+    graph: &MoveGraph,
+    goals: &[Cell],
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Option<Vec<Vec<u32>>> {
     goals
         .par_iter()
-        .map(|&g| graph.distances_from(g.0))
+        .map(|&g| graph.distances_from_until(g.0, stop))
         .collect()
 }
 

@@ -6,7 +6,7 @@ use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
 use crate::lacam::{lacam_guided, LacamEnd};
-use crate::moves::{distances_to_goals, MoveGraph};
+use crate::moves::{distances_to_goals_until, MoveGraph};
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
@@ -302,6 +302,17 @@ fn sum_of_costs(paths: &Paths) -> u64 {
 /// first plan's sum of costs by about a third at 500 and 1000 robots.
 const GUIDE: (u32, u32, usize) = (10, 2, 4000);
 
+/// The reason when the budget ran out while the distance tables were being computed.
+fn tables_out_of_time(grid: &crate::Grid, goals: usize) -> (Status, String) {
+    (
+        Status::Timeout,
+        format!(
+            "the budget ran out while building the move graph and the distance tables ({goals} goals × {} cells), before any search",
+            grid.len()
+        ),
+    )
+}
+
 /// LaCAM for a first plan, then refinement until the budget or `config.refine` stops it.
 fn solve_lacam(
     inst: &Instance,
@@ -312,8 +323,12 @@ fn solve_lacam(
     started: Instant,
 ) -> Result<Paths, (Status, String)> {
     let (grid, conn) = (&inst.grid, inst.connectivity);
-    let graph = MoveGraph::new(grid, conn);
-    let dist = distances_to_goals(&graph, goals);
+    let tables = MoveGraph::new_until(grid, conn, &|| budget.out_of_time()).and_then(|graph| {
+        distances_to_goals_until(&graph, goals, &|| budget.out_of_time()).map(|d| (graph, d))
+    });
+    let Some((graph, dist)) = tables else {
+        return Err(tables_out_of_time(grid, goals.len()));
+    };
     for (r, (&s, &g)) in inst.robots.iter().zip(goals).enumerate() {
         if dist[r][s.0 as usize] == UNREACHABLE {
             return Err((
@@ -392,11 +407,8 @@ fn solve_lacam(
 /// Unlabelled: TSWAP from the bottleneck step-distance assignment.
 fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcome {
     let (grid, conn) = (&inst.grid, inst.connectivity);
-    let graph = MoveGraph::new(grid, conn);
-    let dist = distances_to_goals(&graph, &inst.goals);
     let starts: Vec<u32> = inst.robots.iter().map(|c| c.0).collect();
     let goal_cells: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
-    let greedy = bottleneck_assignment(&dist, &starts);
     let mut stats = CrewStats::default();
     let done = |status, goals: Vec<usize>, paths, reason, mut stats: CrewStats| {
         stats.elapsed = started.elapsed();
@@ -409,6 +421,14 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
         }
     };
     let fallback: Vec<usize> = (0..inst.robot_count()).collect();
+    let tables = MoveGraph::new_until(grid, conn, &|| budget.out_of_time()).and_then(|graph| {
+        distances_to_goals_until(&graph, &inst.goals, &|| budget.out_of_time()).map(|d| (graph, d))
+    });
+    let Some((graph, dist)) = tables else {
+        let (status, reason) = tables_out_of_time(grid, inst.goals.len());
+        return done(status, fallback, None, Some(reason), stats);
+    };
+    let greedy = bottleneck_assignment(&dist, &starts);
     if let Some(r) = greedy.iter().position(Option::is_none) {
         return done(
             Status::Infeasible,

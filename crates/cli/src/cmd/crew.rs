@@ -203,8 +203,11 @@ pub fn run_solve(
         e => input_error(format!("internal error: {e}")),
     })?;
     let outcome = checked.outcome;
-    // Per robot only where the table shows it, or when the solver did not sum it already.
-    let shortest = if inst.robot_count() <= TABLE_ROWS || outcome.stats.lower_bound.is_none() {
+    // Per robot only where the table shows it, or when the solver did not sum it already;
+    // never past the time limit (a BFS per robot on a huge map takes seconds).
+    let shortest = if (inst.robot_count() <= TABLE_ROWS || outcome.stats.lower_bound.is_none())
+        && !budget.out_of_time()
+    {
         mason_crew::shortest_steps(inst, &outcome.goals)
     } else {
         Vec::new()
@@ -297,7 +300,11 @@ pub fn crew_table(inst: &Instance, source: &str, config: &CrewConfig, r: &CrewRe
                     format!("{:?}", g.xy(inst.robots[i])),
                     format!("{:?}", g.xy(o.goals[i])),
                     mason_crew::validate::arrival(p),
-                    r.shortest[i].map_or("-".into(), |d| d.to_string())
+                    r.shortest
+                        .get(i)
+                        .copied()
+                        .flatten()
+                        .map_or("-".into(), |d| d.to_string())
                 ));
             }
         }
