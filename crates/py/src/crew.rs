@@ -296,7 +296,12 @@ fn solve(
         mason_crew::CheckedSolveError::Setup(e) => input_error(py, e.to_string()),
         e => internal(py, e),
     })?;
-    let lower_bound = checked.lower_bound(&inst);
+    // The solver's own sum, else computed (a search per robot) unless the time is up.
+    let lower_bound = if checked.outcome.stats.lower_bound.is_some() || !budget.out_of_time() {
+        checked.lower_bound(&inst)
+    } else {
+        None
+    };
     let o = checked.outcome;
     let g = &inst.grid;
     let paths = match &o.paths {
