@@ -55,6 +55,12 @@ fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
 
 /// A lower bound on the makespan of any schedule that places every brick.
 pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
+    makespan_lower_bound_within(p, &Budget::unlimited())
+}
+
+/// [`makespan_lower_bound`], looser but still sound when `search` runs out first (the
+/// conflict cliques found so far each bound the makespan).
+pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 {
     let ids = || p.wall().ids();
     let chain = earliest_end(p).into_iter().fold(0.0, f64::max);
     let resource = match uniform_cycle(p) {
@@ -90,7 +96,7 @@ pub fn makespan_lower_bound(p: &TeamProblem<'_>) -> f64 {
     let zone = if p.zone_rule() {
         ids().map(|b| p.place_s(b)).sum()
     } else {
-        conflict_clique(p)
+        conflict_clique(p, search)
     };
     chain.max(resource).max(zone)
 }
@@ -117,18 +123,27 @@ fn last_rests(p: &TeamProblem<'_>, m: usize) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Membership tests [`conflict_clique`] may make in all: every clique it grew bounds the
+/// makespan, so stopping there (or at the deadline) keeps a sound, deterministic bound.
+const CLIQUE_WORK: u64 = 200_000_000;
+
 /// The heaviest clique of mutually conflicting bricks found by growing one greedily from each
 /// brick (longest placing phase first): its placing phases never overlap, so their sum bounds
-/// the makespan. O(n·d²) for d conflicts per brick.
-fn conflict_clique(p: &TeamProblem<'_>) -> f64 {
+/// the makespan. O(n·d²) for d conflicts per brick, at most [`CLIQUE_WORK`] tests.
+fn conflict_clique(p: &TeamProblem<'_>, search: &Budget) -> f64 {
     let mut best = 0.0f64;
     let mut clique: Vec<BrickId> = Vec::new();
+    let mut work = 0u64;
     for b in p.wall().ids() {
+        if work > CLIQUE_WORK || search.out_of_time() {
+            break;
+        }
         let mut cands: Vec<BrickId> = p.conflicts(b).to_vec();
         cands.sort_by(|x, y| p.place_s(*y).total_cmp(&p.place_s(*x)).then(x.cmp(y)));
         clique.clear();
         clique.push(b);
         for c in cands {
+            work += clique.len() as u64;
             if clique
                 .iter()
                 .all(|k| p.conflicts(c).binary_search(k).is_ok())

@@ -36,7 +36,7 @@ pub use model::{
 };
 pub use problem::{
     brick_centre, Objective, ObjectiveParseError, Placement, Schedule, TeamOutcome, TeamProblem,
-    TeamProblemError, TeamStart, TeamStats, MAX_UAVS,
+    TeamProblemError, TeamStart, TeamStats, MAX_CONFLICT_PAIRS, MAX_UAVS,
 };
 pub use search::{plan_schedule, plan_schedule_with};
 pub use validate::{

@@ -106,7 +106,20 @@ pub enum TeamProblemError {
     /// The hazard rate is not a finite number ≥ 0.
     #[error("UAV hazard {0} per hour: expected a finite number ≥ 0")]
     Hazard(f64),
+    /// The distance rule relates too many pairs of bricks for the planners.
+    #[error(
+        "the distance rule ({} m) puts more than {MAX_CONFLICT_PAIRS} pairs of bricks in conflict (mason_order::schedule::MAX_CONFLICT_PAIRS); use a smaller distance or the zone rule",
+        short(*distance_m)
+    )]
+    TooManyConflicts {
+        /// The rule's distance (m).
+        distance_m: f64,
+    },
 }
+
+/// The most pairs of bricks the distance rule may put in conflict: each pair is checked in
+/// every decode, so more would make one schedule take minutes.
+pub const MAX_CONFLICT_PAIRS: u64 = 2_000_000;
 
 /// The most UAVs a team may have (the planners keep per-UAV state in small arrays).
 pub const MAX_UAVS: usize = 1024;
@@ -155,12 +168,13 @@ pub fn brick_centre(b: &Brick) -> [f64; 3] {
     ]
 }
 
-fn distance_conflicts(wall: &Wall, d: f64) -> Vec<Vec<BrickId>> {
+fn distance_conflicts(wall: &Wall, d: f64) -> Result<Vec<Vec<BrickId>>, TeamProblemError> {
     let n = wall.len();
     let centres: Vec<[f64; 3]> = wall.bricks().iter().map(brick_centre).collect();
     let mut by_x: Vec<usize> = (0..n).collect();
     by_x.sort_by(|&a, &b| centres[a][0].total_cmp(&centres[b][0]).then(a.cmp(&b)));
     let mut out = vec![Vec::new(); n];
+    let mut pairs = 0u64;
     for (k, &i) in by_x.iter().enumerate() {
         for &j in &by_x[k + 1..] {
             if centres[j][0] - centres[i][0] >= d {
@@ -172,13 +186,17 @@ fn distance_conflicts(wall: &Wall, d: f64) -> Vec<Vec<BrickId>> {
             if dist2 < d * d {
                 out[i].push(BrickId(j as u32));
                 out[j].push(BrickId(i as u32));
+                pairs += 1;
+                if pairs > MAX_CONFLICT_PAIRS {
+                    return Err(TeamProblemError::TooManyConflicts { distance_m: d });
+                }
             }
         }
     }
     for l in &mut out {
         l.sort_unstable();
     }
-    out
+    Ok(out)
 }
 
 impl<'w> TeamProblem<'w> {
@@ -238,7 +256,7 @@ impl<'w> TeamProblem<'w> {
             .collect();
         let conflicts = match model.concurrency {
             Concurrency::Zone => Vec::new(),
-            Concurrency::Distance { distance_m } => distance_conflicts(wall, distance_m),
+            Concurrency::Distance { distance_m } => distance_conflicts(wall, distance_m)?,
         };
         Ok(TeamProblem {
             wall,

@@ -17,7 +17,7 @@
 //!   (decodes per thread) or at its deadline (`Timeout`, best so far).
 
 use super::bounds::{
-    earliest_end, expected_reward_upper_bound_within, makespan_lower_bound,
+    earliest_end, expected_reward_upper_bound_within, makespan_lower_bound_within,
     reward_upper_bound_within, RewardBound,
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
@@ -529,7 +529,7 @@ pub fn plan_schedule_with(
     let (bound, target) = match (p.objective(), &reward_bound) {
         _ if !whole => (f64::NAN, None),
         (Objective::Makespan, _) => {
-            let lb = makespan_lower_bound(p);
+            let lb = makespan_lower_bound_within(p, budget);
             (lb, Some(lb))
         }
         (Objective::Reward, Some((_, rb))) => (rb.bound, None),
