@@ -782,6 +782,16 @@ mod tests {
         let none = validate_schedule(&w, &m, 3, None, &Schedule::default()).unwrap();
         assert_eq!((none.reward, none.makespan_s), (0.0, 0.0));
         assert!(claim_violations(&none, Some(1e-6), Some(TIME_EPS)).is_empty());
+        // A stated end exactly one slack from the placing phase's end holds (a phase ending
+        // at 0 s, so that the slack is exact).
+        let at_zero = ClaimedEnd {
+            brick: p.brick,
+            uav: 0,
+            start_s: -place,
+            end_s: TIME_EPS,
+        };
+        assert_eq!(at_zero.start_s + place, 0.0);
+        assert!(end_violations(&w, &m, &[at_zero]).is_empty());
         let outside = ClaimedEnd {
             brick: BrickId(99),
             uav: 0,
