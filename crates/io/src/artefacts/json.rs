@@ -66,3 +66,20 @@ pub(super) fn value<T: DeserializeOwned>(
 ) -> Result<T, InputError> {
     serde_json::from_str(raw.get()).map_err(|e| error(path, line_of(text, raw.get()), &e))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_index_agrees_with_counting_newlines() {
+        let text = "{\n\"a\": [1,\n2],\n\n\"b\": 3}\n";
+        let lines = LineIndex::new(text);
+        for (offset, _) in text.char_indices() {
+            let part = &text[offset..];
+            assert_eq!(lines.of(part), line_of(text, part), "offset {offset}");
+        }
+        assert_eq!(lines.of(&text[text.find('2').unwrap()..]), 3);
+        assert_eq!(lines.of(&text[text.find("\"b\"").unwrap()..]), 5);
+    }
+}
