@@ -280,6 +280,22 @@ mod tests {
         let near = eval.total_cost * (1.0 + 5e-10);
         assert!(eval.total_cost - near < -1e-9);
         assert!(validate_claim(&w, &model, &ok, near).is_ok());
+        // A model where nothing takes time: the total is 0 and the slack exactly 10⁻⁹.
+        let free = crate::model::TypeTimes {
+            grasp: 0.0,
+            fly: 0.0,
+            drop: 0.0,
+        };
+        let instant = CostModel {
+            red: free,
+            green: free,
+            blue: free,
+            orange: free,
+            ..model.clone()
+        };
+        assert_eq!(validate(&w, &instant, &ok).unwrap().total_cost, 0.0);
+        assert!(validate_claim(&w, &instant, &ok, 1e-9).is_ok());
+        assert!(validate_claim(&w, &instant, &ok, 2e-9).is_err());
         assert_eq!(
             validate_claim(&w, &model, &ok, eval.total_cost + 1.0),
             Err(OrderError::CostMismatch {

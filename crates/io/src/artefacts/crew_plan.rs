@@ -18,7 +18,7 @@
 //! keys are ignored.
 
 use super::at;
-use super::json::{document, line_of, value};
+use super::json::{document, value, LineIndex};
 use crate::error::{InputError, InputResult};
 use crate::files::{read_input_text, MAX_INPUT_BYTES};
 use mason_crew::{Cell, Grid, PlanError};
@@ -93,9 +93,10 @@ fn cell(grid: &Grid, (x, y): (i64, i64), path: &Path, line: usize) -> InputResul
 
 fn mason_json(text: &str, path: &Path, grid: &Grid) -> InputResult<CrewPlanFile> {
     let doc: CrewJson<'_> = document(text, path)?;
+    let lines = LineIndex::new(text);
     let (mut starts, mut goals, mut paths) = (Vec::new(), Vec::new(), Vec::new());
     for raw in &doc.agents {
-        let line = line_of(text, raw.get());
+        let line = lines.of(raw.get());
         let a: AgentJson = value(text, raw, path)?;
         starts.push(cell(grid, a.start, path, line)?);
         goals.push(cell(grid, a.goal, path, line)?);

@@ -16,6 +16,28 @@ pub(super) fn line_of(text: &str, part: &str) -> usize {
     text[..offset].matches('\n').count() + 1
 }
 
+/// The lines of a document: where each begins, found once, so that a value's line is a
+/// binary search (counting newlines for every value of a large file would be quadratic).
+pub(super) struct LineIndex<'a> {
+    text: &'a str,
+    newlines: Vec<usize>,
+}
+
+impl<'a> LineIndex<'a> {
+    pub(super) fn new(text: &'a str) -> Self {
+        let newlines = text.match_indices('\n').map(|(i, _)| i).collect();
+        LineIndex { text, newlines }
+    }
+
+    /// The line (1-based) where `part`, a slice of the text, begins.
+    pub(super) fn of(&self, part: &str) -> usize {
+        let offset = (part.as_ptr() as usize)
+            .saturating_sub(self.text.as_ptr() as usize)
+            .min(self.text.len());
+        self.newlines.partition_point(|&n| n < offset) + 1
+    }
+}
+
 /// A serde error as `path:line: reason` (the line counted from `first_line`).
 fn error(path: &Path, first_line: usize, e: &serde_json::Error) -> InputError {
     let reason = e.to_string();
@@ -43,4 +65,21 @@ pub(super) fn value<T: DeserializeOwned>(
     path: &Path,
 ) -> Result<T, InputError> {
     serde_json::from_str(raw.get()).map_err(|e| error(path, line_of(text, raw.get()), &e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_index_agrees_with_counting_newlines() {
+        let text = "{\n\"a\": [1,\n2],\n\n\"b\": 3}\n";
+        let lines = LineIndex::new(text);
+        for (offset, _) in text.char_indices() {
+            let part = &text[offset..];
+            assert_eq!(lines.of(part), line_of(text, part), "offset {offset}");
+        }
+        assert_eq!(lines.of(&text[text.find('2').unwrap()..]), 3);
+        assert_eq!(lines.of(&text[text.find("\"b\"").unwrap()..]), 5);
+    }
 }

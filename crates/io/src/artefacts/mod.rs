@@ -28,6 +28,7 @@ pub use trace::{is_json_lines, parse_trace_json, read_trace_json, TraceFile};
 
 use crate::error::InputError;
 use mason_wall::{BrickId, Wall};
+use std::collections::HashMap;
 use std::path::Path;
 
 /// The name of a broken rule: its error variant (`Unsupported`, `ZoneShared`, `Conflict`, …).
@@ -43,15 +44,32 @@ fn at(path: &Path, line: usize, reason: impl std::fmt::Display) -> InputError {
     InputError::bad(format!("{}:{line}: {reason}", path.display()))
 }
 
-/// The brick labelled `label`, or an error naming the line.
-fn brick(wall: &Wall, label: u32, path: &Path, line: usize) -> Result<BrickId, InputError> {
-    wall.by_label(label).ok_or_else(|| {
-        at(
-            path,
-            line,
-            format!("brick {label} is not in the wall {}", wall.name()),
-        )
-    })
+/// A wall's bricks by label, looked up in constant time.
+struct Labels<'w> {
+    wall: &'w Wall,
+    ids: HashMap<u32, BrickId>,
+}
+
+impl<'w> Labels<'w> {
+    fn new(wall: &'w Wall) -> Self {
+        let mut ids = HashMap::with_capacity(wall.len());
+        for id in wall.ids() {
+            // The first brick of a label, as `Wall::by_label`.
+            ids.entry(wall.brick(id).label).or_insert(id);
+        }
+        Labels { wall, ids }
+    }
+
+    /// The brick labelled `label`, or an error naming the line.
+    fn brick(&self, label: u32, path: &Path, line: usize) -> Result<BrickId, InputError> {
+        self.ids.get(&label).copied().ok_or_else(|| {
+            at(
+                path,
+                line,
+                format!("brick {label} is not in the wall {}", self.wall.name()),
+            )
+        })
+    }
 }
 
 /// Whether `text` is a JSON document (its first non-blank character opens an object or a

@@ -2,8 +2,8 @@
 //! `total_cost`) or a plain list of brick ids, separated by spaces, commas or newlines, with
 //! `#` comments.
 
-use super::json::{document, line_of, value};
-use super::{at, brick, looks_like_json};
+use super::json::{document, value, LineIndex};
+use super::{at, looks_like_json, Labels};
 use crate::error::InputResult;
 use crate::files::{read_input_text, MAX_INPUT_BYTES};
 use mason_wall::{BrickId, Wall};
@@ -38,21 +38,16 @@ pub fn read_order(path: &Path, wall: &Wall) -> InputResult<OrderFile> {
 /// brick labels, or a plain list of labels. A label that is not in `wall` is an error naming
 /// its line.
 pub fn parse_order(text: &str, path: &Path, wall: &Wall) -> InputResult<OrderFile> {
+    let labels = Labels::new(wall);
     if looks_like_json(text) {
         let plan: PlanJson<'_> = document(text, path)?;
+        let lines = LineIndex::new(text);
         let Some(order) = plan.order else {
             return Err(at(path, 1, "no `order` (a plan that found none?)"));
         };
         let order = order
             .iter()
-            .map(|raw| {
-                brick(
-                    wall,
-                    value::<u32>(text, raw, path)?,
-                    path,
-                    line_of(text, raw.get()),
-                )
-            })
+            .map(|raw| labels.brick(value::<u32>(text, raw, path)?, path, lines.of(raw.get())))
             .collect::<InputResult<Vec<_>>>()?;
         return Ok(OrderFile {
             order,
@@ -70,7 +65,7 @@ pub fn parse_order(text: &str, path: &Path, wall: &Wall) -> InputResult<OrderFil
             let label: u32 = token
                 .parse()
                 .map_err(|_| at(path, i + 1, format!("`{token}` is not a brick id")))?;
-            order.push(brick(wall, label, path, i + 1)?);
+            order.push(labels.brick(label, path, i + 1)?);
         }
     }
     if order.is_empty() {

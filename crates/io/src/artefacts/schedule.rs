@@ -3,8 +3,8 @@
 //! part in one placement: rows of the same brick with the same start are one placement (an
 //! orange brick's pair); rows of the same brick with different starts are two placements.
 
-use super::json::{document, line_of, value};
-use super::{at, brick, looks_like_json};
+use super::json::{document, value, LineIndex};
+use super::{at, looks_like_json, Labels};
 use crate::error::{InputError, InputResult};
 use crate::files::{read_input_text, MAX_INPUT_BYTES};
 use mason_order::schedule::{ClaimedEnd, Placement, Schedule, MAX_UAVS};
@@ -82,13 +82,14 @@ pub fn read_schedule(path: &Path, wall: &Wall) -> InputResult<ScheduleFile> {
 pub fn parse_schedule(text: &str, path: &Path, wall: &Wall) -> InputResult<ScheduleFile> {
     let (rows, claims, format) = if looks_like_json(text) {
         let doc: ScheduleJson<'_> = document(text, path)?;
+        let lines = LineIndex::new(text);
         let rows = doc
             .schedule
             .iter()
             .map(|raw| {
                 let r: RowJson = value(text, raw, path)?;
                 Ok(Row {
-                    line: line_of(text, raw.get()),
+                    line: lines.of(raw.get()),
                     uav: r.uav,
                     brick: r.brick,
                     start_s: r.start_s,
@@ -181,6 +182,7 @@ fn assemble(
     path: &Path,
     wall: &Wall,
 ) -> InputResult<ScheduleFile> {
+    let labels = Labels::new(wall);
     let mut placements: Vec<Placement> = Vec::new();
     let mut index: HashMap<(u32, u64), usize> = HashMap::new();
     let mut ends = Vec::new();
@@ -190,7 +192,7 @@ fn assemble(
             return Err(too_many(path, r.line, r.uav));
         }
         uavs_seen = uavs_seen.max(r.uav + 1);
-        let b = brick(wall, r.brick, path, r.line)?;
+        let b = labels.brick(r.brick, path, r.line)?;
         // -0.0 and 0.0 are one start.
         let key = (b.0, (r.start_s + 0.0).to_bits());
         let k = *index.entry(key).or_insert_with(|| {

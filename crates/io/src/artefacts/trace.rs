@@ -3,8 +3,8 @@
 //! their labels, as those files write them. (An agent's own trace file, one event per line
 //! with dense brick ids, is read by `mason_fleet::trace`.)
 
-use super::json::{document, line_of, value};
-use super::{at, brick};
+use super::json::{document, value, LineIndex};
+use super::{at, Labels};
 use crate::error::InputResult;
 use crate::files::{read_input_text, MAX_INPUT_BYTES};
 use mason_mission::state::{EventRecord, KindRecord};
@@ -50,6 +50,7 @@ pub fn read_trace_json(path: &Path, wall: &Wall) -> InputResult<TraceFile> {
 /// The trace in `text` (from `path`, named in errors). An event that does not parse, names a
 /// brick not in `wall`, or a UAV outside the stated team, is an error naming its line.
 pub fn parse_trace_json(text: &str, path: &Path, wall: &Wall) -> InputResult<TraceFile> {
+    let labels = Labels::new(wall);
     let (raw, uavs, claimed_check, format) = if text.trim_start().starts_with('[') {
         let raw: Vec<&RawValue> = document(text, path)?;
         (raw, None, None, "events")
@@ -66,16 +67,17 @@ pub fn parse_trace_json(text: &str, path: &Path, wall: &Wall) -> InputResult<Tra
     if let Some(n) = uavs.filter(|&n| n == 0 || n > MAX_UAVS) {
         return Err(at(path, 1, format!("uavs {n}: expected 1 to {MAX_UAVS}")));
     }
+    let lines = LineIndex::new(text);
     let mut events = Vec::with_capacity(raw.len());
     let mut seen = 0;
     for r in raw {
-        let line = line_of(text, r.get());
+        let line = lines.of(r.get());
         let mut record: EventRecord = value(text, r, path)?;
         if let KindRecord::Grasp { brick: b }
         | KindRecord::Place { brick: b }
         | KindRecord::Lost { brick: b } = &mut record.kind
         {
-            *b = brick(wall, b.0, path, line)?;
+            *b = labels.brick(b.0, path, line)?;
         }
         let uav = record.uav;
         match uavs {

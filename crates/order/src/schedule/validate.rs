@@ -782,6 +782,16 @@ mod tests {
         let none = validate_schedule(&w, &m, 3, None, &Schedule::default()).unwrap();
         assert_eq!((none.reward, none.makespan_s), (0.0, 0.0));
         assert!(claim_violations(&none, Some(1e-6), Some(TIME_EPS)).is_empty());
+        // A stated end exactly one slack from the placing phase's end holds (a phase ending
+        // at 0 s, so that the slack is exact).
+        let at_zero = ClaimedEnd {
+            brick: p.brick,
+            uav: 0,
+            start_s: -place,
+            end_s: TIME_EPS,
+        };
+        assert_eq!(at_zero.start_s + place, 0.0);
+        assert!(end_violations(&w, &m, &[at_zero]).is_empty());
         let outside = ClaimedEnd {
             brick: BrickId(99),
             uav: 0,
@@ -972,6 +982,8 @@ mod tests {
 10 1 0.8 5 0.1 0
 11 1 12 0 0.1 0
 12 1 12.75 0 0.3 0
+13 1 20 5 0.1 0
+14 1 20.5 5 0.1 0
 ";
         mason_wall::parse_cmcp(text, "spread", mason_wall::CmcpSizes::Yaml).unwrap()
     }
@@ -1006,6 +1018,8 @@ mod tests {
         assert_eq!(rules(7, 8), ["Concurrent"]);
         // 0.75 m and a level: 0.776 m (0.85 m were a level counted 0.4 m).
         assert_eq!(rules(11, 12), ["Concurrent"]);
+        // 0.5 m apart along x, away from y = 0: too close.
+        assert_eq!(rules(13, 14), ["Concurrent"]);
         // Exactly D apart is not closer than D.
         let centre = |l: u32| crate::schedule::brick_centre(w.brick(w.by_label(l).unwrap()));
         let (a, b) = (centre(9), centre(10));
