@@ -584,3 +584,20 @@ proptest! {
         prop_assert!(checked.is_ok(), "{:?}", checked.err());
     }
 }
+
+/// The reward bound's dual values near λ = 1 once fell just short of a whole reward (the
+/// closure leaves out weights at or below its tolerance), and rounding down took the bound
+/// below a schedule that exists: 1300 red bricks in a row, 3 UAVs on the cmcp cycle (40 s
+/// placing + 10 s rest) by T = 19 990 s place 3 × 400 = 1200 bricks, so the bound must be 1200.
+#[test]
+fn the_reward_bound_is_not_rounded_below_a_whole_reward_it_reaches() {
+    let text = "R".repeat(1300);
+    let wall = parse_layer_text(&text, "a long row").unwrap();
+    let mut model = TeamModel::cmcp();
+    model.concurrency = mason_order::schedule::Concurrency::Distance { distance_m: 0.1 };
+    let p = TeamProblem::new(&wall, model, 3, Some(19_990.0), Objective::Reward).unwrap();
+    let rb = bounds::reward_upper_bound(&p, 19_990.0);
+    assert_eq!(rb.bound, 1200.0);
+    let out = plan_schedule(&p, &Budget::nodes(20), 0);
+    assert!(out.reward <= rb.bound, "{} above {}", out.reward, rb.bound);
+}

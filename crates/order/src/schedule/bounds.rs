@@ -22,7 +22,7 @@
 //!   concave in the capacity, so by Jensen it bounds the expectation of every policy, even
 //!   one that knows the failure times.
 
-use super::closure::max_weight_closure_until;
+use super::closure::{max_weight_closure_until, EPS as CLOSURE_EPS};
 use super::problem::TeamProblem;
 use crate::outcome::Budget;
 use mason_wall::BrickId;
@@ -266,6 +266,11 @@ fn lagrangian(p: &TeamProblem<'_>, k: Knapsack, search: &Budget) -> RewardBound 
         .sum();
     let mut fitting = vec![false; n];
     let mut fitting_reward = -1.0;
+    // The closure leaves out weights at or below EPS (and the max-flow stops at EPS), so a
+    // closure may fall short of the heaviest by up to that much per node: each dual value is
+    // raised by the most it can have lost, or the bound could land just below a whole reward
+    // and be rounded down past it (a 10 000-brick grid claimed 1199 for a schedule of 1200).
+    let slack = 4.0 * CLOSURE_EPS * (n + 2) as f64;
     for _ in 0..60 {
         if search.out_of_time() {
             break;
@@ -274,7 +279,7 @@ fn lagrangian(p: &TeamProblem<'_>, k: Knapsack, search: &Budget) -> RewardBound 
         let Some((set, r, w)) = closure_at(p, &k, lambda, search) else {
             break;
         };
-        best = best.min(lambda * k.capacity + r - lambda * w);
+        best = best.min(lambda * k.capacity + r - lambda * w + slack);
         if w <= k.capacity + 1e-9 {
             if r > fitting_reward {
                 fitting_reward = r;

@@ -6,7 +6,8 @@
 //! Dinic's algorithm takes O(V²E) in the worst case and far less on walls.
 
 const INF: f64 = f64::INFINITY;
-const EPS: f64 = 1e-9;
+/// Capacities and weights at or below this are taken as zero.
+pub(crate) const EPS: f64 = 1e-9;
 
 struct Edge {
     to: usize,
