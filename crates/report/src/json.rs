@@ -6,6 +6,7 @@ use mason_mission::{Coord, Event, EventKind, Faults, MissionResult, Summary, Uav
 use mason_order::schedule::{CheckedSchedule, Objective, TeamProblem};
 use mason_order::{BuildProblem, CheckedPlan};
 use mason_wall::{BrickId, Wall};
+use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{json, Value};
 
 /// The trace event as JSON (bricks as thesis ids): `t`, `uav`, `kind` and the kind's fields.
@@ -71,111 +72,217 @@ pub fn metrics_json(r: &MissionResult) -> Value {
 
 /// The plan as the JSON of DESIGN §7, with the wall and the model so it can be checked alone.
 pub fn plan_json(problem: &BuildProblem<'_>, checked: &CheckedPlan) -> Value {
-    let wall = problem.wall();
-    let o = &checked.outcome;
-    let steps: Vec<Value> = checked
-        .evaluation
-        .iter()
-        .flat_map(|e| &e.steps)
-        .map(|s| {
-            json!({
-                "id": wall.brick(s.brick).label,
-                "placed_neighbours": s.placed_neighbours,
-                "cost": s.cost,
-            })
-        })
-        .collect();
-    json!({
-        "planner": o.planner,
-        "status": o.status,
-        "order": o.order.as_ref().map(|ord| ord.iter().map(|&b| wall.brick(b).label).collect::<Vec<_>>()),
-        "total_cost": checked.evaluation.as_ref().map(|e| e.total_cost),
-        "steps": steps,
-        "stats": {
-            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
-            "nodes": o.stats.nodes,
-            "leaves": o.stats.leaves,
-        },
-        "model": problem.model(),
-        "wall": wall_json(wall),
-    })
+    serde_json::to_value(PlanDoc { problem, checked }).unwrap_or(Value::Null)
 }
 
 /// The wall's bricks with their supports and neighbours, by label.
 pub fn wall_json(wall: &Wall) -> Value {
-    let labels =
-        |ids: &[mason_wall::BrickId]| ids.iter().map(|&i| wall.brick(i).label).collect::<Vec<_>>();
-    let bricks: Vec<Value> = wall
-        .ids()
-        .map(|id| {
-            let b = wall.brick(id);
-            json!({
-                "id": b.label,
-                "type": b.kind,
-                "level": b.level,
-                "segment": b.segment,
-                "footprint": [b.footprint.x0, b.footprint.x1, b.footprint.y0, b.footprint.y1],
-                "supports": labels(wall.supports(id)),
-                "neighbours": labels(wall.neighbours(id)),
-            })
-        })
-        .collect();
-    json!({ "name": wall.name(), "levels": wall.levels(), "bricks": bricks, "warnings": wall.warnings() })
-}
-
-/// A number as JSON: whole values as integers.
-fn num(x: f64) -> Value {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        json!(x as i64)
-    } else {
-        json!(x)
-    }
+    serde_json::to_value(WallDoc(wall)).unwrap_or(Value::Null)
 }
 
 /// The schedule as JSON (README: "Team schedule JSON").
 pub fn schedule_json(p: &TeamProblem<'_>, c: &CheckedSchedule, seed: u64) -> Value {
-    let wall = p.wall();
-    let o = &c.outcome;
-    let rows: Vec<Value> = o
-        .schedule
-        .iter()
-        .flat_map(|s| &s.placements)
-        .flat_map(|pl| {
-            pl.uavs.iter().map(move |&u| {
-                json!({
-                    "uav": u,
-                    "brick": wall.brick(pl.brick).label,
-                    "type": wall.brick(pl.brick).kind,
-                    "start_s": num(pl.start_s),
-                    "end_s": num(pl.start_s + p.place_s(pl.brick)),
-                })
-            })
-        })
-        .collect();
-    json!({
-        "objective": p.objective().name(),
-        "model": p.model().name,
-        "uavs": p.uavs(),
-        "budget_s": p.budget_s().map(num),
-        "uav_hazard_per_hour": match p.objective() { Objective::Expected { hazard_per_hour } => Some(hazard_per_hour), _ => None },
-        "seed": seed,
-        "reward": num(o.reward),
-        "expected_reward": o.expected_reward,
-        "bricks_placed": c.evaluation.bricks,
-        "bricks_total": wall.len(),
-        "makespan_s": num(o.makespan_s),
-        "bound": num(o.bound),
-        "gap": num(o.gap(p.objective())),
-        "status": o.status,
-        "schedule": rows,
-        "stats": {
-            "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
-            "decodes": o.stats.decodes,
-            "improvements": o.stats.improvements,
-        },
-        "team_model": p.model(),
-        "wall": wall_json(wall),
+    serde_json::to_value(ScheduleDoc {
+        problem: p,
+        checked: c,
+        seed,
     })
+    .unwrap_or(Value::Null)
+}
+
+// The documents above serialise as they are written, so that printing one of a huge wall holds
+// no tree of values in memory (a 400 000-brick schedule's tree took most of 1.8 GB). Keys go in
+// sorted order, as `serde_json::Value`'s maps print them: both ways give the same text.
+
+/// [`wall_json`] as a document that serialises as it is written.
+pub struct WallDoc<'a>(pub &'a Wall);
+
+/// [`plan_json`] as a document that serialises as it is written.
+pub struct PlanDoc<'a, 'w> {
+    /// The problem (wall and cost model).
+    pub problem: &'a BuildProblem<'w>,
+    /// The planner's checked outcome.
+    pub checked: &'a CheckedPlan,
+}
+
+/// [`schedule_json`] as a document that serialises as it is written.
+pub struct ScheduleDoc<'a, 'w> {
+    /// The problem.
+    pub problem: &'a TeamProblem<'w>,
+    /// The checked schedule.
+    pub checked: &'a CheckedSchedule,
+    /// The search's seed.
+    pub seed: u64,
+}
+
+/// Serialises the items of an iterator as a sequence, without collecting them.
+struct Seq<I>(std::cell::RefCell<Option<I>>);
+
+impl<I> Seq<I> {
+    fn of(items: I) -> Self {
+        Seq(std::cell::RefCell::new(Some(items)))
+    }
+}
+
+impl<I: Iterator<Item = T>, T: Serialize> Serialize for Seq<I> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let items = self.0.borrow_mut().take();
+        s.collect_seq(items.into_iter().flatten())
+    }
+}
+
+/// A number as JSON: whole values as integers.
+#[derive(Clone, Copy)]
+struct Num(f64);
+
+impl Serialize for Num {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let x = self.0;
+        if x.fract() == 0.0 && x.abs() < 1e15 {
+            s.serialize_i64(x as i64)
+        } else {
+            s.serialize_f64(x)
+        }
+    }
+}
+
+/// A small nested document with its keys sorted, as a `Value` prints them.
+fn sorted<T: Serialize>(v: &T) -> Value {
+    serde_json::to_value(v).unwrap_or(Value::Null)
+}
+
+fn labels<'a>(wall: &'a Wall, ids: &'a [BrickId]) -> Seq<impl Iterator<Item = u32> + 'a> {
+    Seq::of(ids.iter().map(|&i| wall.brick(i).label))
+}
+
+impl Serialize for WallDoc<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let wall = self.0;
+        let bricks = Seq::of(wall.ids().map(|id| BrickDoc(wall, id)));
+        let mut m = s.serialize_map(Some(4))?;
+        m.serialize_entry("bricks", &bricks)?;
+        m.serialize_entry("levels", &wall.levels())?;
+        m.serialize_entry("name", wall.name())?;
+        m.serialize_entry("warnings", wall.warnings())?;
+        m.end()
+    }
+}
+
+struct BrickDoc<'a>(&'a Wall, BrickId);
+
+impl Serialize for BrickDoc<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (wall, id) = (self.0, self.1);
+        let b = wall.brick(id);
+        let f = &b.footprint;
+        let mut m = s.serialize_map(Some(7))?;
+        m.serialize_entry("footprint", &[f.x0, f.x1, f.y0, f.y1])?;
+        m.serialize_entry("id", &b.label)?;
+        m.serialize_entry("level", &b.level)?;
+        m.serialize_entry("neighbours", &labels(wall, wall.neighbours(id)))?;
+        m.serialize_entry("segment", &b.segment)?;
+        m.serialize_entry("supports", &labels(wall, wall.supports(id)))?;
+        m.serialize_entry("type", &b.kind)?;
+        m.end()
+    }
+}
+
+impl Serialize for PlanDoc<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let wall = self.problem.wall();
+        let o = &self.checked.outcome;
+        let steps = Seq::of(
+            self.checked
+                .evaluation
+                .iter()
+                .flat_map(|e| &e.steps)
+                .map(|st| {
+                    json!({
+                        "id": wall.brick(st.brick).label,
+                        "placed_neighbours": st.placed_neighbours,
+                        "cost": st.cost,
+                    })
+                }),
+        );
+        let order = o.order.as_deref().map(|ord| labels(wall, ord));
+        let mut m = s.serialize_map(Some(8))?;
+        m.serialize_entry("model", &sorted(self.problem.model()))?;
+        m.serialize_entry("order", &order)?;
+        m.serialize_entry("planner", &o.planner)?;
+        m.serialize_entry(
+            "stats",
+            &json!({
+                "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+                "nodes": o.stats.nodes,
+                "leaves": o.stats.leaves,
+            }),
+        )?;
+        m.serialize_entry("status", &o.status)?;
+        m.serialize_entry("steps", &steps)?;
+        m.serialize_entry(
+            "total_cost",
+            &self.checked.evaluation.as_ref().map(|e| e.total_cost),
+        )?;
+        m.serialize_entry("wall", &WallDoc(wall))?;
+        m.end()
+    }
+}
+
+impl Serialize for ScheduleDoc<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let p = self.problem;
+        let wall = p.wall();
+        let c = self.checked;
+        let o = &c.outcome;
+        let rows = Seq::of(
+            o.schedule
+                .iter()
+                .flat_map(|s| &s.placements)
+                .flat_map(|pl| {
+                    pl.uavs.iter().map(move |&u| {
+                        let b = wall.brick(pl.brick);
+                        json!({
+                            "uav": u,
+                            "brick": b.label,
+                            "type": b.kind,
+                            "start_s": Num(pl.start_s),
+                            "end_s": Num(pl.start_s + p.place_s(pl.brick)),
+                        })
+                    })
+                }),
+        );
+        let hazard = match p.objective() {
+            Objective::Expected { hazard_per_hour } => Some(hazard_per_hour),
+            _ => None,
+        };
+        let mut m = s.serialize_map(Some(18))?;
+        m.serialize_entry("bound", &Num(o.bound))?;
+        m.serialize_entry("bricks_placed", &c.evaluation.bricks)?;
+        m.serialize_entry("bricks_total", &wall.len())?;
+        m.serialize_entry("budget_s", &p.budget_s().map(Num))?;
+        m.serialize_entry("expected_reward", &o.expected_reward)?;
+        m.serialize_entry("gap", &Num(o.gap(p.objective())))?;
+        m.serialize_entry("makespan_s", &Num(o.makespan_s))?;
+        m.serialize_entry("model", &p.model().name)?;
+        m.serialize_entry("objective", p.objective().name())?;
+        m.serialize_entry("reward", &Num(o.reward))?;
+        m.serialize_entry("schedule", &rows)?;
+        m.serialize_entry("seed", &self.seed)?;
+        m.serialize_entry(
+            "stats",
+            &json!({
+                "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
+                "decodes": o.stats.decodes,
+                "improvements": o.stats.improvements,
+            }),
+        )?;
+        m.serialize_entry("status", &o.status)?;
+        m.serialize_entry("team_model", &sorted(p.model()))?;
+        m.serialize_entry("uav_hazard_per_hour", &hazard)?;
+        m.serialize_entry("uavs", &p.uavs())?;
+        m.serialize_entry("wall", &WallDoc(wall))?;
+        m.end()
+    }
 }
 
 /// What a simulated mission was flown with: the head of `simulate --json`.

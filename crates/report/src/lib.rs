@@ -36,7 +36,7 @@ pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
 pub use json::{
     event_json, metrics_json, plan_json, runs_json, schedule_json, simulate_json, wall_json,
-    RunSetting,
+    PlanDoc, RunSetting, ScheduleDoc, WallDoc,
 };
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};

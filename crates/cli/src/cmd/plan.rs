@@ -101,7 +101,10 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
     }
     write_all(&files)?;
     if a.json {
-        println!("{}", pretty(&mason_report::plan_json(&problem, &checked)));
+        print_json(&mason_report::PlanDoc {
+            problem: &problem,
+            checked: &checked,
+        })?;
     } else {
         print!("{}", plan_table(&problem, &checked));
     }
@@ -112,6 +115,17 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
 /// JSON as printed.
 pub fn pretty(v: &Value) -> String {
     serde_json::to_string_pretty(v).unwrap_or_default()
+}
+
+/// Prints a document as pretty JSON on stdout as it serialises, holding no copy of it.
+pub fn print_json<T: serde::Serialize>(v: &T) -> CliResult<()> {
+    use std::io::Write;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    serde_json::to_writer_pretty(&mut out, v)
+        .map_err(std::io::Error::from)
+        .and_then(|()| writeln!(out))
+        .and_then(|()| out.flush())
+        .map_err(|e| input_error(format!("stdout: {e}")))
 }
 
 /// A planner's outcome after validation.

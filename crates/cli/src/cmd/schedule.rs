@@ -1,6 +1,6 @@
 //! `mason plan --objective …`: team schedules — solve, validate, print a table or JSON.
 
-use crate::cmd::plan::{pretty, report_overrun, time_limit, PlanArgs};
+use crate::cmd::plan::{print_json, report_overrun, time_limit, PlanArgs};
 use crate::fail::{check_outputs, input_error, write_all, CliResult};
 use mason_mission::{FlightPlan, FlightPlanError, FlightRequest};
 use mason_order::schedule::{
@@ -65,10 +65,11 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
     }
     write_all(&files)?;
     if a.json {
-        println!(
-            "{}",
-            pretty(&mason_report::schedule_json(&problem, &checked, req.seed))
-        );
+        print_json(&mason_report::ScheduleDoc {
+            problem: &problem,
+            checked: &checked,
+            seed: req.seed,
+        })?;
     } else {
         print!("{}", schedule_table(&problem, &checked));
     }

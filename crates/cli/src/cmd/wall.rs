@@ -29,10 +29,7 @@ pub fn run(command: WallCommand) -> CliResult<()> {
         write_file(&path, mason_report::wall_svg(&wall, None).as_bytes())?;
     }
     if json {
-        println!(
-            "{}",
-            crate::cmd::plan::pretty(&mason_report::wall_json(&wall))
-        );
+        crate::cmd::plan::print_json(&mason_report::WallDoc(&wall))?;
     } else {
         print!("{}", wall_table(&wall));
     }
