@@ -601,3 +601,51 @@ fn the_reward_bound_is_not_rounded_below_a_whole_reward_it_reaches() {
     let out = plan_schedule(&p, &Budget::nodes(20), 0);
     assert!(out.reward <= rb.bound, "{} above {}", out.reward, rb.bound);
 }
+
+/// A value spread log-uniformly over [lo, hi] (lo > 0) by `u` in [0, 1].
+fn log_between(u: f64, lo: f64, hi: f64) -> f64 {
+    (lo.ln() + u * (hi.ln() - lo.ln())).exp().clamp(lo, hi)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// #32: at extreme values the model accepts (placing 10⁻³ to 10⁷ s, rests 0 to 10⁷ s,
+    /// rewards 10⁻³⁰⁰ to 10⁹, budgets 10⁻³ to 10⁹ s, hazards 10⁻³⁰⁰ to 10³ per hour) every
+    /// objective's schedule passes the validator and lies on its side of its proven bound
+    /// (`schedule_checked` checks both).
+    #[test]
+    fn bounds_stay_bounds_at_extreme_values(
+        seed in 0u64..1_000_000,
+        place in proptest::collection::vec(0.0f64..=1.0, 4),
+        rest in proptest::collection::vec(0.0f64..=1.0, 4),
+        reward in proptest::collection::vec(0.0f64..=1.0, 4),
+        zero_rest in any::<bool>(),
+        budget_u in 0.0f64..=1.0,
+        hazard_u in 0.0f64..=1.0,
+        objective_k in 0usize..3,
+        distance in any::<bool>(),
+    ) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let wall = random_wall(&mut rng, 7, 3);
+        let mut model = TeamModel::cmcp();
+        for (k, t) in model.types.iter_mut().enumerate() {
+            t.place_s = log_between(place[k], 1e-3, 1e7);
+            t.cycle_rest_s = if zero_rest { 0.0 } else { log_between(rest[k], 1e-3, 1e7) };
+            t.reward = log_between(reward[k], 1e-300, 1e9);
+        }
+        if distance {
+            model.concurrency = mason_order::schedule::Concurrency::Distance { distance_m: 0.5 };
+        }
+        let budget = log_between(budget_u, 1e-3, 1e9);
+        let hazard = log_between(hazard_u, 1e-300, 1e3);
+        let (objective, budget) = match objective_k {
+            0 => (Objective::Makespan, None),
+            1 => (Objective::Reward, Some(budget)),
+            _ => (Objective::Expected { hazard_per_hour: hazard }, Some(budget)),
+        };
+        let p = TeamProblem::new(&wall, model, 3, budget, objective).unwrap();
+        let c = mason_order::schedule::schedule_checked(&p, &Budget::nodes(60), seed);
+        prop_assert!(c.is_ok(), "{objective:?} budget {budget:?}: {:?}", c.err());
+    }
+}

@@ -293,12 +293,8 @@ fn lagrangian(p: &TeamProblem<'_>, k: Knapsack, search: &Budget) -> RewardBound 
             break;
         }
     }
-    // λ = 0 also bounds: everything eligible.
-    if let Some((_, all, w_all)) = closure_at(p, &k, 0.0, search) {
-        if w_all <= k.capacity + 1e-9 {
-            best = all;
-        }
-    }
+    // (λ = 0 bounds too: every eligible brick's reward, where `best` started. Its closure is
+    // not computed: rewards at or below the closure's tolerance would be left out of it.)
     RewardBound {
         bound: best,
         fitting,
