@@ -67,7 +67,12 @@ fuzz_target!(|data: &[u8]| {
     };
     let clock = HandClock(Rc::new(Cell::new(0.0)), Instant::now());
     let inbox = Rc::new(std::cell::RefCell::new(Vec::new()));
-    let mut layer = FaultLayer::new(Queue(inbox.clone()), clock.clone(), faults.clone(), u64::from(data[7]));
+    let mut layer = FaultLayer::new(
+        Queue(inbox.clone()),
+        clock.clone(),
+        faults.clone(),
+        u64::from(data[7]),
+    );
     let (mut sends, mut sends_cut) = (0u64, 0u64);
     let mut seq = 0u64;
     let mut delivered = 0u64;
@@ -96,5 +101,9 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(s.received, seq, "{s:?}");
     assert_eq!(s.sent + sends_cut, sends, "{s:?}");
     let cut_received = s.cut - sends_cut;
-    assert_eq!(delivered, s.received - s.dropped - cut_received + s.duplicated, "{s:?}");
+    assert_eq!(
+        delivered,
+        s.received - s.dropped - cut_received + s.duplicated,
+        "{s:?}"
+    );
 });

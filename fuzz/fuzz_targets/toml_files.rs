@@ -12,8 +12,8 @@ fuzz_target!(|data: &[u8]| {
         if model.validate().is_ok() {
             let wall = mason_wall::builtin("thesis-2x5").expect("built-in").wall();
             let problem = mason_order::BuildProblem::new(&wall, model).expect("validated");
-            let out = mason_order::PlannerSpec::Greedy
-                .plan(&problem, &mason_order::Budget::unlimited());
+            let out =
+                mason_order::PlannerSpec::Greedy.plan(&problem, &mason_order::Budget::unlimited());
             assert!(out.total_cost.is_some_and(f64::is_finite));
         }
     }

@@ -13,7 +13,11 @@ fuzz_target!(|data: &[u8]| {
     let strict = mason_fleet::parse_trace(text, path, false);
     let killed = mason_fleet::parse_trace(text, path, true);
     if let Ok(events) = &strict {
-        assert_eq!(killed.as_ref().ok(), Some(events), "killed reading accepts what strict does");
+        assert_eq!(
+            killed.as_ref().ok(),
+            Some(events),
+            "killed reading accepts what strict does"
+        );
         let mut out = String::new();
         for e in events {
             out.push_str(&serde_json::to_string(e).expect("an event serialises"));

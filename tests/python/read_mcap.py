@@ -1,19 +1,28 @@
 """Reads a Mason MCAP log with PyPI's `mcap` reader (not Mason's writer) and checks it.
 
-Usage: read_mcap.py FILE
+Usage: read_mcap.py FILE [--foxglove DIR]
 
-Every message is read and JSON-decoded; every schema must be a JSON Schema with the name its
+Every message is read and JSON-decoded and validated (PyPI `jsonschema`) against the JSON
+Schema its channel declares; every schema must be a valid JSON Schema with the name its
 topic should have, every channel JSON, every `timestamp` equal to the message's log time, and
 each topic's log times non-decreasing (a `/wall` scene update has no timestamp: its
 entities must be stamped no later than the message). Prints one line of JSON: messages per topic, schema per
 topic, bricks placed, state events, zone entries, log lines by level, the MCAP metadata, and
 the time span. Exits 1 with a message on the first failed check.
+
+With `--foxglove DIR` (the published schemas, `foxglove.NAME.json`, from
+scripts/fetch-foxglove-schemas.sh), every `foxglove.*` schema the log declares is compared with
+the published one: each keyword Mason states, descriptions aside, must be there with the same
+value (Mason may leave out what it never writes, such as `required` lists and the fields of
+primitives it does not draw), and every message must validate against the published schema too.
 """
 
 import json
+import os
 import re
 import sys
 
+import jsonschema
 from mcap.reader import make_reader
 
 EXPECTED = {
@@ -47,7 +56,50 @@ def fail(message):
     sys.exit(1)
 
 
-def main(path):
+IGNORED = {"description", "$comment"}
+
+
+def disagreement(ours, published, path=""):
+    """The first place where `ours` states something `published` does not, or None."""
+    if isinstance(ours, dict):
+        if not isinstance(published, dict):
+            return f"{path or '/'}: an object where the published schema has {published!r}"
+        for key, value in ours.items():
+            if key in IGNORED:
+                continue
+            if key not in published:
+                return f"{path}/{key}: not in the published schema"
+            found = disagreement(value, published[key], f"{path}/{key}")
+            if found:
+                return found
+        return None
+    if isinstance(ours, list):
+        if not isinstance(published, list) or len(ours) != len(published):
+            return f"{path}: {ours!r} against the published {published!r}"
+        for i, (a, b) in enumerate(zip(ours, published)):
+            found = disagreement(a, b, f"{path}[{i}]")
+            if found:
+                return found
+        return None
+    if ours != published:
+        return f"{path}: {ours!r} against the published {published!r}"
+    return None
+
+
+def validator_for(schema_text, where):
+    schema = json.loads(schema_text)
+    cls = jsonschema.validators.validator_for(schema)
+    try:
+        cls.check_schema(schema)
+    except jsonschema.SchemaError as e:
+        fail(f"{where}: not a valid JSON Schema: {e.message}")
+    return schema, cls(schema)
+
+
+def main(path, foxglove_dir=None):
+    validators = {}
+    published = {}
+    validated = 0
     counts = {}
     schemas = {}
     last_time = {}
@@ -76,8 +128,31 @@ def main(path):
                 fail(f"{topic}: schema encoding {schema.encoding}")
             if channel.message_encoding != "json":
                 fail(f"{topic}: message encoding {channel.message_encoding}")
-            json.loads(schema.data)
+            if schema.id not in validators:
+                ours, validators[schema.id] = validator_for(schema.data, f"{topic}: {schema.name}")
+                if foxglove_dir is not None and schema.name.startswith("foxglove."):
+                    file = os.path.join(foxglove_dir, f"{schema.name}.json")
+                    if not os.path.exists(file):
+                        fail(f"{schema.name}: no published schema {file}")
+                    with open(file, encoding="utf-8") as f:
+                        theirs, checker = validator_for(f.read(), file)
+                    found = disagreement(ours, theirs)
+                    if found:
+                        fail(f"{schema.name} differs from Foxglove's published schema at {found}")
+                    published[schema.id] = (schema.name, checker)
             body = json.loads(message.data)
+            checks = [("", schema.name, validators[schema.id])]
+            if schema.id in published:
+                checks.append(("the published ", *published[schema.id]))
+            for which, name, checker in checks:
+                error = jsonschema.exceptions.best_match(checker.iter_errors(body))
+                if error is not None:
+                    where = "/".join(str(p) for p in error.absolute_path)
+                    fail(
+                        f"{topic}: the message at {message.log_time} ns breaks {which}{name} "
+                        f"at /{where}: {error.message}"
+                    )
+            validated += 1
             if topic == "/wall":
                 # A scene update has no timestamp; its entities are stamped when they appeared.
                 for entity in body["entities"]:
@@ -111,6 +186,8 @@ def main(path):
         json.dumps(
             {
                 "messages": total,
+                "validated": validated,
+                "compared_with_foxglove": sorted(name for name, _ in published.values()),
                 "topics": dict(sorted(counts.items())),
                 "schemas": dict(sorted(schemas.items())),
                 "channels": sorted(c.topic for c in summary.channels.values()),
@@ -129,6 +206,10 @@ def main(path):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        fail("usage: read_mcap.py FILE")
-    main(sys.argv[1])
+    args = sys.argv[1:]
+    if len(args) == 3 and args[1] == "--foxglove":
+        main(args[0], args[2])
+    elif len(args) == 1:
+        main(args[0])
+    else:
+        fail("usage: read_mcap.py FILE [--foxglove DIR]")

@@ -32,6 +32,11 @@ enum Command {
         #[command(subcommand)]
         command: cmd::wall::WallCommand,
     },
+    /// Generate seeded inputs: a layer-text wall of N bricks, a bird's-eye crew scene
+    Generate {
+        #[command(subcommand)]
+        command: cmd::generate::GenerateCommand,
+    },
     /// Find a build order for a wall, or a team schedule with --objective
     Plan(cmd::plan::PlanArgs),
     /// Fly a build order with a UAV team (discrete-event simulation, faults, Monte Carlo)
@@ -59,6 +64,7 @@ fn run(cli: Cli) -> fail::CliResult<()> {
     match cli.command {
         Command::Demo(a) => cmd::demo::run(a, quiet),
         Command::Wall { command } => cmd::wall::run(command),
+        Command::Generate { command } => cmd::generate::run(command),
         Command::Plan(a) if a.objective.is_some() => cmd::schedule::run(a),
         Command::Plan(a) => cmd::plan::run(a),
         Command::Simulate(a) => cmd::simulate::run(a, quiet),

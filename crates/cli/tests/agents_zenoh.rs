@@ -103,7 +103,8 @@ fn a_fault_free_team_of_three_processes_builds_mbzirc() {
     eprintln!("fault-free mbzirc, 3 agents, --speed 100: {wall:.1} s wall");
     // Every agent's MCAP log, read back by PyPI's `mcap` (tests/python/read_mcap.py): its own
     // placements, its poses, and the messages it sent and heard.
-    let Some(python) = python_with("mcap.reader", "scripts/install-python-mcap.sh") else {
+    let Some(python) = python_with("mcap.reader, jsonschema", "scripts/install-python-mcap.sh")
+    else {
         return;
     };
     for uav in 0..3 {

@@ -1,6 +1,8 @@
 //! `mason simulate --mcap`: the log read back by a reader Mason did not write, PyPI's `mcap`
-//! (tests/python/read_mcap.py), and compared with `mason simulate --json` of the same seed.
-//! `.ci/run` installs the reader (scripts/install-python-mcap.sh, a venv in
+//! (tests/python/read_mcap.py), every message validated against its channel's JSON Schema
+//! (PyPI `jsonschema`) and the `foxglove.*` schemas compared with Foxglove's published ones
+//! (scripts/fetch-foxglove-schemas.sh), and compared with `mason simulate --json` of the same
+//! seed. `.ci/run` installs the reader and fetches the schemas (scripts/install-python-mcap.sh, a venv in
 //! `${MASON_PYENV:-target/pyenv}`) and sets MASON_REQUIRE_PYTHON=1; elsewhere the Python part is
 //! skipped when that venv is missing. Bad output paths are checked without Python.
 
@@ -11,20 +13,56 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The checker's one-line JSON summary of `file`.
+/// Foxglove's published JSON schemas (scripts/fetch-foxglove-schemas.sh writes them to
+/// `target/foxglove-schemas/json`), if fetched; with MASON_REQUIRE_PYTHON set they must be.
+fn foxglove_schemas() -> Option<PathBuf> {
+    let dir = root().join("target/foxglove-schemas/json");
+    if dir.join("foxglove.Log.json").exists() {
+        return Some(dir);
+    }
+    assert!(
+        std::env::var_os("MASON_REQUIRE_PYTHON").is_none(),
+        "MASON_REQUIRE_PYTHON is set but {} has no schemas (run scripts/fetch-foxglove-schemas.sh)",
+        dir.display()
+    );
+    eprintln!(
+        "not compared with Foxglove's schemas: scripts/fetch-foxglove-schemas.sh fetches them"
+    );
+    None
+}
+
+/// The checker's one-line JSON summary of `file`: every message validated against the schema
+/// its channel declares, and the `foxglove.*` schemas compared with Foxglove's published ones
+/// when those are there.
 fn read_mcap(python: &Path, file: &Path) -> Value {
-    let out = Command::new(python)
+    let mut command = Command::new(python);
+    command
         .arg(root().join("tests/python/read_mcap.py"))
-        .arg(file)
-        .output()
-        .expect("python runs");
+        .arg(file);
+    let foxglove = foxglove_schemas();
+    if let Some(dir) = &foxglove {
+        command.arg("--foxglove").arg(dir);
+    }
+    let out = command.output().expect("python runs");
     assert!(
         out.status.success(),
         "read_mcap.py {}: {}",
         file.display(),
         String::from_utf8_lossy(&out.stderr)
     );
-    serde_json::from_slice(&out.stdout).expect("one line of JSON")
+    let summary: Value = serde_json::from_slice(&out.stdout).expect("one line of JSON");
+    assert_eq!(summary["validated"], summary["messages"]);
+    if foxglove.is_some() {
+        assert_eq!(
+            summary["compared_with_foxglove"],
+            serde_json::json!([
+                "foxglove.Log",
+                "foxglove.PoseInFrame",
+                "foxglove.SceneUpdate"
+            ])
+        );
+    }
+    summary
 }
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -106,7 +144,8 @@ fn assert_agrees(summary: &Value, run: &Value, uavs: usize) {
 
 #[test]
 fn simulate_mcap_reads_back_with_pypi_mcap_and_matches_the_json() {
-    let Some(python) = python_with("mcap.reader", "scripts/install-python-mcap.sh") else {
+    let Some(python) = python_with("mcap.reader, jsonschema", "scripts/install-python-mcap.sh")
+    else {
         return;
     };
     let dir = temp_dir("read");

@@ -82,3 +82,46 @@ pub fn random_tasks(grid: &Grid, n: usize, seed: u64) -> (Vec<Cell>, Vec<Cell>) 
     let goals: Vec<Cell> = free.choose_multiple(&mut rng, n).copied().collect();
     (starts, goals)
 }
+
+/// A bird's-eye scene for `mason generate scene`: a [`warehouse`] grid (`clutter` 0.005, as
+/// `bench paper`) with `n` robots and `n` goals on distinct free cells. No two robots and no
+/// two goals touch (4-neighbours), so that each reads back from its image
+/// ([`crate::image::birdseye_png`]) as its own blob. `None` when the grid has too little room.
+pub fn birdseye_scene(
+    width: u32,
+    height: u32,
+    n: usize,
+    seed: u64,
+) -> Option<(Grid, Vec<Cell>, Vec<Cell>)> {
+    let grid = warehouse(width, height, 0.005, seed);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5ce7e);
+    let mut free: Vec<Cell> = (0..grid.len() as u32)
+        .map(Cell)
+        .filter(|&c| grid.is_free(c))
+        .collect();
+    free.shuffle(&mut rng);
+    let mut taken = vec![false; grid.len()];
+    let pick = |taken: &mut Vec<bool>| {
+        let mut marked = vec![false; grid.len()];
+        let mut chosen = Vec::with_capacity(n);
+        for &c in &free {
+            if chosen.len() == n {
+                break;
+            }
+            let mut touches = false;
+            grid.for_each_move(c, crate::grid::Connectivity::Four, |m, _| {
+                touches |= marked[m.0 as usize];
+            });
+            if taken[c.0 as usize] || touches {
+                continue;
+            }
+            marked[c.0 as usize] = true;
+            taken[c.0 as usize] = true;
+            chosen.push(c);
+        }
+        (chosen.len() == n).then_some(chosen)
+    };
+    let robots = pick(&mut taken)?;
+    let goals = pick(&mut taken)?;
+    Some((grid, robots, goals))
+}

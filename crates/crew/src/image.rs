@@ -153,6 +153,30 @@ fn blobs(img: &RgbImage, grid: &Grid, colour: fn([u8; 3]) -> bool) -> Vec<Cell> 
     out
 }
 
+/// A bird's-eye PNG that [`read_birdseye`] reads back: one pixel per cell, obstacles black,
+/// free cells white, robots pure red and goals pure green.
+pub fn birdseye_png(grid: &Grid, robots: &[Cell], goals: &[Cell]) -> Vec<u8> {
+    let mut img = RgbImage::from_fn(grid.width(), grid.height(), |x, y| {
+        let free = grid
+            .cell(i64::from(x), i64::from(y))
+            .is_some_and(|c| grid.is_free(c));
+        image::Rgb(if free { [255, 255, 255] } else { [0, 0, 0] })
+    });
+    for (cells, colour) in [(robots, [230, 0, 0]), (goals, [0, 200, 0])] {
+        for &c in cells {
+            let (x, y) = grid.xy(c);
+            img.put_pixel(x, y, image::Rgb(colour));
+        }
+    }
+    let mut bytes = Vec::new();
+    // Encoding an in-memory RGB image into a Vec cannot fail.
+    let _ = img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    );
+    bytes
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -191,6 +191,14 @@ fn auto_switches_to_windows_in_a_blackout_and_back() {
     // Pure comm waits out the blackout; auto does not lose more than that.
     let (c, _) = fly(&w, &config, Coord::Comm, 3);
     assert_eq!(c.status, MissionStatus::Complete);
+    let (auto, comm) = (
+        r.metrics.makespan_s.expect("auto completed"),
+        c.metrics.makespan_s.expect("comm completed"),
+    );
+    assert!(
+        auto <= comm + 1e-9,
+        "auto {auto} s against comm {comm} s through the same blackout"
+    );
 }
 
 #[test]

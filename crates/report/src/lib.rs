@@ -26,6 +26,7 @@ mod reward;
 mod schedule_svg;
 mod svg;
 pub mod text;
+mod wall_layout;
 mod wall_svg;
 
 pub use self::mcap::{
@@ -43,4 +44,5 @@ pub use replay::{crew_replay_html, mission_replay_html};
 pub use reward::{reward_svg, Series};
 pub use schedule_svg::schedule_svg;
 pub use svg::{escape, robot_colour};
+pub use wall_layout::{front_layout, Band, FrontLayout, Spot, CAPTION_M};
 pub use wall_svg::wall_svg;

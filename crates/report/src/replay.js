@@ -40,10 +40,11 @@
     const px = (x) => x * s, py = (y) => H - y * s;
     const pileColours = ["rgb(235,20,20)", "rgb(20,200,40)", "rgb(25,50,235)", "rgb(255,165,0)"];
     const uavColour = (i) => "hsl(" + ((i * 137.508) % 360).toFixed(0) + ",70%,45%)";
-    const F = $("front"), levels = data.levels;
-    const xs = data.bricks.flatMap((b) => [b.x0, b.x1]);
-    const xMin = Math.min(...xs), xMax = Math.max(...xs);
-    const fs = Math.min((F.width - 20) / (xMax - xMin), (F.height - 20) / (levels * 0.2));
+    // The wall from the front, its segments stacked (the layout comes with the data): as large
+    // as fits the panel's width and 420 px of height, and the panel as tall as the wall.
+    const F = $("front"), FW = data.front;
+    const fs = Math.min((F.width - 20) / FW.width, 420 / FW.height, 150);
+    F.height = Math.ceil(FW.height * fs + 20);
     draw = function () {
       top.fillStyle = "#f7f7f2"; top.fillRect(0, 0, W, H);
       const busy = data.zone.some((z) => z[0] <= t && t < z[1]);
@@ -64,10 +65,12 @@
       top.textAlign = "start";
       $("states").textContent = states.join("  ·  ");
       front.fillStyle = "#fff"; front.fillRect(0, 0, F.width, F.height);
+      front.fillStyle = "#555"; front.font = "12px sans-serif";
+      FW.bands.forEach((band) => front.fillText("segment " + band.segment, 10, 10 + band.top * fs + 0.18 * fs));
       let placed = 0;
       data.bricks.forEach((b, i) => {
         const at = data.placed_at[i];
-        const x = 10 + (b.x0 - xMin) * fs, w = (b.x1 - b.x0) * fs, y = F.height - 10 - b.level * 0.2 * fs, h = 0.2 * fs;
+        const x = 10 + b.x0 * fs, w = (b.x1 - b.x0) * fs, y = 10 + b.y * fs, h = 0.2 * fs;
         if (at !== null && at <= t) { front.fillStyle = b.colour; front.fillRect(x, y, w, h); placed++; }
         front.strokeStyle = "#999"; front.lineWidth = 1; front.strokeRect(x + 0.5, y + 0.5, w - 1, h - 1);
       });

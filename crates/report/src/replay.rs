@@ -69,13 +69,22 @@ pub fn mission_replay_html(
         .into_iter()
         .map(|(a, b)| json!([a, b]))
         .collect();
+    // The front view stacks the wall's segments (crate::wall_layout), as the wall SVG does.
+    let layout = crate::wall_layout::front_layout(wall);
     let bricks: Vec<Value> = wall
         .bricks()
         .iter()
-        .map(|b| {
+        .zip(&layout.spots)
+        .map(|(b, spot)| {
             let [r, g, bl] = brick_rgb(b.kind);
-            json!({"label": b.label, "colour": format!("rgb({r},{g},{bl})"), "x0": b.footprint.x0, "x1": b.footprint.x1, "level": b.level})
+            json!({"label": b.label, "colour": format!("rgb({r},{g},{bl})"), "x0": spot.x0, "x1": spot.x1, "y": spot.y, "level": b.level})
         })
+        .collect();
+    let bands: Vec<Value> = layout
+        .bands
+        .iter()
+        .filter(|_| layout.captions)
+        .map(|band| json!({"segment": band.segment, "top": band.top}))
         .collect();
     let p = |pt: mason_mission::Point| json!([pt.x, pt.y]);
     let data = json!({
@@ -91,6 +100,7 @@ pub fn mission_replay_html(
         "tracks": tracks,
         "bricks": bricks,
         "levels": wall.levels(),
+        "front": {"width": layout.width, "height": layout.height, "bands": bands},
         "placed_at": placed_at,
         "zone": zone,
     });

@@ -2,6 +2,7 @@
 //! order is given, their place in it.
 
 use crate::svg::escape;
+use crate::wall_layout::front_layout;
 use mason_wall::{brick_rgb, BrickId, Wall, BRICK_HEIGHT};
 use std::fmt::Write;
 
@@ -12,16 +13,11 @@ const MARGIN: f64 = 24.0;
 /// bold and its id below; without, only its id.
 pub fn wall_svg(wall: &Wall, order: Option<&[BrickId]>) -> String {
     let bricks = wall.bricks();
-    let x_min = bricks
-        .iter()
-        .map(|b| b.footprint.x0)
-        .fold(f64::INFINITY, f64::min);
-    let x_max = bricks
-        .iter()
-        .map(|b| b.footprint.x1)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let width = (x_max - x_min) * SCALE + 2.0 * MARGIN;
-    let wall_h = f64::from(wall.levels()) * BRICK_HEIGHT * SCALE;
+    // Segments are stacked, each from its own left edge, so that a wall of several segments
+    // keeps the scale (and readable labels) of a one-segment wall.
+    let layout = front_layout(wall);
+    let width = layout.width * SCALE + 2.0 * MARGIN;
+    let wall_h = layout.height * SCALE;
     let height = wall_h + 2.0 * MARGIN + 18.0;
     let mut step = vec![None; wall.len()];
     if let Some(order) = order {
@@ -54,14 +50,25 @@ pub fn wall_svg(wall: &Wall, order: Option<&[BrickId]>) -> String {
         r##"<text x="{MARGIN}" y="16" font-size="13" fill="#222">{}</text>"##,
         escape(&title)
     );
+    if layout.captions {
+        for band in &layout.bands {
+            let _ = write!(
+                svg,
+                r##"<text x="{MARGIN}" y="{:.1}" font-size="12" fill="#555">segment {}</text>"##,
+                MARGIN + 18.0 + band.top * SCALE + 0.18 * SCALE,
+                band.segment
+            );
+        }
+    }
     // Draw far bricks first so that near ones (smaller y) are on top in 3-D walls.
     let mut idx: Vec<usize> = (0..bricks.len()).collect();
     idx.sort_by(|&a, &b| bricks[b].footprint.y0.total_cmp(&bricks[a].footprint.y0));
     for i in idx {
         let b = &bricks[i];
-        let x = MARGIN + (b.footprint.x0 - x_min) * SCALE;
-        let w = (b.footprint.x1 - b.footprint.x0) * SCALE;
-        let y = MARGIN + 18.0 + wall_h - f64::from(b.level) * BRICK_HEIGHT * SCALE;
+        let spot = &layout.spots[i];
+        let x = MARGIN + spot.x0 * SCALE;
+        let w = (spot.x1 - spot.x0) * SCALE;
+        let y = MARGIN + 18.0 + spot.y * SCALE;
         let h = BRICK_HEIGHT * SCALE;
         let [r, g, bl] = brick_rgb(b.kind);
         let _ = write!(
@@ -113,5 +120,28 @@ mod tests {
         assert!(svg.contains(">5</text>"));
         assert!(svg.contains("w&lt;1&gt;"));
         assert!(svg.contains("rgb(255,165,0)") || !svg.contains("orange"));
+    }
+
+    /// Regression (#30): the 17.7 m MBZIRC wall was drawn 2 172 px wide with its three segments
+    /// side by side, and shrunk to the page its labels could not be read. Its segments are now
+    /// stacked, at the scale of the other walls.
+    #[test]
+    fn the_mbzirc_segments_are_stacked_at_the_scale_of_the_other_walls() {
+        let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+        let svg = wall_svg(&wall, None);
+        let width: f64 = svg
+            .split("width=\"")
+            .nth(1)
+            .and_then(|w| w.split('"').next())
+            .and_then(|w| w.parse().ok())
+            .unwrap();
+        // One segment: 5.9 m at 120 px/m plus margins, not 17.7 m.
+        assert!(width < 800.0, "{width}");
+        for k in 1..=3 {
+            assert!(svg.contains(&format!(">segment {k}</text>")), "segment {k}");
+        }
+        assert_eq!(svg.matches("<rect x=").count(), 42);
+        // Brick rectangles keep the full scale: 0.20 m × 120 px/m.
+        assert!(svg.contains(r#"height="24.0""#));
     }
 }

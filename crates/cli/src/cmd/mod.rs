@@ -5,6 +5,7 @@ pub mod bench;
 pub mod check;
 pub mod crew;
 pub mod demo;
+pub mod generate;
 pub mod launch;
 pub mod mission;
 pub mod plan;

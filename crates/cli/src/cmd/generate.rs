@@ -1,0 +1,114 @@
+//! `mason generate`: seeded inputs for the README's scaling figures, the same for the same seed.
+//! `wall`: a layer-text wall (`mason_wall::generate::large_layer_text`); `scene`: a bird's-eye
+//! PNG of a warehouse with robots and goals (`mason_crew::generate::birdseye_scene`).
+
+use crate::fail::{input_error, write_file, CliResult};
+use std::path::PathBuf;
+
+/// `mason generate` subcommands.
+#[derive(clap::Subcommand)]
+pub enum GenerateCommand {
+    /// Print a layer-text wall of about N bricks (a running bond of red and green bricks)
+    Wall {
+        /// About this many bricks (every layer the same width)
+        #[arg(long)]
+        bricks: usize,
+        /// Layers
+        #[arg(long)]
+        levels: usize,
+        /// Seed of the generator
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+    /// Write a bird's-eye PNG (one pixel a cell): a warehouse of 10×2 shelves, robots red,
+    /// goals green, for `mason crew --image`
+    Scene {
+        /// Width and height in cells (pixels)
+        #[arg(long, default_value_t = 450)]
+        size: u32,
+        /// Robots, and as many goals
+        #[arg(long)]
+        robots: usize,
+        /// Seed of the generator (clutter, robots and goals)
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The PNG to write
+        #[arg(long)]
+        png: PathBuf,
+    },
+}
+
+/// `mason generate …`.
+pub fn run(command: GenerateCommand) -> CliResult<()> {
+    match command {
+        GenerateCommand::Wall {
+            bricks,
+            levels,
+            seed,
+        } => {
+            print!("{}", wall(bricks, levels, seed)?);
+            Ok(())
+        }
+        GenerateCommand::Scene {
+            size,
+            robots,
+            seed,
+            png,
+        } => {
+            crate::fail::check_output(&png)?;
+            let bytes = scene(size, robots, seed)?;
+            write_file(&png, &bytes)
+        }
+    }
+}
+
+/// The layer text of `mason generate wall`, one line per layer (top first), refused when it
+/// would break the readers' limits (bricks, layers, line length).
+pub fn wall(bricks: usize, levels: usize, seed: u64) -> CliResult<String> {
+    use mason_wall::limits::{MAX_BRICKS, MAX_LAYERS, MAX_LINE_CHARS};
+    use rand::SeedableRng;
+    if bricks == 0 || bricks > MAX_BRICKS {
+        return Err(input_error(format!(
+            "--bricks {bricks}: must lie in 1..={MAX_BRICKS}"
+        )));
+    }
+    if levels == 0 || levels > MAX_LAYERS.min(bricks) {
+        return Err(input_error(format!(
+            "--levels {levels}: must lie in 1..={} (at most one per brick)",
+            MAX_LAYERS.min(bricks)
+        )));
+    }
+    // A layer is 1.5 units per brick wide and its tokens take two characters each (`R `); a
+    // layer of reds only is the longest.
+    if 2 * (bricks.div_ceil(levels) * 3 / 2) > MAX_LINE_CHARS {
+        return Err(input_error(format!(
+            "--bricks {bricks} --levels {levels}: a layer would be longer than {MAX_LINE_CHARS} characters; use more levels"
+        )));
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let text = mason_wall::generate::large_layer_text(&mut rng, bricks, levels);
+    Ok(format!("{text}\n"))
+}
+
+/// The PNG bytes of `mason generate scene`.
+pub fn scene(size: u32, robots: usize, seed: u64) -> CliResult<Vec<u8>> {
+    const MAX_SIZE: u32 = 4096;
+    if !(30..=MAX_SIZE).contains(&size) {
+        return Err(input_error(format!(
+            "--size {size}: must lie in 30..={MAX_SIZE} cells"
+        )));
+    }
+    let max_agents = mason_crew::limits::MAX_AGENTS;
+    if robots == 0 || robots > max_agents {
+        return Err(input_error(format!(
+            "--robots {robots}: must lie in 1..={max_agents}"
+        )));
+    }
+    let (grid, starts, goals) = mason_crew::generate::birdseye_scene(size, size, robots, seed)
+        .ok_or_else(|| {
+            input_error(format!(
+                "--robots {robots}: a {size}×{size} warehouse has no room for that many robots and goals apart"
+            ))
+        })?;
+    Ok(mason_crew::image::birdseye_png(&grid, &starts, &goals))
+}
