@@ -88,9 +88,14 @@ pub fn drive(
                 // Checked before anything reads it, the log included: a sample that fails is
                 // counted, and the first of each cause logged.
                 match agent.admit(now, sample) {
-                    Ok(m) => {
-                        log.message(now, m.message(), false)?;
-                        agent.receive(now, m);
+                    Ok(checked) => {
+                        if let Some(m) = checked.message() {
+                            log.message(now, m, false)?;
+                        }
+                        if let Some(c) = checked.command() {
+                            log.command(now, c)?;
+                        }
+                        agent.receive(now, checked);
                     }
                     Err(d) if d.first => log.dropped(now, d.cause)?,
                     Err(_) => {}

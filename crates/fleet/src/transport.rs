@@ -119,7 +119,7 @@ pub(crate) mod testing {
     pub fn seq_of(a: &Arrival) -> u64 {
         match &a.body {
             mason_mission::agent::Body::Message(m) => m.seq,
-            mason_mission::agent::Body::Bytes(_) => 0,
+            mason_mission::agent::Body::Bytes(_) | mason_mission::agent::Body::Command(_) => 0,
         }
     }
 

@@ -24,9 +24,9 @@ pub struct BusFaults {
     pub kills: Vec<(usize, f64)>,
     /// `(uav, t)`: the killed agent starts again at t, as a new incarnation.
     pub restarts: Vec<(usize, f64)>,
-    /// `(t, sample)`: a stranger on the network, whose samples reach every agent at t (no
-    /// link fault touches them).
-    pub rogue: Vec<(f64, Arrival)>,
+    /// `(t, sample)`: what other peers on the network send (a ground station's commands, a
+    /// rogue's samples): each reaches every agent at t, untouched by link faults.
+    pub injected: Vec<(f64, Arrival)>,
 }
 
 /// The events that record an agent killed at `t`, from its own trace so far: it fails, leaves
@@ -180,7 +180,7 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
     let (mut ki, mut ri) = (0, 0);
     let mut queue: BinaryHeap<Reverse<Delivery>> = BinaryHeap::new();
     let mut seq = 0u64;
-    for (t, sample) in &faults.rogue {
+    for (t, sample) in &faults.injected {
         for to in 0..n {
             seq += 1;
             queue.push(Reverse(Delivery {

@@ -2,12 +2,12 @@
 //! brick must be placed exactly once.
 
 use mason_mission::agent::{
-    Agent, AgentSetup, Arrival, DropCause, DropCounts, Message, MessageKind, SimulatedVehicle,
-    DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S,
+    Agent, AgentSetup, Arrival, Command, DropCause, DropCounts, Message, MessageKind, Order,
+    SimulatedVehicle, DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S,
 };
 use mason_mission::bus::{fly_bus, BusFaults, BusRun};
 use mason_mission::{
-    check_trace, slot_length, Coord, EventKind, LinkFaults, MissionConfig, Window,
+    check_trace, slot_length, Coord, EventKind, LinkFaults, MissionConfig, UavState, Window,
 };
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_wall::{BrickId, Wall};
@@ -320,7 +320,7 @@ fn a_rogue_on_the_network_changes_nothing_but_the_counters() {
     assert_eq!(honest.drops.total(), 0, "{:?}", honest.drops);
     let (rogue, expected) = rogue_samples(bricks);
     let faults = BusFaults {
-        rogue: rogue.clone(),
+        injected: rogue.clone(),
         ..BusFaults::default()
     };
     let (attacked, placed_bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 4);
@@ -330,6 +330,99 @@ fn a_rogue_on_the_network_changes_nothing_but_the_counters() {
     assert_eq!(attacked.events, honest.events);
     assert_eq!(attacked.drops.total(), 3 * rogue.len() as u64);
     assert_eq!(attacked.drops, expected, "{:?}", attacked.drops);
+}
+
+fn command(seq: u64, t: f64, order: Order) -> (f64, Arrival) {
+    let c = Command {
+        v: 1,
+        mission: "test".into(),
+        station: 0,
+        seq,
+        t,
+        order,
+    };
+    (t, Arrival::command(c))
+}
+
+fn states(run: &BusRun, uav: u32, outcome: &str) -> Vec<(f64, UavState)> {
+    run.events
+        .iter()
+        .filter(|e| e.uav == uav)
+        .filter_map(|e| match e.kind {
+            EventKind::State {
+                state, outcome: o, ..
+            } if o == outcome => Some((e.t, state)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_ground_station_lands_one_uav_and_resumes_it() {
+    let faults = BusFaults {
+        injected: vec![
+            command(1, 100.0, Order::Land { uav: 1 }),
+            command(2, 400.0, Order::Resume),
+        ],
+        ..BusFaults::default()
+    };
+    let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 6);
+    assert!(run.finished);
+    assert_eq!(placed(&run), bricks);
+    let landed = states(&run, 1, "commanded");
+    assert!(
+        landed
+            .iter()
+            .any(|(t, s)| *s == UavState::Land && *t >= 100.0),
+        "{landed:?}"
+    );
+    let held = states(&run, 1, "held");
+    assert_eq!(held.len(), 1, "{held:?}");
+    // Nothing placed by UAV 1 while it was held, and bricks placed after the resume.
+    let placed_by_1: Vec<f64> = run
+        .events
+        .iter()
+        .filter(|e| e.uav == 1 && matches!(e.kind, EventKind::Place { .. }))
+        .map(|e| e.t)
+        .collect();
+    assert!(
+        !placed_by_1.iter().any(|&t| t > held[0].0 && t < 400.0),
+        "{placed_by_1:?}"
+    );
+    assert!(placed_by_1.iter().any(|&t| t > 400.0), "{placed_by_1:?}");
+    // The other UAVs were not told to land.
+    assert!(states(&run, 0, "commanded").is_empty() && states(&run, 2, "held").is_empty());
+    assert_eq!(run.drops.total(), 0);
+}
+
+#[test]
+fn an_abort_lands_the_team_safely() {
+    let faults = BusFaults {
+        injected: vec![command(1, 300.0, Order::Abort)],
+        ..BusFaults::default()
+    };
+    let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 6);
+    assert!(run.finished);
+    let n = placed(&run);
+    assert!(n > 0 && n < bricks, "{n}");
+    for u in 0..3 {
+        let aborted = states(&run, u, "aborted");
+        assert_eq!(
+            aborted.first().map(|s| s.1),
+            Some(UavState::Land),
+            "UAV {u}"
+        );
+    }
+    // A replayed abort, or one from a station out of range, is dropped.
+    let again = BusFaults {
+        injected: vec![
+            command(1, 300.0, Order::Abort),
+            command(1, 310.0, Order::Abort),
+        ],
+        ..BusFaults::default()
+    };
+    let (twice, _) = fly("mbzirc", 3, Coord::Auto, &again, 6);
+    assert_eq!(twice.drops.count(DropCause::Replay), 3);
 }
 
 /// Random faults for case `case` (the same for a case on every machine).

@@ -29,11 +29,13 @@
 //! items 1 and 2), a peer on the network can still speak as a teammate with a plausible
 //! status. The checks bound what such a message can claim; they do not tell who sent it.
 
-use super::wire::{Message, SCHEMA_VERSION};
+use super::wire::{Command, Message, Order, COMMAND_KIND, SCHEMA_VERSION, STATION_CHUNK};
 use super::Agent;
 use serde::ser::SerializeMap;
 use serde::Serialize;
 
+/// Ground stations are numbered below this.
+pub const MAX_STATIONS: usize = 16;
 /// The longest `outcome` string (characters).
 pub const MAX_OUTCOME_CHARS: usize = 32;
 /// The most an incarnation may grow from the last one kept from its sender.
@@ -220,6 +222,8 @@ pub enum Body {
     Bytes(Vec<u8>),
     /// A message (the in-process bus and `Hub`).
     Message(Box<Message>),
+    /// A ground station's command (in-process).
+    Command(Box<Command>),
 }
 
 /// A sample as a transport hands it over, before any check.
@@ -240,6 +244,17 @@ impl Arrival {
         }
     }
 
+    /// A ground station's command on its key.
+    pub fn command(c: Command) -> Self {
+        Arrival {
+            key: Some(SampleKey {
+                uav: format!("{STATION_CHUNK}{}", c.station),
+                kind: COMMAND_KIND.to_string(),
+            }),
+            body: Body::Command(Box::new(c)),
+        }
+    }
+
     /// Raw bytes heard on `key`.
     pub fn bytes(key: Option<SampleKey>, bytes: Vec<u8>) -> Self {
         Arrival {
@@ -249,19 +264,35 @@ impl Arrival {
     }
 }
 
-/// A message that passed every check: only [`Agent::admit`] makes one, and only
+/// A sample that passed every check: only [`Agent::admit`] makes one, and only
 /// [`Agent::receive`] takes one.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Checked(Message);
+pub struct Checked(pub(super) Heard);
+
+/// What a checked sample holds.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Heard {
+    /// A teammate's message.
+    Status(Box<Message>),
+    /// A ground station's command.
+    Command(Command),
+}
 
 impl Checked {
-    /// The message.
-    pub fn message(&self) -> &Message {
-        &self.0
+    /// The teammate's message, if it is one.
+    pub fn message(&self) -> Option<&Message> {
+        match &self.0 {
+            Heard::Status(m) => Some(m),
+            Heard::Command(_) => None,
+        }
     }
 
-    pub(super) fn into_message(self) -> Message {
-        self.0
+    /// The ground station's command, if it is one.
+    pub fn command(&self) -> Option<&Command> {
+        match &self.0 {
+            Heard::Command(c) => Some(c),
+            Heard::Status(_) => None,
+        }
     }
 }
 
@@ -272,6 +303,32 @@ pub struct Dropped {
     pub cause: DropCause,
     /// The first sample this agent dropped for this cause.
     pub first: bool,
+}
+
+/// The check's own state: its bounds, its counts, and the last command of each station.
+#[derive(Clone, Debug)]
+pub(super) struct Inbox {
+    pub(super) bounds: Bounds,
+    pub(super) drops: DropCounts,
+    /// The `seq` of the last command obeyed from each station (0: none).
+    station_seq: [u64; MAX_STATIONS],
+}
+
+impl Inbox {
+    pub(super) fn new(setup: &super::AgentSetup<'_>) -> Self {
+        Inbox {
+            bounds: Bounds::new(setup),
+            drops: DropCounts::default(),
+            station_seq: [0; MAX_STATIONS],
+        }
+    }
+
+    /// A command obeyed: later ones from its station must number higher.
+    pub(super) fn heard_command(&mut self, c: &Command) {
+        if let Some(s) = self.station_seq.get_mut(c.station as usize) {
+            *s = c.seq;
+        }
+    }
 }
 
 /// What the checks need to know of the team and the wall, fixed for an agent's life.
@@ -329,10 +386,10 @@ impl Agent<'_> {
     /// is counted and dropped; nothing about the agent changes otherwise.
     pub fn admit(&mut self, now: f64, arrival: Arrival) -> Result<Checked, Dropped> {
         match self.check(now, arrival) {
-            Ok(m) => Ok(Checked(m)),
+            Ok(heard) => Ok(Checked(heard)),
             Err(cause) => Err(Dropped {
                 cause,
-                first: self.drops.record(cause) == 1,
+                first: self.inbox.drops.record(cause) == 1,
             }),
         }
     }
@@ -347,17 +404,72 @@ impl Agent<'_> {
 
     /// The samples dropped so far, per cause.
     pub fn drops(&self) -> &DropCounts {
-        &self.drops
+        &self.inbox.drops
     }
 
-    fn check(&self, now: f64, arrival: Arrival) -> Result<Message, DropCause> {
+    fn check(&self, now: f64, arrival: Arrival) -> Result<Heard, DropCause> {
+        let on_command_key = arrival.key.as_ref().is_some_and(|k| k.kind == COMMAND_KIND);
         let m = match arrival.body {
             Body::Message(m) => *m,
-            Body::Bytes(b) if b.len() > self.bounds.max_bytes => return Err(DropCause::Size),
+            Body::Command(c) => return self.check_command(now, arrival.key.as_ref(), *c),
+            Body::Bytes(b) if b.len() > self.inbox.bounds.max_bytes => return Err(DropCause::Size),
+            Body::Bytes(b) if on_command_key => {
+                let c = serde_json::from_slice::<Command>(&b).map_err(|_| DropCause::Malformed)?;
+                return self.check_command(now, arrival.key.as_ref(), c);
+            }
             Body::Bytes(b) => {
                 serde_json::from_slice::<Message>(&b).map_err(|_| DropCause::Malformed)?
             }
         };
+        self.check_message(now, arrival.key.as_ref(), m)
+            .map(|m| Heard::Status(Box::new(m)))
+    }
+
+    /// A ground station's command: its schema, mission, station and key, time window, a
+    /// growing `seq`, and a UAV of the team to land.
+    fn check_command(
+        &self,
+        now: f64,
+        key: Option<&SampleKey>,
+        c: Command,
+    ) -> Result<Heard, DropCause> {
+        if c.v != SCHEMA_VERSION {
+            return Err(DropCause::Version);
+        }
+        if c.mission != self.setup.mission {
+            return Err(DropCause::Mission);
+        }
+        let Some(&last) = self.inbox.station_seq.get(c.station as usize) else {
+            return Err(DropCause::UnknownUav);
+        };
+        if let Some(k) = key {
+            if k.kind != COMMAND_KIND || k.uav != format!("{STATION_CHUNK}{}", c.station) {
+                return Err(DropCause::Key);
+            }
+        }
+        if !(c.t.is_finite() && c.t >= now - TIME_BEHIND_S && c.t <= now + TIME_AHEAD_S) {
+            return Err(DropCause::Time);
+        }
+        if c.seq <= last {
+            return Err(DropCause::Replay);
+        }
+        if c.seq - last > SEQ_SLACK {
+            return Err(DropCause::Jump);
+        }
+        if let Order::Land { uav } = c.order {
+            if uav as usize >= self.n {
+                return Err(DropCause::Range);
+            }
+        }
+        Ok(Heard::Command(c))
+    }
+
+    fn check_message(
+        &self,
+        now: f64,
+        key: Option<&SampleKey>,
+        m: Message,
+    ) -> Result<Message, DropCause> {
         if m.v != SCHEMA_VERSION {
             return Err(DropCause::Version);
         }
@@ -371,11 +483,8 @@ impl Agent<'_> {
         if u == self.me {
             return Err(DropCause::Own);
         }
-        if let Some(k) = &arrival.key {
-            if k.kind != m.kind.key() || k.uav.parse::<u32>().ok() != Some(m.uav) {
-                return Err(DropCause::Key);
-            }
-            if k.uav.len() > 1 && k.uav.starts_with(['0', '+']) {
+        if let Some(k) = key {
+            if k.kind != m.kind.key() || k.uav != m.uav.to_string() {
                 return Err(DropCause::Key);
             }
         }
@@ -388,7 +497,7 @@ impl Agent<'_> {
         self.check_jump(&m)?;
         self.check_sizes(&m)?;
         self.check_ranges(&m)?;
-        if m.status.placed.len() as f64 > self.bounds.most_placed(m.t) {
+        if m.status.placed.len() as f64 > self.inbox.bounds.most_placed(m.t) {
             return Err(DropCause::Implausible);
         }
         Ok(m)
@@ -713,6 +822,81 @@ mod tests {
             },
             DropCause::Implausible,
         );
+    }
+
+    fn station(seq: u64, t: f64, order: Order) -> Command {
+        Command {
+            v: SCHEMA_VERSION,
+            mission: "test".into(),
+            station: 2,
+            seq,
+            t,
+            order,
+        }
+    }
+
+    #[test]
+    fn commands_are_checked_as_messages_are() {
+        let ok = station(5, 10.0, Order::Land { uav: 2 });
+        let fixture = Fixture::new("thesis-2x5", 3);
+        let (mut agents, _) = scene(&fixture);
+        let bytes = serde_json::to_vec(&ok).unwrap();
+        let key = SampleKey::parse("mason/test/station-2/command");
+        let heard = agents[0].admit(10.5, Arrival::bytes(key, bytes)).unwrap();
+        assert_eq!(heard.command(), Some(&ok));
+        assert_eq!(heard.message(), None);
+        agents[0].receive(10.5, heard);
+        // The same again, or an older one: a replay.
+        for seq in [5, 4] {
+            let got = agents[0].admit(10.6, Arrival::command(station(seq, 10.0, Order::Resume)));
+            assert_eq!(got.err().map(|d| d.cause), Some(DropCause::Replay));
+        }
+        let cases = [
+            (Command { v: 2, ..ok.clone() }, DropCause::Version),
+            (
+                Command {
+                    mission: "x".into(),
+                    ..ok.clone()
+                },
+                DropCause::Mission,
+            ),
+            (
+                Command {
+                    station: MAX_STATIONS as u32,
+                    ..ok.clone()
+                },
+                DropCause::UnknownUav,
+            ),
+            (
+                Command {
+                    t: 500.0,
+                    ..ok.clone()
+                },
+                DropCause::Time,
+            ),
+            (
+                Command {
+                    seq: SEQ_SLACK + 1,
+                    ..ok.clone()
+                },
+                DropCause::Jump,
+            ),
+            (
+                Command {
+                    order: Order::Land { uav: 3 },
+                    ..ok.clone()
+                },
+                DropCause::Range,
+            ),
+        ];
+        for (c, cause) in cases {
+            dropped_for(Arrival::command(c), cause);
+        }
+        let mut wrong_key = Arrival::command(ok.clone());
+        wrong_key.key = SampleKey::parse("mason/test/station-1/command");
+        dropped_for(wrong_key, DropCause::Key);
+        let junk = Arrival::bytes(SampleKey::parse("m/t/station-2/command"), b"{}".to_vec());
+        dropped_for(junk, DropCause::Malformed);
     }
 
     #[test]

@@ -55,6 +55,7 @@
 //! before take-off, climbing through `TakeOff`, at its cruise altitude in the air, descending
 //! through `Land`.
 
+mod commands;
 pub mod gate;
 mod machine;
 mod membership;
@@ -68,7 +69,9 @@ mod zone;
 
 pub use gate::{Arrival, Body, Checked, DropCause, DropCounts, Dropped, SampleKey};
 pub use vehicle::{Autopilot, SimulatedVehicle, WallView};
-pub use wire::{Ack, Message, MessageKind, Out, PairRef, Request, Status, SCHEMA_VERSION};
+pub use wire::{
+    Ack, Command, Message, MessageKind, Order, Out, PairRef, Request, Status, SCHEMA_VERSION,
+};
 
 use crate::altitude::altitude_during;
 use crate::config::MissionConfig;
@@ -175,10 +178,10 @@ pub struct Agent<'a> {
     pair: PairState,
     /// What goes out.
     outbox: Outbox,
-    /// The samples dropped on arrival, per cause.
-    drops: DropCounts,
-    /// The bounds the check on arrival holds samples to.
-    bounds: gate::Bounds,
+    /// The check on arrival: its bounds and counts.
+    inbox: gate::Inbox,
+    /// What the ground stations have ordered.
+    orders: commands::Orders,
 }
 
 impl<'a> Agent<'a> {
@@ -207,8 +210,8 @@ impl<'a> Agent<'a> {
             ),
             pair: PairState::default(),
             outbox: Outbox::default(),
-            drops: DropCounts::default(),
-            bounds: gate::Bounds::new(&setup),
+            inbox: gate::Inbox::new(&setup),
+            orders: commands::Orders::default(),
             setup,
             autopilot,
         }
@@ -257,7 +260,10 @@ impl<'a> Agent<'a> {
     /// Takes a teammate's message heard at `now`, checked on arrival ([`Agent::admit`]; or
     /// [`Agent::hear`] for both steps).
     pub fn receive(&mut self, now: f64, m: Checked) {
-        let m = m.into_message();
+        let m = match m.0 {
+            gate::Heard::Status(m) => *m,
+            gate::Heard::Command(c) => return self.obey(&c),
+        };
         let u = m.uav as usize;
         self.work.learn_placed(m.status.placed.iter().copied());
         self.hear_outs(&m.status.out);
@@ -285,6 +291,7 @@ impl<'a> Agent<'a> {
             self.outbox.pending = Some(MessageKind::State);
         }
         if !self.finished() {
+            self.ground_orders();
             self.expelled();
             self.liveness();
             self.update_mode();

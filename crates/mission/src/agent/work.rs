@@ -261,7 +261,20 @@ impl Agent<'_> {
         let wall = self.setup.wall;
         self.work.failures = 0;
         self.pair = Default::default();
-        match board.pick(wall, self.me) {
+        // A ground station ordered it down: it takes no brick and flies home.
+        let pick = match self.orders.landing() {
+            Some(o) => Err(o),
+            None => Ok(board.pick(wall, self.me)),
+        };
+        let pick = match pick {
+            Ok(p) => p,
+            Err(o) => {
+                let start = self.setup.config.arena.uav_starts[self.me];
+                let land = self.setup.config.uav.land_s;
+                return self.fly(UavState::Land, o, start, land);
+            }
+        };
+        match pick {
             Pick::Brick(b) => {
                 if self.flight.state != UavState::ChooseBrick {
                     self.go(UavState::ChooseBrick, outcome, None);
