@@ -56,7 +56,7 @@ pub const MAX_ABS_NUMBER: f64 = 1e9;
 
 /// The longest sample accepted (bytes) on a wall of `bricks` bricks with `uavs` UAVs: room
 /// for every field, a `placed` list of every brick, and `heard`, `acks` and `out` for every
-/// UAV. A message of the MBZIRC wall (42 bricks, 3 UAVs) may take 4 816 bytes.
+/// UAV. A message of the MBZIRC wall (42 bricks, 3 UAVs) may take 4 888 bytes.
 pub fn max_message_bytes(bricks: usize, uavs: usize) -> usize {
     4096 + 12 * bricks + 96 * uavs
 }
