@@ -922,6 +922,74 @@ mod tests {
             .all(|(i, c)| c.index() == i));
     }
 
+    /// An honest sample's JSON with one byte changed, a cut, or a number swapped for another.
+    fn mangled(json: &str, op: u8, at: usize, number: &str) -> Vec<u8> {
+        let at = at % json.len();
+        let mut b = json.as_bytes().to_vec();
+        match op % 3 {
+            0 => b[at] = b[at].wrapping_add(1 + (at % 7) as u8),
+            1 => b.truncate(at),
+            _ => {
+                // The number starting at or after `at`, replaced.
+                let start = (at..b.len()).find(|&i| b[i].is_ascii_digit() || b[i] == b'-');
+                if let Some(s) = start {
+                    let end = (s + 1..b.len())
+                        .find(|&i| !(b[i].is_ascii_digit() || b"-+.eE".contains(&b[i])))
+                        .unwrap_or(b.len());
+                    b.splice(s..end, number.bytes());
+                }
+            }
+        }
+        b
+    }
+
+    mod mangled {
+        use super::*;
+        use proptest::prelude::*;
+
+        proptest! {
+            #![proptest_config(proptest::test_runner::Config {
+                cases: 2000,
+                rng_seed: proptest::test_runner::RngSeed::Fixed(27),
+                ..proptest::test_runner::Config::default()
+            })]
+
+            /// Whatever a sample holds, the check never panics, and what it lets through keeps
+            /// every bound.
+            #[test]
+            fn mangled_samples_never_break_a_bound(
+                op in 0u8..3,
+                at in 0usize..4096,
+                number in prop_oneof![
+                    any::<i64>().prop_map(|x| x.to_string()),
+                    any::<f64>().prop_map(|x| format!("{x:?}")),
+                    Just("1e308".to_string()),
+                    Just("18446744073709551615".to_string()),
+                ],
+            ) {
+                let fixture = Fixture::new("thesis-2x5", 3);
+                let (mut agents, mut m) = scene(&fixture);
+                m.status.placed = vec![0, 1];
+                let json = serde_json::to_string(&m).unwrap();
+                let sample = Arrival::bytes(Some(SampleKey::of(&m)), mangled(&json, op, at, &number));
+                if let Ok(c) = agents[0].admit(10.5, sample) {
+                    let m = c.message().expect("a status").clone();
+                    prop_assert!(m.uav == 1 && m.incarnation >= 1 && m.seq >= 1);
+                    prop_assert!((10.5 - TIME_BEHIND_S..=10.5 + TIME_AHEAD_S).contains(&m.t));
+                    prop_assert_eq!(m.status.heard.len(), 3);
+                    prop_assert!(m.status.placed.windows(2).all(|w| w[0] < w[1]));
+                    prop_assert!(m.status.placed.iter().all(|&b| b < 10));
+                    prop_assert!(m.status.brick.is_none_or(|b| b < 10));
+                    prop_assert!([m.status.x, m.status.y, m.status.z].iter().all(|v| sane(*v)));
+                    agents[0].receive(10.5, c);
+                    agents[0].tick(10.6);
+                } else {
+                    prop_assert_eq!(agents[0].drops().total(), 1);
+                }
+            }
+        }
+    }
+
     #[test]
     fn sample_keys_are_the_last_two_chunks() {
         assert_eq!(
