@@ -304,6 +304,52 @@ mod tests {
         }
     }
 
+    /// A ground station: an abort at mission time 60 s.
+    fn station(link: &mut HubLink, clock: &MissionClock, done: &AtomicUsize) {
+        let mut heard = Vec::new();
+        listen_until(link, clock, 60.0, &mut heard);
+        let abort = mason_mission::agent::Command {
+            v: 1,
+            mission: "test".into(),
+            station: 0,
+            seq: 1,
+            t: clock.now(),
+            order: mason_mission::agent::Order::Abort,
+        };
+        link.inject(&Arrival::command(abort));
+        while done.load(Ordering::SeqCst) < 3 {
+            listen_until(link, clock, clock.now() + 1.0, &mut heard);
+        }
+    }
+
+    #[test]
+    fn an_abort_from_a_station_lands_every_agent() {
+        let s = setting("mbzirc", mason_mission::Coord::Auto, 200.0);
+        let (events, drops) = fly_with_rogue(&s, LinkFaults::default(), Some(&station));
+        check_trace(&s.wall, 3, &events).expect("a safe trace");
+        assert!(placed(&events) < s.wall.len());
+        for u in 0..3 {
+            let aborted = events.iter().any(|e| {
+                e.uav == u
+                    && matches!(
+                        e.kind,
+                        EventKind::State {
+                            outcome: "aborted",
+                            ..
+                        }
+                    )
+            });
+            assert!(aborted, "UAV {u}");
+        }
+        // Nothing dropped but the last words a landed teammate repeats.
+        assert!(
+            drops
+                .iter()
+                .all(|d| d.total() == d.count(DropCause::Replay)),
+            "{drops:?}"
+        );
+    }
+
     #[test]
     fn a_stop_request_interrupts_before_the_start() {
         let s = setting("thesis-2x5", mason_mission::Coord::Comm, 1.0);

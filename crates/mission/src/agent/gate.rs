@@ -138,8 +138,17 @@ impl std::fmt::Display for DropCause {
 
 /// How many samples were dropped, per cause. Serialises as an object of the nonzero counts
 /// by cause name (`{"replay": 12, "unknown_uav": 1}`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Default, PartialEq, Eq)]
 pub struct DropCounts([u64; DropCause::ALL.len()]);
+
+/// The nonzero counts by cause name, as in JSON.
+impl std::fmt::Debug for DropCounts {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_map()
+            .entries(self.nonzero().map(|(c, k)| (c.name(), k)))
+            .finish()
+    }
+}
 
 impl DropCounts {
     /// Samples dropped for `cause`.
@@ -897,6 +906,14 @@ mod tests {
         dropped_for(wrong_key, DropCause::Key);
         let junk = Arrival::bytes(SampleKey::parse("m/t/station-2/command"), b"{}".to_vec());
         dropped_for(junk, DropCause::Malformed);
+    }
+
+    #[test]
+    fn counts_print_by_cause_name() {
+        let mut c = DropCounts::default();
+        assert_eq!(format!("{c:?}"), "{}");
+        c.record(DropCause::Key);
+        assert_eq!(format!("{c:?}"), r#"{"key": 1}"#);
     }
 
     #[test]
