@@ -472,6 +472,31 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_agents_drop_counts_are_read_back_from_its_log() {
+        let dir = std::env::temp_dir().join(format!("mason-drops-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let log = dir.join("uav-1-1.log");
+        let mut counts = mason_mission::agent::DropCounts::default();
+        counts.record(mason_mission::agent::DropCause::Replay);
+        counts.record(mason_mission::agent::DropCause::UnknownUav);
+        let line = format!("{DROPPED_LINE}{}", serde_json::to_string(&counts).unwrap());
+        std::fs::write(
+            &log,
+            format!("something else\n{line}\nmason agent: UAV 1 …\n"),
+        )
+        .unwrap();
+        let got = drops_in_log(&log);
+        assert_eq!(got.get("replay"), Some(&1));
+        assert_eq!(got.get("unknown_uav"), Some(&1));
+        assert_eq!(got.len(), 2);
+        // No line, a bad line, or no file: nothing.
+        std::fs::write(&log, format!("{DROPPED_LINE}{{oops\n")).unwrap();
+        assert!(drops_in_log(&log).is_empty());
+        assert!(drops_in_log(&dir.join("none.log")).is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn kills_and_restarts_must_alternate() {
         let plan = schedule(&[(1, 10.0)], &[(1, 20.0)], 3).unwrap();
         assert_eq!(

@@ -4,7 +4,9 @@
 //!
 //! A transport hands over an [`Arrival`]: the sample's bytes (or a message already decoded,
 //! in-process), with the key chunks it came on when the transport has a key.
-//! [`Agent::admit`] checks it, in this order, and names the first rule it breaks:
+//! [`Agent::admit`] checks it and names the first rule it breaks: bytes over the size bound
+//! are refused unread, then the rules below apply in the order of the table, except that the
+//! bounds on arrays and strings (`size`) are checked after `jump`:
 //!
 //! | cause | the sample |
 //! |---|---|
