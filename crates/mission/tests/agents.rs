@@ -499,6 +499,24 @@ fn random_faults_never_break_the_safety_rules() {
     assert!(finished * 10 >= random_cases() * 8, "{finished} finished");
 }
 
+/// Found by the 3000-case run (cases 701, 1136, 2062): a pair's leader whose partner was
+/// killed grasps the orange brick unaware, learns the brick fell, and must report its own
+/// loss, since the fall the partner's death reported came before its grasp.
+#[test]
+fn a_leader_grasping_after_its_partner_died_reports_its_own_loss() {
+    for case in [701, 1136, 2062] {
+        let (faults, coord, grasp) = random_case(case);
+        let (run, _, summary) = try_fly("mbzirc", 3, coord, &faults, case as u64, |c| {
+            c.faults.grasp_fail = grasp;
+        });
+        assert!(summary.is_ok(), "case {case}: {summary:?}");
+        assert!(run
+            .events
+            .iter()
+            .any(|e| matches!(e.kind, EventKind::Lost { .. })));
+    }
+}
+
 #[test]
 #[ignore = "debug aid: MASON_CASE=N prints random case N"]
 fn dump_case() {
