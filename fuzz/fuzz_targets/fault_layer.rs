@@ -5,7 +5,7 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use mason_fleet::{Clock, FaultLayer, Transport};
-use mason_mission::agent::Message;
+use mason_mission::agent::{Arrival, Message};
 use mason_mission::{LinkFaults, Window};
 use std::cell::Cell;
 use std::rc::Rc;
@@ -28,8 +28,11 @@ struct Queue(Rc<std::cell::RefCell<Vec<Message>>>);
 
 impl Transport for Queue {
     fn send(&mut self, _: &Message) {}
-    fn recv(&mut self, _: Instant) -> Vec<Message> {
+    fn recv(&mut self, _: Instant) -> Vec<Arrival> {
         std::mem::take(&mut *self.0.borrow_mut())
+            .into_iter()
+            .map(Arrival::keyed)
+            .collect()
     }
 }
 

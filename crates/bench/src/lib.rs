@@ -8,7 +8,8 @@
 //!   per second; [`replan`]: static against re-planned schedules under UAV failures;
 //! - [`cmcp`]: team schedules on the CMCP walls beside GRASP's published runs;
 //! - [`paper`]: the crew paper's Tables 1 and 2 setting and the MovingAI warehouse;
-//! - [`mapf`]: MovingAI maps at rising agent counts, one child `mason crew` per case.
+//! - [`mapf`]: MovingAI maps at rising agent counts, one child `mason crew` per case;
+//! - [`arrivals`]: the cost of an agent's check on arrival, per message.
 //!
 //! Suites that run whole `mason` processes ([`planning`], [`mapf`]) take the program's path.
 //!
@@ -19,6 +20,7 @@
 
 #![deny(missing_docs)]
 
+mod arrivals;
 mod cmcp;
 mod mapf;
 mod missions;
@@ -26,6 +28,7 @@ mod paper;
 mod support;
 mod thesis;
 
+pub use arrivals::arrivals;
 pub use cmcp::{cmcp, data_dir as cmcp_data_dir};
 pub use mapf::mapf;
 pub use missions::{replan, thesis_mission, throughput};

@@ -90,6 +90,8 @@ pub struct AgentReport {
     pub stats: FaultStats,
     /// Bricks this agent knows are placed.
     pub placed_known: usize,
+    /// Samples dropped on arrival, per cause.
+    pub drops: mason_mission::agent::DropCounts,
     /// The first bad line the simulated camera met in the team's traces, if any.
     pub world_problem: Option<String>,
 }
@@ -156,6 +158,7 @@ pub fn fly_agent<T: Transport>(
         setting.config.coord.heartbeat_s,
         stop,
     )
+    .and_then(|ending| logs.drops(clock.now(), agent.drops()).map(|()| ending))
     .and_then(|ending| logs.finish().map(|()| ending))
     .map_err(|source| FleetError::Io {
         path: opts.trace.clone().unwrap_or_else(|| "trace".into()),
@@ -167,6 +170,7 @@ pub fn fly_agent<T: Transport>(
         wall_s: started.elapsed().as_secs_f64(),
         stats: layer.stats,
         placed_known: agent.placed_known(),
+        drops: *agent.drops(),
         world_problem: world.and_then(|w| w.problem()),
     })
 }
@@ -176,7 +180,7 @@ impl<T: Transport + ?Sized> Transport for &mut T {
     fn send(&mut self, m: &mason_mission::agent::Message) {
         (**self).send(m)
     }
-    fn recv(&mut self, deadline: Instant) -> Vec<mason_mission::agent::Message> {
+    fn recv(&mut self, deadline: Instant) -> Vec<mason_mission::agent::Arrival> {
         (**self).recv(deadline)
     }
 }

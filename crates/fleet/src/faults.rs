@@ -3,7 +3,7 @@
 
 use crate::clock::Clock;
 use crate::transport::Transport;
-use mason_mission::agent::Message;
+use mason_mission::agent::{Arrival, Message};
 use mason_mission::{Fate, LinkFaults};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -18,7 +18,7 @@ pub struct FaultLayer<T, C> {
     faults: LinkFaults,
     rng: ChaCha8Rng,
     /// Held-back messages and the mission time they are delivered at.
-    held: Vec<(f64, Message)>,
+    held: Vec<(f64, Arrival)>,
     /// What the layer did so far.
     pub stats: FaultStats,
 }
@@ -62,14 +62,14 @@ impl<T: Transport, C: Clock> FaultLayer<T, C> {
     }
 
     /// Held-back messages due by `now`, in delivery order.
-    fn due(&mut self, now: f64) -> Vec<Message> {
+    fn due(&mut self, now: f64) -> Vec<Arrival> {
         self.held.sort_by(|a, b| a.0.total_cmp(&b.0));
         let n = self.held.iter().take_while(|(t, _)| *t <= now).count();
         self.held.drain(..n).map(|(_, m)| m).collect()
     }
 
     /// One received message through the fault model.
-    fn arrive(&mut self, now: f64, m: Message) {
+    fn arrive(&mut self, now: f64, m: Arrival) {
         self.stats.received += 1;
         match self.faults.fate(now, &mut self.rng) {
             Fate::Cut => self.stats.cut += 1,
@@ -95,7 +95,7 @@ impl<T: Transport, C: Clock> Transport for FaultLayer<T, C> {
         self.inner.send(m);
     }
 
-    fn recv(&mut self, deadline: Instant) -> Vec<Message> {
+    fn recv(&mut self, deadline: Instant) -> Vec<Arrival> {
         loop {
             let now = self.clock.now();
             let out = self.due(now);
@@ -128,7 +128,7 @@ impl<T: Transport, C: Clock> Transport for FaultLayer<T, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::transport::testing::{message, Canned};
+    use crate::transport::testing::{message, seq_of, Canned};
     use mason_mission::Window;
     use std::cell::Cell;
     use std::rc::Rc;
@@ -177,7 +177,7 @@ mod tests {
             };
             let all = (1..=200).map(message).collect();
             let mut layer = FaultLayer::new(Canned(all), clock_at(1.0), faults, seed);
-            let got: Vec<u64> = layer.recv(Instant::now()).iter().map(|m| m.seq).collect();
+            let got: Vec<u64> = layer.recv(Instant::now()).iter().map(seq_of).collect();
             (got, layer.stats)
         };
         let (a, stats) = run(7);
@@ -204,7 +204,7 @@ mod tests {
         let first = layer.recv(Instant::now()).len();
         assert!(first < 50);
         clock.0.set(12.0);
-        let rest: Vec<u64> = layer.recv(Instant::now()).iter().map(|m| m.seq).collect();
+        let rest: Vec<u64> = layer.recv(Instant::now()).iter().map(seq_of).collect();
         assert_eq!(first + rest.len(), 50);
         assert!(rest.windows(2).any(|w| w[0] > w[1]), "reordered: {rest:?}");
     }

@@ -125,14 +125,20 @@ impl Launch {
         let total = s.wall.len();
         let placed = self.placed();
         let violation = self.verdict.as_ref().err().map(|e| e.to_string());
+        let mut dropped = std::collections::BTreeMap::<String, u64>::new();
         let agents: Vec<serde_json::Value> = self
             .runs
             .iter()
             .map(|r| {
+                let drops = drops_in_log(&r.log);
+                for (cause, k) in &drops {
+                    *dropped.entry(cause.clone()).or_default() += k;
+                }
                 serde_json::json!({
                     "uav": r.uav, "incarnation": r.incarnation,
                     "exit": r.exit, "killed_at": r.killed_at,
                     "trace": r.trace.file_name().map(|f| f.to_string_lossy().into_owned()),
+                    "dropped": drops,
                 })
             })
             .collect();
@@ -141,7 +147,7 @@ impl Launch {
             "makespan_s": self.makespan(total), "end_s": self.end(),
             "check_trace": violation.unwrap_or_else(|| "passed".into()),
             "to_windows": self.switches(CommMode::Windows), "to_comm": self.switches(CommMode::Comm),
-            "wall_time_s": self.wall_s, "timed_out": self.timed_out,
+            "wall_time_s": self.wall_s, "timed_out": self.timed_out, "dropped": dropped,
         });
         serde_json::json!({
             "wall": s.wall.name(), "uavs": s.config.uavs, "coord": s.coord,
@@ -152,6 +158,27 @@ impl Launch {
             "events": self.events.iter().map(|e| mason_report::event_json(&s.wall, e)).collect::<Vec<_>>(),
         })
     }
+}
+
+/// How an agent reports, as its last line on stderr, the samples it dropped on arrival: this
+/// prefix, then the counts by cause as a JSON object (`{"replay":3}`).
+pub const DROPPED_LINE: &str = "mason agent: samples dropped on arrival ";
+
+/// The counts of an agent's [`DROPPED_LINE`] in its stderr log (none if it has none, or the
+/// log is unreadable or over 16 MiB).
+pub fn drops_in_log(log: &Path) -> std::collections::BTreeMap<String, u64> {
+    const MAX_LOG: u64 = 16 << 20;
+    let small = std::fs::metadata(log).is_ok_and(|m| m.len() <= MAX_LOG);
+    let text = if small {
+        std::fs::read_to_string(log).unwrap_or_default()
+    } else {
+        String::new()
+    };
+    text.lines()
+        .filter_map(|l| l.strip_prefix(DROPPED_LINE))
+        .next_back()
+        .and_then(|j| serde_json::from_str(j).ok())
+        .unwrap_or_default()
 }
 
 /// The kills and restarts, by time; each restart must follow a kill of its UAV and each kill a
@@ -443,6 +470,31 @@ fn reap(runs: &mut [AgentRun]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_agents_drop_counts_are_read_back_from_its_log() {
+        let dir = std::env::temp_dir().join(format!("mason-drops-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let log = dir.join("uav-1-1.log");
+        let mut counts = mason_mission::agent::DropCounts::default();
+        counts.record(mason_mission::agent::DropCause::Replay);
+        counts.record(mason_mission::agent::DropCause::UnknownUav);
+        let line = format!("{DROPPED_LINE}{}", serde_json::to_string(&counts).unwrap());
+        std::fs::write(
+            &log,
+            format!("something else\n{line}\nmason agent: UAV 1 …\n"),
+        )
+        .unwrap();
+        let got = drops_in_log(&log);
+        assert_eq!(got.get("replay"), Some(&1));
+        assert_eq!(got.get("unknown_uav"), Some(&1));
+        assert_eq!(got.len(), 2);
+        // No line, a bad line, or no file: nothing.
+        std::fs::write(&log, format!("{DROPPED_LINE}{{oops\n")).unwrap();
+        assert!(drops_in_log(&log).is_empty());
+        assert!(drops_in_log(&dir.join("none.log")).is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn kills_and_restarts_must_alternate() {

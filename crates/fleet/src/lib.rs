@@ -56,7 +56,9 @@ pub use clock::{unix_now, Clock, MissionClock, MAX_SPEED, MIN_SPEED};
 pub use drive::{drive, Ending, LAST_WORD_REPEATS};
 pub use error::{FleetError, FleetResult};
 pub use faults::{FaultLayer, FaultStats};
-pub use launch::{launch, schedule, Action, AgentRun, Launch, LaunchOptions};
+pub use launch::{
+    drops_in_log, launch, schedule, Action, AgentRun, Launch, LaunchOptions, DROPPED_LINE,
+};
 pub use log::{AgentLog, Capped, JsonLines, McapAgentLog, MAX_LOG_BYTES};
 pub use mason_mission::agent::agent_seed;
 pub use network::{

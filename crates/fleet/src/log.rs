@@ -1,7 +1,7 @@
 //! Where an agent writes what it does: the [`AgentLog`] sink, its trace file ([`JsonLines`])
 //! and its MCAP log for Foxglove ([`McapAgentLog`]).
 
-use mason_mission::agent::Message;
+use mason_mission::agent::{Command, DropCause, DropCounts, Message};
 use mason_mission::Event;
 use std::io::Write;
 
@@ -15,6 +15,18 @@ pub trait AgentLog {
     }
     /// The UAV's pose at mission time `t` (m), after every tick.
     fn pose(&mut self, _t: f64, _pose: (f64, f64, f64)) -> std::io::Result<()> {
+        Ok(())
+    }
+    /// A ground station's command, checked, heard at mission time `t`.
+    fn command(&mut self, _t: f64, _c: &Command) -> std::io::Result<()> {
+        Ok(())
+    }
+    /// The first sample dropped on arrival for `cause`, at mission time `t` (once per cause).
+    fn dropped(&mut self, _t: f64, _cause: DropCause) -> std::io::Result<()> {
+        Ok(())
+    }
+    /// The samples dropped on arrival, per cause, when the agent stops.
+    fn drops(&mut self, _t: f64, _counts: &DropCounts) -> std::io::Result<()> {
         Ok(())
     }
     /// The agent stopped: complete the log.
@@ -41,6 +53,15 @@ impl AgentLog for Vec<Box<dyn AgentLog + '_>> {
     }
     fn pose(&mut self, t: f64, p: (f64, f64, f64)) -> std::io::Result<()> {
         self.iter_mut().try_for_each(|l| l.pose(t, p))
+    }
+    fn command(&mut self, t: f64, c: &Command) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.command(t, c))
+    }
+    fn dropped(&mut self, t: f64, cause: DropCause) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.dropped(t, cause))
+    }
+    fn drops(&mut self, t: f64, counts: &DropCounts) -> std::io::Result<()> {
+        self.iter_mut().try_for_each(|l| l.drops(t, counts))
     }
     fn finish(&mut self) -> std::io::Result<()> {
         self.iter_mut().try_for_each(|l| l.finish())
@@ -120,7 +141,10 @@ type Mcap<'a, W> = mason_report::McapLog<'a, std::io::BufWriter<Capped<W>>>;
 /// [`mason_report::PoseSampler`] samples them (at every event, else at
 /// [`mason_report::POSE_RATE_HZ`], heading along the last move); every event; every message
 /// sent or heard on `/messages` (`kind` is `sent/KIND` or `heard/KIND`, `body` the whole
-/// message). At most [`MAX_LOG_BYTES`].
+/// message); every command of a ground station it obeys (`kind` `heard/command`, `body` the
+/// command, `from` this UAV); the first sample dropped on arrival for each cause (`kind` `dropped/CAUSE`, `body`
+/// `{"cause"}`), and when it stops the counts per cause (`kind` `dropped/counts`, `body` the
+/// counts by cause name). At most [`MAX_LOG_BYTES`].
 pub struct McapAgentLog<'a, W: Write + std::io::Seek> {
     log: Option<Mcap<'a, W>>,
     sampler: mason_report::PoseSampler,
@@ -158,6 +182,30 @@ impl<W: Write + std::io::Seek> AgentLog for McapAgentLog<'_, W> {
         let kind = format!("{}/{}", if sent { "sent" } else { "heard" }, m.kind.key());
         self.log()?
             .message(t, m.uav, &kind, &body)
+            .map_err(std::io::Error::other)
+    }
+
+    fn command(&mut self, t: f64, c: &Command) -> std::io::Result<()> {
+        let uav = self.sampler.uav();
+        let body = serde_json::to_value(c).map_err(std::io::Error::other)?;
+        self.log()?
+            .message(t, uav, "heard/command", &body)
+            .map_err(std::io::Error::other)
+    }
+
+    fn dropped(&mut self, t: f64, cause: DropCause) -> std::io::Result<()> {
+        let uav = self.sampler.uav();
+        let body = serde_json::json!({ "cause": cause.name() });
+        self.log()?
+            .message(t, uav, &format!("dropped/{}", cause.name()), &body)
+            .map_err(std::io::Error::other)
+    }
+
+    fn drops(&mut self, t: f64, counts: &DropCounts) -> std::io::Result<()> {
+        let uav = self.sampler.uav();
+        let body = serde_json::to_value(counts).map_err(std::io::Error::other)?;
+        self.log()?
+            .message(t, uav, "dropped/counts", &body)
             .map_err(std::io::Error::other)
     }
 

@@ -1,8 +1,12 @@
 //! How an agent's messages reach its team: the [`Transport`] trait, and [`Hub`], an in-memory
 //! bus between agents on threads of one process (for tests and for trying the runtime
 //! without a network). The Zenoh transport is `ZenohLink` (feature `zenoh`).
+//!
+//! A transport checks nothing: it hands every sample over as an [`Arrival`] (its bytes, or a
+//! message in-process, and the key it came on), and the agent checks it on arrival
+//! ([`mason_mission::agent::Agent::admit`], called by [`crate::drive()`]).
 
-use mason_mission::agent::Message;
+use mason_mission::agent::{Arrival, Message};
 use std::collections::VecDeque;
 use std::sync::mpsc;
 use std::time::Instant;
@@ -11,23 +15,35 @@ use std::time::Instant;
 pub trait Transport {
     /// Publishes one message (best effort: a lost message is repaired by the next one).
     fn send(&mut self, m: &Message);
-    /// The teammates' messages that arrive before `deadline`: returns as soon as at least
-    /// one has arrived (or at the deadline, possibly with none).
-    fn recv(&mut self, deadline: Instant) -> Vec<Message>;
+    /// The samples that arrive before `deadline`, unchecked: returns as soon as at least one
+    /// has arrived (or at the deadline, possibly with none).
+    fn recv(&mut self, deadline: Instant) -> Vec<Arrival>;
 }
 
 /// An in-memory bus between agents in one process (threads): every message goes to every
-/// other member.
+/// other member, on the key of its `uav` and `kind` (as an honest Zenoh peer publishes).
 pub struct Hub {
-    senders: Vec<mpsc::Sender<Message>>,
-    receivers: VecDeque<mpsc::Receiver<Message>>,
+    senders: Vec<mpsc::Sender<Arrival>>,
+    receivers: VecDeque<mpsc::Receiver<Arrival>>,
 }
 
 /// One member's end of a [`Hub`].
 pub struct HubLink {
     me: usize,
-    senders: Vec<mpsc::Sender<Message>>,
-    rx: mpsc::Receiver<Message>,
+    senders: Vec<mpsc::Sender<Arrival>>,
+    rx: mpsc::Receiver<Arrival>,
+}
+
+impl HubLink {
+    /// Sends any sample, on any key, to every other member: what a stranger on a shared
+    /// network can do (the tests' rogue).
+    pub fn inject(&self, sample: &Arrival) {
+        for (v, s) in self.senders.iter().enumerate() {
+            if v != self.me {
+                let _ = s.send(sample.clone());
+            }
+        }
+    }
 }
 
 impl Hub {
@@ -54,14 +70,10 @@ impl Hub {
 
 impl Transport for HubLink {
     fn send(&mut self, m: &Message) {
-        for (v, s) in self.senders.iter().enumerate() {
-            if v != self.me {
-                let _ = s.send(m.clone());
-            }
-        }
+        self.inject(&Arrival::keyed(m.clone()));
     }
 
-    fn recv(&mut self, deadline: Instant) -> Vec<Message> {
+    fn recv(&mut self, deadline: Instant) -> Vec<Arrival> {
         let wait = deadline.saturating_duration_since(Instant::now());
         let mut out = Vec::new();
         if let Ok(m) = self.rx.recv_timeout(wait) {
@@ -95,8 +107,19 @@ pub(crate) mod testing {
 
     impl Transport for Canned {
         fn send(&mut self, _: &Message) {}
-        fn recv(&mut self, _: Instant) -> Vec<Message> {
+        fn recv(&mut self, _: Instant) -> Vec<Arrival> {
             std::mem::take(&mut self.0)
+                .into_iter()
+                .map(Arrival::keyed)
+                .collect()
+        }
+    }
+
+    /// The sequence number of a sample that carries a message.
+    pub fn seq_of(a: &Arrival) -> u64 {
+        match &a.body {
+            mason_mission::agent::Body::Message(m) => m.seq,
+            mason_mission::agent::Body::Bytes(_) | mason_mission::agent::Body::Command(_) => 0,
         }
     }
 
@@ -107,6 +130,9 @@ pub(crate) mod testing {
         let soon = Instant::now() + std::time::Duration::from_millis(50);
         assert!(links[0].recv(soon).is_empty());
         assert_eq!(links[1].recv(soon).len(), 1);
-        assert_eq!(links[2].recv(soon)[0].seq, 1);
+        let got = links[2].recv(soon);
+        assert_eq!(seq_of(&got[0]), 1);
+        // On its sender's key.
+        assert_eq!(got[0].key.as_ref().map(|k| k.uav.as_str()), Some("1"));
     }
 }

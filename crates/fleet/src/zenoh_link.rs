@@ -1,13 +1,14 @@
 //! The Zenoh transport of an agent (feature `zenoh`): a peer-mode session with
 //! multicast scouting off and explicit listen/connect endpoints. Each message goes out as
 //! JSON (encoding `application/json`) on `PREFIX/MISSION/UAV/KIND`; the agent subscribes to
-//! `PREFIX/MISSION/*/*` and skips its own key. Anything that does not decode as a
-//! [`Message`] is counted and ignored.
+//! `PREFIX/MISSION/*/*` and skips its own key. Every other sample is handed over as it came,
+//! its bytes and its key's last two chunks ([`Arrival`]), for the agent's check on arrival
+//! ([`mason_mission::agent::Agent::admit`]): nothing is decoded here.
 
 use crate::error::{FleetError, FleetResult};
 use crate::network::Network;
 use crate::transport::Transport;
-use mason_mission::agent::{Message, MessageKind};
+use mason_mission::agent::{Arrival, Message, MessageKind, SampleKey};
 use std::collections::HashMap;
 use std::sync::mpsc;
 use std::time::Instant;
@@ -23,10 +24,8 @@ pub struct ZenohLink {
     session: Session,
     prefix: String,
     publishers: HashMap<&'static str, Publisher<'static>>,
-    rx: mpsc::Receiver<Vec<u8>>,
+    rx: mpsc::Receiver<Arrival>,
     _subscriber: Subscriber<()>,
-    /// Samples that did not decode as a message.
-    pub undecodable: u64,
 }
 
 fn json_list(items: &[String]) -> String {
@@ -69,8 +68,10 @@ impl ZenohLink {
         let subscriber = session
             .declare_subscriber(format!("{prefix}/*/*"))
             .callback(move |sample| {
-                if !sample.key_expr().as_str().starts_with(&own) {
-                    let _ = tx.send(sample.payload().to_bytes().into_owned());
+                let key = sample.key_expr().as_str();
+                if !key.starts_with(&own) {
+                    let bytes = sample.payload().to_bytes().into_owned();
+                    let _ = tx.send(Arrival::bytes(SampleKey::parse(key), bytes));
                 }
             })
             .wait()
@@ -83,7 +84,6 @@ impl ZenohLink {
             publishers: HashMap::new(),
             rx,
             _subscriber: subscriber,
-            undecodable: 0,
         })
     }
 
@@ -113,14 +113,6 @@ impl ZenohLink {
         drop(publishers);
         let _ = session.close().wait();
     }
-
-    fn decode(&mut self, bytes: &[u8]) -> Option<Message> {
-        let m = serde_json::from_slice(bytes).ok();
-        if m.is_none() {
-            self.undecodable += 1;
-        }
-        m
-    }
 }
 
 impl Transport for ZenohLink {
@@ -132,13 +124,13 @@ impl Transport for ZenohLink {
         }
     }
 
-    fn recv(&mut self, deadline: Instant) -> Vec<Message> {
+    fn recv(&mut self, deadline: Instant) -> Vec<Arrival> {
         let wait = deadline.saturating_duration_since(Instant::now());
-        let mut raw = Vec::new();
-        if let Ok(b) = self.rx.recv_timeout(wait) {
-            raw.push(b);
-            raw.extend(self.rx.try_iter());
+        let mut out = Vec::new();
+        if let Ok(a) = self.rx.recv_timeout(wait) {
+            out.push(a);
+            out.extend(self.rx.try_iter());
         }
-        raw.iter().filter_map(|b| self.decode(b)).collect()
+        out
     }
 }

@@ -7,7 +7,7 @@
 //! run's seed, once per (message, receiver), receivers in UAV order; each vehicle draws from
 //! its own generator, seeded with [`agent_seed`]. A fault-free bus draws nothing.
 
-use crate::agent::{agent_seed, Agent, AgentSetup, Message, SimulatedVehicle};
+use crate::agent::{agent_seed, Agent, AgentSetup, Arrival, DropCounts, SimulatedVehicle};
 use crate::link::{Fate, LinkFaults};
 use crate::state::{Event, EventKind, UavState};
 use rand::SeedableRng;
@@ -24,6 +24,9 @@ pub struct BusFaults {
     pub kills: Vec<(usize, f64)>,
     /// `(uav, t)`: the killed agent starts again at t, as a new incarnation.
     pub restarts: Vec<(usize, f64)>,
+    /// `(t, sample)`: what other peers on the network send (a ground station's commands, a
+    /// rogue's samples): each reaches every agent at t, untouched by link faults.
+    pub injected: Vec<(f64, Arrival)>,
 }
 
 /// The events that record an agent killed at `t`, from its own trace so far: it fails, leaves
@@ -96,13 +99,16 @@ pub struct BusRun {
     pub sent: usize,
     /// Messages delivered (duplicates included).
     pub delivered: usize,
+    /// Messages the agents dropped on arrival, per cause, summed over the team (duplicates
+    /// are `replay`).
+    pub drops: DropCounts,
 }
 
 struct Delivery {
     t: f64,
     seq: u64,
     to: usize,
-    msg: Message,
+    sample: Arrival,
 }
 
 impl PartialEq for Delivery {
@@ -174,8 +180,20 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
     let (mut ki, mut ri) = (0, 0);
     let mut queue: BinaryHeap<Reverse<Delivery>> = BinaryHeap::new();
     let mut seq = 0u64;
+    for (t, sample) in &faults.injected {
+        for to in 0..n {
+            seq += 1;
+            queue.push(Reverse(Delivery {
+                t: *t,
+                seq,
+                to,
+                sample: sample.clone(),
+            }));
+        }
+    }
     let mut events: Vec<Event> = Vec::new();
     let (mut sent, mut delivered) = (0, 0);
+    let mut drops = DropCounts::default();
     let max_t = setup.config.max_time_s;
     loop {
         // The next thing to happen: a kill, a restart, a delivery or an agent's wake-up.
@@ -200,7 +218,8 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
         let target = if next_kill == Some(t) {
             let (u, at) = kills[ki];
             ki += 1;
-            if agents[u].take().is_some() {
+            if let Some(a) = agents[u].take() {
+                drops.add(a.drops());
                 let tail = killed_events(&events, u as u32, at);
                 for e in &tail {
                     if let EventKind::Lost { brick } = e.kind {
@@ -233,7 +252,12 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
             let Reverse(d) = queue.pop().expect("peeked");
             delivered += 1;
             match agents[d.to].as_mut() {
-                Some(a) => a.receive(t, d.msg),
+                // A sample dropped on arrival changes nothing but the counters: no tick.
+                Some(a) => {
+                    if a.hear(t, d.sample).is_err() {
+                        continue;
+                    }
+                }
                 None => continue,
             }
             d.to
@@ -262,7 +286,7 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
                         t: t + delay,
                         seq,
                         to,
-                        msg: m.clone(),
+                        sample: Arrival::keyed(m.clone()),
                     }));
                 }
             }
@@ -270,11 +294,15 @@ pub fn fly_bus(setup: AgentSetup<'_>, faults: &BusFaults, seed: u64) -> BusRun {
     }
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
     let finished = agents.iter().flatten().all(|a| a.finished());
+    for a in agents.iter().flatten() {
+        drops.add(a.drops());
+    }
     BusRun {
         events,
         finished,
         sent,
         delivered,
+        drops,
     }
 }
 

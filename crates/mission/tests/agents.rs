@@ -1,10 +1,13 @@
 //! The agents' protocol on the virtual bus: every run is checked by `check_trace`, and every
 //! brick must be placed exactly once.
 
-use mason_mission::agent::{AgentSetup, DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S};
+use mason_mission::agent::{
+    Agent, AgentSetup, Arrival, Command, DropCause, DropCounts, Message, MessageKind, Order,
+    SimulatedVehicle, DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S,
+};
 use mason_mission::bus::{fly_bus, BusFaults, BusRun};
 use mason_mission::{
-    check_trace, slot_length, Coord, EventKind, LinkFaults, MissionConfig, Window,
+    check_trace, slot_length, Coord, EventKind, LinkFaults, MissionConfig, UavState, Window,
 };
 use mason_order::{BuildProblem, CostModel, PlannerSpec};
 use mason_wall::{BrickId, Wall};
@@ -184,6 +187,244 @@ fn a_restarted_agent_rejoins_without_placing_a_brick_twice() {
     }
 }
 
+/// UAV 1's first messages, as it sends them at 0, 1, 2, 3 and 4 s on `name` with `uavs` UAVs.
+fn first_messages(name: &str, uavs: usize) -> Vec<Message> {
+    let w = wall(name);
+    let model = CostModel::default();
+    let order = order(&w, &model);
+    let config = MissionConfig::with_uavs(uavs);
+    let setup = AgentSetup {
+        wall: &w,
+        order: &order,
+        assignment: None,
+        model: &model,
+        config: &config,
+        coord: Coord::Auto,
+        slot_s: slot_length(&w, &model, &config).unwrap(),
+        uav: 1,
+        mission: "test",
+        incarnation: 1,
+        dead_after_s: DEFAULT_DEAD_AFTER_S,
+        lease_s: DEFAULT_LEASE_S,
+    };
+    let mut agent = Agent::new(setup, Box::new(SimulatedVehicle::new(&config, 1)));
+    let mut out = Vec::new();
+    for t in 0..5 {
+        out.extend(agent.tick(f64::from(t)).messages);
+    }
+    out
+}
+
+/// What a stranger on the network tries (issue #27), with the drops each attempt must cause
+/// in a team of three (UAV 1 drops what is sent in its name as `own`).
+fn rogue_samples(bricks: usize) -> (Vec<(f64, Arrival)>, DropCounts) {
+    let first = first_messages("mbzirc", 3);
+    let heartbeat = first[0].clone();
+    let mut samples = Vec::new();
+    let mut expect = Expect::default();
+    // The heartbeat of "UAV 7" that once ended every agent.
+    for k in 0..5 {
+        let mut m = heartbeat.clone();
+        m.uav = 7;
+        m.t = 30.0 + f64::from(k);
+        samples.push((m.t, Arrival::keyed(m)));
+        expect.all(DropCause::UnknownUav);
+    }
+    // Malformed samples, and one too long to read.
+    let junk: [&[u8]; 3] = [b"{", br#"{"v":1,"uav":"one"}"#, b"[1,2,3]"];
+    for j in junk {
+        samples.push((40.0, Arrival::bytes(None, j.to_vec())));
+        expect.all(DropCause::Malformed);
+    }
+    samples.push((40.0, Arrival::bytes(None, vec![b' '; 1 << 20])));
+    expect.all(DropCause::Size);
+    // Replays of UAV 1's first messages: while recent, and once old.
+    for (at, cause) in [(100.0, DropCause::Replay), (300.0, DropCause::Time)] {
+        for m in &first {
+            samples.push((at, Arrival::keyed(m.clone())));
+            expect.others_of_1(cause);
+        }
+    }
+    // UAV 1's status forged under a higher incarnation: every brick placed.
+    let mut forged = heartbeat.clone();
+    forged.incarnation = 2;
+    forged.t = 60.0;
+    forged.kind = MessageKind::Placed;
+    forged.status.placed = (0..bricks as u32).collect();
+    samples.push((60.0, Arrival::keyed(forged)));
+    expect.others_of_1(DropCause::Implausible);
+    // A flood: 10 000 samples within one second.
+    for i in 0..10_000u64 {
+        let mut m = heartbeat.clone();
+        m.t = 200.0;
+        let at = 200.0 + i as f64 * 1e-4;
+        let sample = match i % 4 {
+            0 => {
+                m.seq = u64::MAX - i;
+                expect.others_of_1(DropCause::Jump);
+                Arrival::keyed(m)
+            }
+            1 => {
+                m.uav = 9;
+                expect.all(DropCause::UnknownUav);
+                Arrival::keyed(m)
+            }
+            2 => {
+                m.mission = "elsewhere".into();
+                expect.all(DropCause::Mission);
+                Arrival::keyed(m)
+            }
+            _ => {
+                let mut a = Arrival::keyed(m);
+                if let Some(k) = a.key.as_mut() {
+                    k.uav = "2".into();
+                }
+                expect.others_of_1(DropCause::Key);
+                a
+            }
+        };
+        samples.push((at, sample));
+    }
+    (samples, expect.0)
+}
+
+/// The drops a team of three must count.
+#[derive(Default)]
+struct Expect(DropCounts);
+
+impl Expect {
+    /// Every agent drops it for `cause`.
+    fn all(&mut self, cause: DropCause) {
+        for _ in 0..3 {
+            self.0.add(&one(cause));
+        }
+    }
+    /// A sample in UAV 1's name: UAV 1 drops it as its own, the others for `cause`.
+    fn others_of_1(&mut self, cause: DropCause) {
+        self.0.add(&one(DropCause::Own));
+        self.0.add(&one(cause));
+        self.0.add(&one(cause));
+    }
+}
+
+fn one(cause: DropCause) -> DropCounts {
+    let mut c = DropCounts::default();
+    c.record(cause);
+    c
+}
+
+#[test]
+fn a_rogue_on_the_network_changes_nothing_but_the_counters() {
+    let bricks = wall("mbzirc").len();
+    let (honest, _) = fly("mbzirc", 3, Coord::Auto, &BusFaults::default(), 4);
+    assert_eq!(honest.drops.total(), 0, "{:?}", honest.drops);
+    let (rogue, expected) = rogue_samples(bricks);
+    let faults = BusFaults {
+        injected: rogue.clone(),
+        ..BusFaults::default()
+    };
+    let (attacked, placed_bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 4);
+    assert!(attacked.finished);
+    assert_eq!(placed(&attacked), placed_bricks);
+    // Not one event changed: every sample was dropped, and only counted.
+    assert_eq!(attacked.events, honest.events);
+    assert_eq!(attacked.drops.total(), 3 * rogue.len() as u64);
+    assert_eq!(attacked.drops, expected, "{:?}", attacked.drops);
+}
+
+fn command(seq: u64, t: f64, order: Order) -> (f64, Arrival) {
+    let c = Command {
+        v: 1,
+        mission: "test".into(),
+        station: 0,
+        seq,
+        t,
+        order,
+    };
+    (t, Arrival::command(c))
+}
+
+fn states(run: &BusRun, uav: u32, outcome: &str) -> Vec<(f64, UavState)> {
+    run.events
+        .iter()
+        .filter(|e| e.uav == uav)
+        .filter_map(|e| match e.kind {
+            EventKind::State {
+                state, outcome: o, ..
+            } if o == outcome => Some((e.t, state)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_ground_station_lands_one_uav_and_resumes_it() {
+    let faults = BusFaults {
+        injected: vec![
+            command(1, 100.0, Order::Land { uav: 1 }),
+            command(2, 400.0, Order::Resume),
+        ],
+        ..BusFaults::default()
+    };
+    let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 6);
+    assert!(run.finished);
+    assert_eq!(placed(&run), bricks);
+    let landed = states(&run, 1, "commanded");
+    assert!(
+        landed
+            .iter()
+            .any(|(t, s)| *s == UavState::Land && *t >= 100.0),
+        "{landed:?}"
+    );
+    let held = states(&run, 1, "held");
+    assert_eq!(held.len(), 1, "{held:?}");
+    // Nothing placed by UAV 1 while it was held, and bricks placed after the resume.
+    let placed_by_1: Vec<f64> = run
+        .events
+        .iter()
+        .filter(|e| e.uav == 1 && matches!(e.kind, EventKind::Place { .. }))
+        .map(|e| e.t)
+        .collect();
+    assert!(
+        !placed_by_1.iter().any(|&t| t > held[0].0 && t < 400.0),
+        "{placed_by_1:?}"
+    );
+    assert!(placed_by_1.iter().any(|&t| t > 400.0), "{placed_by_1:?}");
+    // The other UAVs were not told to land.
+    assert!(states(&run, 0, "commanded").is_empty() && states(&run, 2, "held").is_empty());
+    assert_eq!(run.drops.total(), 0);
+}
+
+#[test]
+fn an_abort_lands_the_team_safely() {
+    let faults = BusFaults {
+        injected: vec![command(1, 300.0, Order::Abort)],
+        ..BusFaults::default()
+    };
+    let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 6);
+    assert!(run.finished);
+    let n = placed(&run);
+    assert!(n > 0 && n < bricks, "{n}");
+    for u in 0..3 {
+        let aborted = states(&run, u, "aborted");
+        assert_eq!(
+            aborted.first().map(|s| s.1),
+            Some(UavState::Land),
+            "UAV {u}"
+        );
+    }
+    // A replayed abort, or one from a station out of range, is dropped.
+    let again = BusFaults {
+        injected: vec![
+            command(1, 300.0, Order::Abort),
+            command(1, 310.0, Order::Abort),
+        ],
+        ..BusFaults::default()
+    };
+    let (twice, _) = fly("mbzirc", 3, Coord::Auto, &again, 6);
+    assert_eq!(twice.drops.count(DropCause::Replay), 3);
+}
+
 /// Random faults for case `case` (the same for a case on every machine).
 fn random_case(case: usize) -> (BusFaults, Coord, f64) {
     use rand::{Rng, SeedableRng};
@@ -235,6 +476,13 @@ fn random_faults_never_break_the_safety_rules() {
         if let Err(e) = summary {
             broken.push(format!("case {case} {coord:?}: {e:?}"));
         }
+        // The checks on arrival drop nothing an honest teammate sends but duplicates.
+        let drops = run.drops;
+        if drops.total() != drops.count(DropCause::Replay) {
+            broken.push(format!(
+                "case {case} {coord:?}: honest samples dropped {drops:?}"
+            ));
+        }
         if run.finished && placed(&run) == bricks {
             finished += 1;
         }
@@ -249,6 +497,24 @@ fn random_faults_never_break_the_safety_rules() {
     // Faults may leave a wall unfinished (a lone survivor cannot carry orange bricks), but
     // most runs finish.
     assert!(finished * 10 >= random_cases() * 8, "{finished} finished");
+}
+
+/// Found by the 3000-case run (cases 701, 1136, 2062): a pair's leader whose partner was
+/// killed grasps the orange brick unaware, learns the brick fell, and must report its own
+/// loss, since the fall the partner's death reported came before its grasp.
+#[test]
+fn a_leader_grasping_after_its_partner_died_reports_its_own_loss() {
+    for case in [701, 1136, 2062] {
+        let (faults, coord, grasp) = random_case(case);
+        let (run, _, summary) = try_fly("mbzirc", 3, coord, &faults, case as u64, |c| {
+            c.faults.grasp_fail = grasp;
+        });
+        assert!(summary.is_ok(), "case {case}: {summary:?}");
+        assert!(run
+            .events
+            .iter()
+            .any(|e| matches!(e.kind, EventKind::Lost { .. })));
+    }
 }
 
 #[test]

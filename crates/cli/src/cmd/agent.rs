@@ -260,6 +260,14 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
     if let Some(p) = &report.world_problem {
         eprintln!("mason agent: warning: the simulated camera skipped a trace: {p}");
     }
+    if report.drops.total() > 0 {
+        // One line launch reads back into its summary.
+        eprintln!(
+            "{}{}",
+            mason_fleet::DROPPED_LINE,
+            serde_json::to_string(&report.drops).unwrap_or_default()
+        );
+    }
     if !quiet {
         let s = report.stats;
         eprintln!(

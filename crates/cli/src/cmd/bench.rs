@@ -58,6 +58,12 @@ pub enum Suite {
         #[arg(long, default_value_t = 20, allow_negative_numbers = true)]
         runs: usize,
     },
+    /// The cost of an agent's check on arrival, per message (issue #27: under 5 µs)
+    Arrivals {
+        /// Hundred thousands of checks per row
+        #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
+        runs: usize,
+    },
     /// MovingAI maps at rising agent counts: lacam and joint, one child `mason crew` per case
     Mapf {
         /// The directory holding maps/ and scen/ (default ../shared/benchmarks/mapf)
@@ -96,6 +102,7 @@ pub fn run(suite: Suite, quiet: bool) -> CliResult<()> {
         Suite::Missions { runs: n } => mason_bench::throughput(runs(n)?)?,
         Suite::Cmcp { data } => mason_bench::cmcp(data.as_deref(), None)?,
         Suite::Replan { runs: n } => mason_bench::replan(runs(n)? * 50)?,
+        Suite::Arrivals { runs: n } => mason_bench::arrivals(runs(n)?)?,
         Suite::Mapf { data, long } => {
             let mut note = |line: &str| {
                 if !quiet {

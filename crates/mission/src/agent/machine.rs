@@ -113,6 +113,11 @@ impl Agent<'_> {
                 outcome,
                 duration,
             } => {
+                // Ordered down before take-off: it waits (an abort ends it at the next tick).
+                if state == UavState::TakeOff && self.orders.landing().is_some() {
+                    self.flight.until = self.now + cfg.coord.heartbeat_s;
+                    return;
+                }
                 // A (re)started agent learns the wall from its teammates before it flies.
                 if state == UavState::TakeOff
                     && !self.members.heard_all(self.me)
@@ -163,7 +168,12 @@ impl Agent<'_> {
             },
             After::Landed => {
                 self.arrive(cfg.arena.uav_starts[self.me]);
-                self.go(UavState::Landed, "landed", None);
+                if self.flight.outcome == super::commands::COMMANDED && !self.orders.abort {
+                    // Landed on a station's order: it waits for `resume` on the ground.
+                    self.go(UavState::Check, super::commands::HELD, None);
+                } else {
+                    self.go(UavState::Landed, "landed", None);
+                }
             }
             After::Nothing => {}
         }

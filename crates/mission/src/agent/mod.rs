@@ -55,6 +55,8 @@
 //! before take-off, climbing through `TakeOff`, at its cruise altitude in the air, descending
 //! through `Land`.
 
+mod commands;
+pub mod gate;
 mod machine;
 mod membership;
 mod pairs;
@@ -65,8 +67,11 @@ pub mod wire;
 mod work;
 mod zone;
 
+pub use gate::{Arrival, Body, Checked, DropCause, DropCounts, Dropped, SampleKey};
 pub use vehicle::{Autopilot, SimulatedVehicle, WallView};
-pub use wire::{Ack, Message, MessageKind, Out, PairRef, Request, Status, SCHEMA_VERSION};
+pub use wire::{
+    Ack, Command, Message, MessageKind, Order, Out, PairRef, Request, Status, SCHEMA_VERSION,
+};
 
 use crate::altitude::altitude_during;
 use crate::config::MissionConfig;
@@ -173,6 +178,10 @@ pub struct Agent<'a> {
     pair: PairState,
     /// What goes out.
     outbox: Outbox,
+    /// The check on arrival: its bounds and counts.
+    inbox: gate::Inbox,
+    /// What the ground stations have ordered.
+    orders: commands::Orders,
 }
 
 impl<'a> Agent<'a> {
@@ -201,6 +210,8 @@ impl<'a> Agent<'a> {
             ),
             pair: PairState::default(),
             outbox: Outbox::default(),
+            inbox: gate::Inbox::new(&setup),
+            orders: commands::Orders::default(),
             setup,
             autopilot,
         }
@@ -246,19 +257,14 @@ impl<'a> Agent<'a> {
         (p.x, p.y, z)
     }
 
-    /// Takes a teammate's message heard at `now`. Other missions, other schema versions, its
-    /// own messages and stale ones are ignored.
-    pub fn receive(&mut self, now: f64, m: Message) {
+    /// Takes a teammate's message heard at `now`, checked on arrival ([`Agent::admit`]; or
+    /// [`Agent::hear`] for both steps).
+    pub fn receive(&mut self, now: f64, m: Checked) {
+        let m = match m.0 {
+            gate::Heard::Status(m) => *m,
+            gate::Heard::Command(c) => return self.obey(&c),
+        };
         let u = m.uav as usize;
-        if m.v != SCHEMA_VERSION
-            || m.mission != self.setup.mission
-            || u >= self.n
-            || u == self.me
-            || m.status.heard.len() != self.n
-            || !self.members.is_newer(u, m.incarnation, m.seq)
-        {
-            return;
-        }
         self.work.learn_placed(m.status.placed.iter().copied());
         self.hear_outs(&m.status.out);
         self.members.back_in(u, m.incarnation);
@@ -285,6 +291,7 @@ impl<'a> Agent<'a> {
             self.outbox.pending = Some(MessageKind::State);
         }
         if !self.finished() {
+            self.ground_orders();
             self.expelled();
             self.liveness();
             self.update_mode();
@@ -435,21 +442,30 @@ mod tests {
             f(&mut x);
             x
         };
-        a.receive(0.1, m.clone()); // its own
-        a.receive(0.1, from_other(&|x| x.mission = "other".into()));
-        a.receive(0.1, from_other(&|x| x.v = SCHEMA_VERSION + 1));
-        a.receive(0.1, from_other(&|x| x.uav = 2));
-        a.receive(0.1, from_other(&|x| x.status.heard = vec![0.0]));
+        let _ = a.hear(0.1, Arrival::keyed(m.clone())); // its own
+        let _ = a.hear(
+            0.1,
+            Arrival::keyed(from_other(&|x| x.mission = "other".into())),
+        );
+        let _ = a.hear(
+            0.1,
+            Arrival::keyed(from_other(&|x| x.v = SCHEMA_VERSION + 1)),
+        );
+        let _ = a.hear(0.1, Arrival::keyed(from_other(&|x| x.uav = 2)));
+        let _ = a.hear(
+            0.1,
+            Arrival::keyed(from_other(&|x| x.status.heard = vec![0.0])),
+        );
         assert_eq!(a.placed_known(), 0);
-        a.receive(0.1, from_other(&|_| {}));
+        let _ = a.hear(0.1, Arrival::keyed(from_other(&|_| {})));
         assert_eq!(a.placed_known(), 1);
         // The same message again, or an older one, changes nothing.
         let mut again = from_other(&|_| {});
         again.status.placed = vec![3, 4];
-        a.receive(0.2, again.clone());
+        let _ = a.hear(0.2, Arrival::keyed(again.clone()));
         assert_eq!(a.placed_known(), 1);
         again.seq += 1;
-        a.receive(0.2, again);
+        let _ = a.hear(0.2, Arrival::keyed(again));
         assert_eq!(a.placed_known(), 2);
     }
 

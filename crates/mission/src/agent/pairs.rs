@@ -63,6 +63,15 @@ impl Agent<'_> {
             && self.autopilot.pair_dropped(b, self.pair.since) == Some(true)
     }
 
+    /// Whether its orange brick fell since the pair formed and since it grasped it: a fall
+    /// its partner reported then covers its own grasp.
+    pub(super) fn fell_since_grasp(&mut self, b: BrickId) -> bool {
+        let since = self.pair.since.max(self.work.grasped_at);
+        kind(self.setup.wall, b).uavs_needed() == 2
+            && !self.pair.since.is_nan()
+            && self.autopilot.pair_dropped(b, since) == Some(true)
+    }
+
     /// The partner let go of the brick they carry: it lets go too and chooses again.
     /// Whether it did.
     pub(super) fn pair_let_go(&mut self) -> bool {
@@ -211,6 +220,7 @@ impl Agent<'_> {
                     return self.choose("partner_failed");
                 }
                 self.work.grasped = true;
+                self.work.grasped_at = self.now;
                 self.pair.leader = partner.map(|l| Member {
                     uav: l,
                     incarnation: self.members.incarnation_of(l),

@@ -96,7 +96,7 @@ pub(super) fn fly(
         for m in tick.messages {
             for to in (0..n).filter(|&v| v != u) {
                 if deliver(u, to, &m, t) {
-                    agents[to].receive(t, m.clone());
+                    let _ = agents[to].hear(t, super::Arrival::keyed(m.clone()));
                     wake[to] = wake[to].min(t);
                 }
             }

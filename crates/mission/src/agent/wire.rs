@@ -192,6 +192,59 @@ pub struct Message {
     pub status: Status,
 }
 
+/// What a ground station orders (JSON: the `command` field, a snake_case string).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "command", rename_all = "snake_case")]
+pub enum Order {
+    /// `abort`: every UAV lands after the brick in hand, and its mission ends.
+    Abort,
+    /// `land` (with `uav`): that UAV lands after the brick in hand and waits on the ground
+    /// for `resume`.
+    Land {
+        /// `uav`: the UAV (0-based).
+        uav: u32,
+    },
+    /// `resume`: UAVs waiting on the ground take off again, and landings not yet begun are
+    /// called off (an `abort` included).
+    Resume,
+}
+
+/// A ground station's command (schema version [`SCHEMA_VERSION`]), on the key
+/// `<prefix>/<mission>/station-<station>/command`:
+/// `{"v":1,"mission":"m1","station":0,"seq":3,"t":120.0,"command":"land","uav":1}`.
+///
+/// Without TLS and access control (issue #27 items 1 and 2) anyone on the network can send
+/// one: the checks on arrival hold it to the schema, the mission, the station's key, a time
+/// window and a growing `seq`, not to who sent it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Command {
+    /// `v`: the schema version, [`SCHEMA_VERSION`].
+    pub v: u32,
+    /// `mission`: the mission id.
+    pub mission: String,
+    /// `station`: the ground station (0-based, below [`super::gate::MAX_STATIONS`]).
+    pub station: u32,
+    /// `seq`: the station's sequence number, from 1; a receiver obeys only a higher one.
+    pub seq: u64,
+    /// `t`: mission time when sent (s).
+    pub t: f64,
+    /// `command` (and its fields): what to do.
+    #[serde(flatten)]
+    pub order: Order,
+}
+
+impl Command {
+    /// The last chunks of the command's key: `station-<station>/command`.
+    pub fn key(&self) -> String {
+        format!("{}{}/{}", STATION_CHUNK, self.station, COMMAND_KIND)
+    }
+}
+
+/// A station's key chunk is this prefix and its number.
+pub const STATION_CHUNK: &str = "station-";
+/// The last chunk of a command's key.
+pub const COMMAND_KIND: &str = "command";
+
 /// Whether two times that may have crossed the wire name the same instant: a JSON round trip
 /// by another client may change a float's last bits.
 pub(super) fn same_time(a: f64, b: f64) -> bool {
@@ -306,6 +359,28 @@ mod tests {
             assert_eq!(serde_json::to_value(k).unwrap(), serde_json::json!(k.key()));
             // Declared from the least to the most telling.
             assert_eq!(usize::from(k.weight()), i);
+        }
+    }
+
+    #[test]
+    fn commands_read_as_documented() {
+        let c: Command = serde_json::from_str(
+            r#"{"v":1,"mission":"m1","station":0,"seq":3,"t":120.0,"command":"land","uav":1}"#,
+        )
+        .unwrap();
+        assert_eq!(c.order, Order::Land { uav: 1 });
+        assert_eq!(c.key(), "station-0/command");
+        let abort = Command {
+            order: Order::Abort,
+            ..c.clone()
+        };
+        assert_eq!(
+            serde_json::to_string(&abort).unwrap(),
+            r#"{"v":1,"mission":"m1","station":0,"seq":3,"t":120.0,"command":"abort"}"#
+        );
+        for bad in [r#""command":"explode""#, r#""command":"land""#] {
+            let text = format!(r#"{{"v":1,"mission":"m","station":0,"seq":1,"t":0.0,{bad}}}"#);
+            assert!(serde_json::from_str::<Command>(&text).is_err(), "{bad}");
         }
     }
 

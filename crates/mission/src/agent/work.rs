@@ -22,6 +22,8 @@ pub(super) struct Work {
     pub(super) claimed_at: f64,
     /// Whether it holds it.
     pub(super) grasped: bool,
+    /// When it last grasped a brick (s; `NaN` before its first grasp).
+    pub(super) grasped_at: f64,
     /// Detect and grasp failures on this brick so far.
     pub(super) failures: u32,
     /// Every brick known placed (by wall index).
@@ -46,6 +48,7 @@ impl Work {
             brick: None,
             claimed_at: 0.0,
             grasped: false,
+            grasped_at: f64::NAN,
             failures: 0,
             placed: vec![false; bricks],
             unknown: vec![None; bricks],
@@ -220,6 +223,7 @@ impl Agent<'_> {
     pub(super) fn grasped_brick(&mut self) {
         let b = self.work.brick.expect("carrying");
         self.work.grasped = true;
+        self.work.grasped_at = self.now;
         self.emit(EventKind::Grasp { brick: b });
         let wait = self.setup.config.arena.wall_wait(self.me);
         self.fly(UavState::FlyToWallWait, "grasped", wait, 0.0);
@@ -238,9 +242,10 @@ impl Agent<'_> {
 
     /// Lets go of its brick (lost if grasped) and of its request.
     pub(super) fn drop_brick(&mut self, outcome: &'static str) {
-        let covered = self.work.brick.is_some_and(|b| self.pair_fell(b));
+        let covered = self.work.brick.is_some_and(|b| self.fell_since_grasp(b));
         if let Some(b) = self.work.brick.take() {
-            // An orange brick its partner already let fall was reported lost by the partner.
+            // An orange brick its partner let fall while it held it was reported lost by the
+            // partner; a fall reported before its own grasp does not cover that grasp.
             if self.work.grasped && !covered {
                 self.emit(EventKind::Lost { brick: b });
             }
@@ -261,7 +266,20 @@ impl Agent<'_> {
         let wall = self.setup.wall;
         self.work.failures = 0;
         self.pair = Default::default();
-        match board.pick(wall, self.me) {
+        // A ground station ordered it down: it takes no brick and flies home.
+        let pick = match self.orders.landing() {
+            Some(o) => Err(o),
+            None => Ok(board.pick(wall, self.me)),
+        };
+        let pick = match pick {
+            Ok(p) => p,
+            Err(o) => {
+                let start = self.setup.config.arena.uav_starts[self.me];
+                let land = self.setup.config.uav.land_s;
+                return self.fly(UavState::Land, o, start, land);
+            }
+        };
+        match pick {
             Pick::Brick(b) => {
                 if self.flight.state != UavState::ChooseBrick {
                     self.go(UavState::ChooseBrick, outcome, None);
