@@ -4,8 +4,7 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use mason_mission::agent::{
-    Agent, AgentSetup, Arrival, SampleKey, SimulatedVehicle, DEFAULT_DEAD_AFTER_S,
-    DEFAULT_LEASE_S,
+    Agent, AgentSetup, Arrival, SampleKey, SimulatedVehicle, DEFAULT_DEAD_AFTER_S, DEFAULT_LEASE_S,
 };
 use mason_mission::{Coord, MissionConfig};
 use mason_order::CostModel;
@@ -28,7 +27,13 @@ fn team() -> &'static Team {
         let model = CostModel::default();
         let config = MissionConfig::with_uavs(3);
         let slot = mason_mission::slot_length(&wall, &model, &config).expect("a slot");
-        Team { wall, order, model, config, slot }
+        Team {
+            wall,
+            order,
+            model,
+            config,
+            slot,
+        }
     })
 }
 
