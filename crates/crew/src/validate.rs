@@ -361,15 +361,7 @@ mod tests {
         let every = plan_violations(g, e8, s, goals, p);
         let first = validate(g, e8, s, goals, p);
         assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
-        every
-            .iter()
-            .map(|e| {
-                format!("{e:?}")
-                    .chars()
-                    .take_while(char::is_ascii_alphanumeric)
-                    .collect()
-            })
-            .collect()
+        every.iter().map(mason_wall::violations::rule).collect()
     }
 
     #[test]

@@ -356,10 +356,7 @@ mod tests {
         found
             .iter()
             .map(|e| {
-                let name: String = format!("{e:?}")
-                    .chars()
-                    .take_while(char::is_ascii_alphanumeric)
-                    .collect();
+                let name = mason_wall::violations::rule(e);
                 match e {
                     TraceError::Zone { what, .. }
                     | TraceError::Placement { what, .. }

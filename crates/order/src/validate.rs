@@ -197,15 +197,7 @@ mod tests {
         let every = order_violations(wall, &model, order);
         let first = validate(wall, &model, order);
         assert_eq!(first.err().as_ref(), every.first(), "first and all agree");
-        every
-            .iter()
-            .map(|e| {
-                format!("{e:?}")
-                    .chars()
-                    .take_while(char::is_ascii_alphanumeric)
-                    .collect()
-            })
-            .collect()
+        every.iter().map(mason_wall::violations::rule).collect()
     }
 
     #[test]

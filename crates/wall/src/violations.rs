@@ -23,6 +23,15 @@
 
 use std::ops::ControlFlow;
 
+/// The name of a broken rule: its error variant's name (`Unsupported`, `ZoneShared`,
+/// `Conflict`, …), as `mason check` reports it.
+pub fn rule<E: std::fmt::Debug>(e: &E) -> String {
+    format!("{e:?}")
+        .chars()
+        .take_while(char::is_ascii_alphanumeric)
+        .collect()
+}
+
 /// The violations found so far, and whether the check goes on after the first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Violations<E> {

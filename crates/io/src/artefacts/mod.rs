@@ -31,13 +31,7 @@ use mason_wall::{BrickId, Wall};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// The name of a broken rule: its error variant (`Unsupported`, `ZoneShared`, `Conflict`, …).
-pub fn rule<E: std::fmt::Debug>(e: &E) -> String {
-    format!("{e:?}")
-        .chars()
-        .take_while(char::is_ascii_alphanumeric)
-        .collect()
-}
+pub use mason_wall::violations::rule;
 
 /// `path:line: reason`, the one-line error of a bad artefact line.
 fn at(path: &Path, line: usize, reason: impl std::fmt::Display) -> InputError {

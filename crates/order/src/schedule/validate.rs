@@ -571,10 +571,7 @@ mod tests {
     }
 
     fn rule(e: &ScheduleError) -> String {
-        format!("{e:?}")
-            .chars()
-            .take_while(char::is_ascii_alphanumeric)
-            .collect()
+        mason_wall::violations::rule(e)
     }
 
     /// The rules `s` breaks (3 UAVs, `budget`), checked both ways.
