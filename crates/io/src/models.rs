@@ -53,6 +53,24 @@ pub fn objective(objective: &str, uav_hazard: Option<f64>) -> InputResult<Object
     Ok(o)
 }
 
+/// The largest time limit accepted, in seconds (about 31 years): a larger one is refused,
+/// never turned into a `Duration` that overflows. No limit is written by leaving it out.
+pub const MAX_TIME_LIMIT_S: f64 = 1e9;
+
+/// A time limit given as `name` (`--time-limit` on the command line, `time_limit` in Python):
+/// a positive number of seconds up to [`MAX_TIME_LIMIT_S`].
+pub fn time_limit(name: &str, limit: Option<f64>) -> InputResult<Option<f64>> {
+    match limit {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(InputError::bad(format!(
+            "{name} {v}: expected a positive number of seconds"
+        ))),
+        Some(v) if v > MAX_TIME_LIMIT_S => Err(InputError::bad(format!(
+            "{name} {v:e}: at most {MAX_TIME_LIMIT_S:e} s (leave {name} out for no limit)"
+        ))),
+        other => Ok(other),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

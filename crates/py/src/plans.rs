@@ -14,21 +14,11 @@ use pyo3::types::PyDict;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-/// The largest time limit accepted (s), as the CLI's `--time-limit`.
-const MAX_TIME_LIMIT_S: f64 = 1e9;
-
-/// A checked time limit.
+/// A checked time limit ([`mason_io::time_limit`]).
 pub(crate) fn time_limit(py: Python<'_>, limit: Option<f64>) -> PyResult<Option<Duration>> {
-    match limit {
-        None => Ok(None),
-        Some(v) if v.is_finite() && v > 0.0 && v <= MAX_TIME_LIMIT_S => {
-            Ok(Some(Duration::from_secs_f64(v)))
-        }
-        Some(v) => Err(input_error(
-            py,
-            format!("time_limit {v}: expected a positive number of seconds up to {MAX_TIME_LIMIT_S:e} (None: no limit)"),
-        )),
-    }
+    Ok(mason_io::time_limit("time_limit", limit)
+        .map_err(bad(py))?
+        .map(Duration::from_secs_f64))
 }
 
 /// Brick ids (thesis ids or CMCP ids, as the CLI prints them) as the wall's bricks.

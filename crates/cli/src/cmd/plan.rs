@@ -144,21 +144,9 @@ pub fn solve(
     plan_checked(problem, spec, &budget).map_err(|e| input_error(format!("internal error: {e}")))
 }
 
-/// The largest `--time-limit` accepted, in seconds (about 31 years): a larger one is refused,
-/// never turned into a `Duration` that overflows. Omit the flag for no limit.
-pub const MAX_TIME_LIMIT_S: f64 = 1e9;
-
-/// Parses `--time-limit`: a positive number of seconds up to [`MAX_TIME_LIMIT_S`].
+/// Parses `--time-limit` ([`mason_io::time_limit`]).
 pub fn time_limit(s: Option<f64>) -> CliResult<Option<f64>> {
-    match s {
-        Some(v) if !(v.is_finite() && v > 0.0) => Err(input_error(format!(
-            "--time-limit {v}: expected a positive number of seconds"
-        ))),
-        Some(v) if v > MAX_TIME_LIMIT_S => Err(input_error(format!(
-            "--time-limit {v:e}: at most {MAX_TIME_LIMIT_S:e} s (omit --time-limit for no limit)"
-        ))),
-        other => Ok(other),
-    }
+    Ok(mason_io::time_limit("--time-limit", s)?)
 }
 
 /// With `--time-limit L`, says on stderr when the whole command took more than 10 % over L.
