@@ -388,6 +388,27 @@ fn a_mission_time_of_1e300_is_refused_so_the_mission_ends() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
 
+/// Issue #32: zero durations make events without progress. The mission stops at its event
+/// cap (exit 2, one line), once or in a batch, instead of allocating gigabytes or never ending.
+#[test]
+fn a_mission_with_zero_durations_stops_at_its_event_cap() {
+    let dir = scratch("zero-times");
+    let p = write(
+        &dir,
+        "zero.toml",
+        "max_time_s = 1000000.0\n[uav]\nspeed = 1e9\ncheck_s = 0.0\ntakeoff_s = 0.0\n\
+         land_s = 0.0\ndetect_s = 0.0\nabove_s = 0.0\nzone_transit_s = 0.0\n\
+         [faults]\ngrasp_fail = 0.999\ndetect_fail = 0.999\n",
+    );
+    for extra in [&[][..], &["--json"][..], &["--runs", "4"][..]] {
+        let mut args = vec!["simulate", "builtin:thesis-2x5", "--mission", &p];
+        args.extend_from_slice(extra);
+        let o = mason(&args);
+        assert_input_error(&o, &["event", "cap", "too short"]);
+        assert!(o.stdout.is_empty(), "{extra:?}: nothing printed");
+    }
+}
+
 #[test]
 fn when_html_cannot_be_written_the_svg_is_not_left_behind() {
     let dir = scratch("outputs");

@@ -17,6 +17,9 @@ pub enum Ending {
     Timeout,
     /// Asked to stop (Ctrl-C, SIGTERM).
     Interrupted,
+    /// The agent made more events than its cap ([`mason_mission::event_cap`] for one UAV):
+    /// durations too short to make progress.
+    Flooded,
 }
 
 /// After it has finished, an agent repeats its last message this many heartbeats, so that a
@@ -49,6 +52,7 @@ pub fn drive(
         transport.recv(deadline);
     }
     let mut last: Option<Message> = None;
+    let mut events = 0u64;
     loop {
         if stop.load(Ordering::Relaxed) {
             return Ok(Ending::Interrupted);
@@ -60,6 +64,10 @@ pub fn drive(
         let tick = agent.tick(now);
         for e in &tick.events {
             log.event(e)?;
+        }
+        events += tick.events.len() as u64;
+        if mason_mission::Flood::check(1, now, events).is_some() {
+            return Ok(Ending::Flooded);
         }
         for m in &tick.messages {
             transport.send(m);

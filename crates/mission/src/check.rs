@@ -14,6 +14,10 @@ use thiserror::Error;
 /// A broken rule, with the time it was broken. Bricks are named by their labels.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum TraceError {
+    /// The mission was stopped at its event cap: not a broken safety rule, but no trace to
+    /// judge either.
+    #[error("{0}")]
+    Flooded(#[from] crate::state::Flood),
     /// Events out of time order.
     #[error("t = {t}: events go back in time")]
     OutOfOrder {

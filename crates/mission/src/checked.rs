@@ -5,7 +5,8 @@ use crate::{
 };
 
 /// Flies `input` once with `coord` (windows slot `slot` s) from `seed`, and checks the trace
-/// (an error is a simulator bug, never a result).
+/// (an error is a simulator bug, never a result, except [`TraceError::Flooded`]: a mission
+/// stopped at its event cap, whose durations are too short to make progress).
 pub fn fly_checked(
     input: MissionInput<'_>,
     coord: Coord,
@@ -14,6 +15,9 @@ pub fn fly_checked(
 ) -> Result<(MissionResult, Vec<Event>), TraceError> {
     let mut trace = Vec::new();
     let r = simulate(input, make_policy(coord, slot).as_mut(), seed, &mut trace);
+    if let Some(f) = r.flood {
+        return Err(f.into());
+    }
     check_trace(input.wall, input.config.uavs, &trace)?;
     Ok((r, trace))
 }

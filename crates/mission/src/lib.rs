@@ -78,4 +78,4 @@ pub use montecarlo::{
 pub use policy::{Coordination, EntryQuery};
 pub use replan::{Replan, Replanner, ScheduleReplanner};
 pub use sim::{simulate, MissionInput, MissionResult, MissionStatus};
-pub use state::{CommMode, Event, EventKind, Observer, UavState};
+pub use state::{event_cap, CommMode, Event, EventKind, Flood, Observer, UavState};

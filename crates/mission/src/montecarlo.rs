@@ -301,6 +301,9 @@ pub fn for_each_run(
                 let mut checker = TraceChecker::new(input.wall, input.config.uavs);
                 let r = simulate(input, policy.as_mut(), seed, &mut checker);
                 progress();
+                if let Some(f) = r.flood {
+                    return Err((seed, TraceError::Flooded(f)));
+                }
                 checker.finish().map(|_| r).map_err(|e| (seed, e))
             })
             .collect::<Result<_, _>>()?;

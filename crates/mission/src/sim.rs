@@ -14,7 +14,7 @@ use crate::config::MissionConfig;
 use crate::core::{after, heard_mode, put_down, After, Board, Brick, Pick, Seen};
 use crate::metrics::{Metrics, MetricsObserver};
 use crate::policy::{Coordination, EntryQuery};
-use crate::state::{CommMode, Event, EventKind, Observer, UavState};
+use crate::state::{CommMode, Event, EventKind, Flood, Observer, UavState};
 use mason_order::CostModel;
 use mason_wall::{BrickId, BrickType, Wall};
 use rand::{Rng, SeedableRng};
@@ -52,6 +52,9 @@ pub enum MissionStatus {
     Incomplete,
     /// The time limit came first.
     Timeout,
+    /// The mission made more events than its cap allows ([`crate::state::event_cap`]): its
+    /// durations are too short to make progress. `MissionResult::flood` says by how much.
+    Flooded,
 }
 
 /// A mission's result.
@@ -61,6 +64,9 @@ pub struct MissionResult {
     pub status: MissionStatus,
     /// The metrics.
     pub metrics: Metrics,
+    /// When the status is [`MissionStatus::Flooded`], the events and the time at the cap.
+    #[serde(skip)]
+    pub flood: Option<Flood>,
 }
 
 #[derive(Clone, Debug)]
@@ -140,6 +146,8 @@ struct Sim<'a, 'o> {
     last_heard: Vec<Vec<f64>>,
     metrics: MetricsObserver,
     observer: &'o mut dyn Observer,
+    /// Events emitted so far, against [`crate::state::event_cap`].
+    events: u64,
 }
 
 /// Flies one mission and reports every event to `observer`.
@@ -190,6 +198,7 @@ pub fn simulate(
         last_heard: vec![vec![0.0; n]; n],
         metrics: MetricsObserver::new(n, rewards),
         observer,
+        events: 0,
         input,
         policy,
     };
@@ -203,6 +212,7 @@ impl Sim<'_, '_> {
             uav: uav as u32,
             kind,
         };
+        self.events += 1;
         self.metrics.event(&e);
         self.observer.event(&e);
     }
@@ -302,6 +312,7 @@ impl Sim<'_, '_> {
             }
         }
         let mut status = MissionStatus::Complete;
+        let mut flood = None;
         while let Some(Reverse(p)) = self.queue.pop() {
             if p.t > cfg.max_time_s {
                 self.now = cfg.max_time_s;
@@ -324,6 +335,11 @@ impl Sim<'_, '_> {
                 What::Enter if p.token == self.entry_token => self.enter(),
                 _ => {}
             }
+            flood = Flood::check(n, self.now, self.events);
+            if flood.is_some() {
+                status = MissionStatus::Flooded;
+                break;
+            }
             if self
                 .uavs
                 .iter()
@@ -337,7 +353,11 @@ impl Sim<'_, '_> {
         }
         let metrics = std::mem::replace(&mut self.metrics, MetricsObserver::new(0, Vec::new()))
             .finish(self.now);
-        MissionResult { status, metrics }
+        MissionResult {
+            status,
+            metrics,
+            flood,
+        }
     }
 
     fn timer(&mut self, u: usize) {

@@ -151,6 +151,50 @@ pub struct Event {
     pub kind: EventKind,
 }
 
+/// Events a mission may produce at the start, whatever its length: the trace cap's base.
+pub const EVENTS_BASE: u64 = 100_000;
+/// Events a mission may add per UAV and second of mission time.
+pub const EVENTS_PER_UAV_S: u64 = 100;
+/// Events a mission may produce in all (about 200 MB of `simulate --json`).
+pub const MAX_EVENTS: u64 = 2_000_000;
+
+/// The most events a mission of `uavs` UAVs may have produced by mission time `t`:
+/// [`EVENTS_BASE`] + [`EVENTS_PER_UAV_S`] · uavs · t, at most [`MAX_EVENTS`]. A mission whose
+/// durations are (near) zero makes events without making progress; past this cap the simulator
+/// and the agents stop it ([`crate::MissionStatus::Flooded`]) instead of filling the memory or
+/// the disk.
+pub fn event_cap(uavs: usize, t: f64) -> u64 {
+    let grown = EVENTS_BASE as f64 + EVENTS_PER_UAV_S as f64 * uavs as f64 * t.max(0.0);
+    if grown >= MAX_EVENTS as f64 {
+        MAX_EVENTS
+    } else {
+        grown as u64
+    }
+}
+
+/// A mission that produced more events than [`event_cap`] allows.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "{events} events by mission time {t:.3} s, over the event cap of {cap} (100 000 + 100 per \
+     UAV and second, at most 2 000 000): a duration is too short to make progress"
+)]
+pub struct Flood {
+    /// Events produced.
+    pub events: u64,
+    /// Mission time (s).
+    pub t: f64,
+    /// The cap at that time.
+    pub cap: u64,
+}
+
+impl Flood {
+    /// `Some` when `events` by mission time `t` are over the cap of a team of `uavs`.
+    pub fn check(uavs: usize, t: f64, events: u64) -> Option<Flood> {
+        let cap = event_cap(uavs, t);
+        (events > cap).then_some(Flood { events, t, cap })
+    }
+}
+
 /// Receives the simulator's events as they happen. Traces, metrics and plots are observers.
 pub trait Observer {
     /// One event.
@@ -279,5 +323,28 @@ impl EventRecord {
             uav: self.uav,
             kind,
         })
+    }
+}
+
+#[cfg(test)]
+mod cap_tests {
+    use super::*;
+
+    #[test]
+    fn the_event_cap_grows_with_time_and_team_and_stops_at_the_total() {
+        assert_eq!(event_cap(3, 0.0), EVENTS_BASE);
+        assert_eq!(event_cap(3, -5.0), EVENTS_BASE);
+        assert_eq!(event_cap(3, 10.0), EVENTS_BASE + 3_000);
+        assert!(event_cap(3, 100.0) < event_cap(4, 100.0));
+        assert_eq!(event_cap(3, 1e6), MAX_EVENTS);
+        assert_eq!(event_cap(256, f64::INFINITY), MAX_EVENTS);
+        assert_eq!(event_cap(1, f64::NAN), EVENTS_BASE);
+        assert_eq!(Flood::check(3, 10.0, EVENTS_BASE + 3_000), None);
+        let f = Flood::check(3, 10.0, EVENTS_BASE + 3_001).unwrap();
+        assert_eq!(
+            (f.events, f.cap),
+            (EVENTS_BASE + 3_001, EVENTS_BASE + 3_000)
+        );
+        assert!(f.to_string().contains("too short"), "{f}");
     }
 }

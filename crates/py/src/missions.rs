@@ -265,10 +265,23 @@ fn simulate(
     )?;
     let (r, trace) = py
         .detach(|| mason_mission::fly_checked(s.input(), s.coord, s.slot, seed))
-        .map_err(|e| internal(py, format!("mission trace failed check_trace: {e}")))?;
+        .map_err(|e| trace_failure(py, None, e))?;
     Ok(PyTrace {
         json: mason_report::simulate_json(&s.header(seed), &r, &trace),
     })
+}
+
+/// A flown mission's failure, as the CLI says it: a flood (durations too short to make
+/// progress) is an `InputError`; anything else a simulator bug that `check_trace` caught.
+fn trace_failure(py: Python<'_>, seed: Option<u64>, e: mason_mission::TraceError) -> PyErr {
+    let run = seed.map_or("mission".to_string(), |s| format!("mission seed {s}"));
+    match e {
+        mason_mission::TraceError::Flooded(f) => crate::input_error(
+            py,
+            format!("{run}: {f} (the times of the mission and the model)"),
+        ),
+        e => internal(py, format!("{run} failed check_trace: {e}")),
+    }
 }
 
 /// Runs flown per call of `for_each_run` between looks at the stop flag.
@@ -347,11 +360,8 @@ fn monte_carlo<'py>(
         }
         Ok((summary, figures))
     };
-    let (summary, figures) = run_detached(py, &stop, work, |_| Ok(()))?.map_err(
-        |(s, e): (u64, mason_mission::TraceError)| {
-            internal(py, format!("mission seed {s} failed check_trace: {e}"))
-        },
-    )?;
+    let (summary, figures) = run_detached(py, &stop, work, |_| Ok(()))?
+        .map_err(|(s, e): (u64, mason_mission::TraceError)| trace_failure(py, Some(s), e))?;
     let out = to_py(
         py,
         &mason_report::runs_json(&s.header(seed), &summary.summary()),

@@ -291,6 +291,14 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
             "UAV {}: mission time passed max_time_s {} before it landed",
             a.uav, setting.config.max_time_s
         ))),
+        Ending::Flooded => Err(input_error(format!(
+            "UAV {}: stopped at mission time {:.1} s past its event cap ({} events; 100 000 + 100 \
+             per second of mission time): a duration in the mission or the model is too short \
+             to make progress",
+            a.uav,
+            report.mission_time,
+            mason_mission::event_cap(1, report.mission_time)
+        ))),
         Ending::Interrupted => Err(Failure {
             code: INTERRUPTED,
             message: format!("UAV {}: interrupted", a.uav),

@@ -3,10 +3,11 @@
 use crate::cmd::mission::MissionArgs;
 use crate::cmd::plan::pretty;
 use crate::cmd::schedule::{flight_plan, ScheduleRequest};
-use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult};
+use crate::fail::{check_outputs, input_error, no_solution, write_all, CliResult, Failure};
 use mason_io::FaultSpec;
 use mason_mission::{
     for_each_run, run_many, Coord, Event, MissionInput, MissionResult, MissionStatus, Summariser,
+    TraceError,
 };
 use mason_report::text::{policy_table, result_table, summary_table, PolicyRow};
 use std::path::PathBuf;
@@ -337,11 +338,19 @@ pub fn fly_once(
     slot: f64,
     seed: u64,
 ) -> CliResult<(MissionResult, Vec<Event>)> {
-    mason_mission::fly_checked(input, coord, slot, seed).map_err(|e| {
-        input_error(format!(
-            "internal error: mission trace failed check_trace: {e}"
-        ))
-    })
+    mason_mission::fly_checked(input, coord, slot, seed).map_err(|e| trace_failure(None, e))
+}
+
+/// A flown mission's failure: a flood ([`TraceError::Flooded`]) is the input's fault (durations
+/// too short to make progress, exit 2); any other is a simulator bug that `check_trace` caught.
+pub fn trace_failure(seed: Option<u64>, e: TraceError) -> Failure {
+    let run = seed.map_or("mission".to_string(), |s| format!("mission seed {s}"));
+    match e {
+        TraceError::Flooded(f) => {
+            input_error(format!("{run}: {f} (the times of --mission and --model)"))
+        }
+        e => input_error(format!("internal error: {run} failed check_trace: {e}")),
+    }
 }
 
 /// A Monte Carlo batch, every trace checked.
@@ -352,11 +361,7 @@ pub fn fly_many(
     seed: u64,
     runs: usize,
 ) -> CliResult<Vec<MissionResult>> {
-    run_many(input, coord, slot, seed, runs, &|| {}).map_err(|(s, e)| {
-        input_error(format!(
-            "internal error: mission seed {s} failed check_trace: {e}"
-        ))
-    })
+    run_many(input, coord, slot, seed, runs, &|| {}).map_err(|(s, e)| trace_failure(Some(s), e))
 }
 
 /// A Monte Carlo batch streamed into a [`Summariser`] (memory flat in `runs`), every trace
@@ -380,11 +385,7 @@ pub fn fly_summary(
         done += 1;
         lines.at(done);
     })
-    .map_err(|(s, e)| {
-        input_error(format!(
-            "internal error: mission seed {s} failed check_trace: {e}"
-        ))
-    })?;
+    .map_err(|(s, e)| trace_failure(Some(s), e))?;
     Ok(summary)
 }
 
@@ -410,5 +411,9 @@ pub fn exit_for(r: &MissionResult) -> CliResult<()> {
             "mission hit the time limit: {}/{} bricks placed",
             r.metrics.bricks_placed, r.metrics.bricks_total
         ))),
+        MissionStatus::Flooded => Err(input_error(match r.flood {
+            Some(f) => format!("mission: {f}"),
+            None => "mission: stopped at its event cap".to_string(),
+        })),
     }
 }
