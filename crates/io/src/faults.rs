@@ -43,18 +43,29 @@ pub struct FaultSpec {
     pub grasp_fail: Option<f64>,
     /// Probability per detection attempt.
     pub detect_fail: Option<f64>,
-    /// `U@T` entries.
-    #[serde(default)]
+    /// `U@T` entries (a file may also write `{uav = U, at = T}`).
+    #[serde(default, deserialize_with = "entries::<_, UavFailure>")]
     pub uav_fail: Vec<String>,
     /// Failures per hour.
     pub uav_hazard: Option<f64>,
-    /// `A-B` entries.
-    #[serde(default)]
+    /// `A-B` entries (a file may also write `{from = A, to = B}`).
+    #[serde(default, deserialize_with = "entries::<_, Window>")]
     pub blackout: Vec<String>,
     /// Probability per message.
     pub msg_loss: Option<f64>,
     /// Seconds.
     pub latency: Option<f64>,
+}
+
+/// A file's list of `T` in either of its forms, table or text (a bad entry gets `T`'s message,
+/// which names both forms), kept as the text that the flags give.
+fn entries<'de, D, T>(d: D) -> Result<Vec<String>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de> + std::fmt::Display,
+{
+    let v: Vec<T> = Vec::deserialize(d)?;
+    Ok(v.iter().map(T::to_string).collect())
 }
 
 impl FaultSpec {
@@ -146,6 +157,37 @@ pub fn read_mission(path: &Path, uavs: usize) -> InputResult<MissionConfig> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_faults_file_takes_both_forms_and_a_bad_entry_names_them() {
+        let p = Path::new("f.toml");
+        let spec: FaultSpec = crate::files::parse_toml(
+            "uav_fail = [\"1@10\", { uav = 2, at = 30.5 }]\nblackout = [{ from = 5, to = 6.25 }, \"7-8\"]\n",
+            p,
+        )
+        .unwrap();
+        let f = spec.resolve().unwrap();
+        assert_eq!(f.uav_fail[1], UavFailure { uav: 2, at: 30.5 });
+        assert_eq!(
+            f.blackout[0],
+            Window {
+                from: 5.0,
+                to: 6.25
+            }
+        );
+        assert_eq!(f.blackout[1], Window { from: 7.0, to: 8.0 });
+        for (text, needle) in [
+            ("uav_fail = [5]", "{uav = U, at = T} or \"U@T\""),
+            ("uav_fail = [{ uav = 1 }]", "{uav = U, at = T} or \"U@T\""),
+            ("blackout = [3]", "{from = A, to = B} or \"A-B\""),
+            ("uav_fail = [\"x\"]", "expected U@T"),
+        ] {
+            let e = crate::files::parse_toml::<FaultSpec>(text, p)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle) && e.starts_with("f.toml"), "{text}: {e}");
+        }
+    }
 
     #[test]
     fn windows_are_parsed_once_for_every_flag() {

@@ -89,8 +89,9 @@ pub fn check_output(path: &Path) -> InputResult<()> {
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
             Err(e) => {
                 return Err(InputError::bad(format!(
-                    "{}: cannot be written there ({e})",
-                    path.display()
+                    "{}: cannot be written there: its folder {} takes no new file ({e})",
+                    path.display(),
+                    folder_of(path).display()
                 )))
             }
         }
@@ -186,7 +187,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("/proc/version: cannot be written there"),
+            e.starts_with("/proc/version: cannot be written there: its folder /proc takes no"),
             "{e}"
         );
     }

@@ -130,6 +130,20 @@ impl std::str::FromStr for UavFailure {
     }
 }
 
+impl std::fmt::Display for Window {
+    /// The text form, `A-B`, that [`Window`]'s `from_str` reads back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}-{}", self.from, self.to)
+    }
+}
+
+impl std::fmt::Display for UavFailure {
+    /// The text form, `U@T`, that [`UavFailure`]'s `from_str` reads back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}@{}", self.uav, self.at)
+    }
+}
+
 /// Reads a value written either as a table (`Table`, converted) or as its text form
 /// (`T::from_str`); a value of neither form gets `expected`, naming both.
 fn table_or_text<'de, D, Table, T>(d: D, expected: &'static str) -> Result<T, D::Error>
