@@ -69,6 +69,7 @@ fn check_bound(p: &TeamProblem<'_>, o: &TeamOutcome) -> Result<(), ScheduleError
 mod tests {
     use super::*;
     use crate::schedule::{Objective, TeamModel};
+    use crate::Status;
 
     #[test]
     fn a_checked_schedule_places_the_whole_wall() {
@@ -95,6 +96,23 @@ mod tests {
                 c.outcome.bound
             );
         }
+    }
+
+    /// #32: an `expected` score costs a re-decode per failure and scenario; past the deadline
+    /// it stops with a conservative estimate (never above the full one) and says `Timeout`.
+    #[test]
+    fn an_expected_score_cut_short_by_the_deadline_is_conservative() {
+        let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+        let objective = Objective::Expected {
+            hazard_per_hour: 2.0,
+        };
+        let p = TeamProblem::new(&wall, TeamModel::thesis(), 5, Some(900.0), objective).unwrap();
+        let full = plan_schedule(&p, &Budget::nodes(1), 0);
+        let cut = plan_schedule(&p, &Budget::time(std::time::Duration::ZERO), 0);
+        assert_eq!(cut.status, Status::Timeout);
+        let (f, c) = (full.expected_reward.unwrap(), cut.expected_reward.unwrap());
+        assert!(c < f, "cut short {c} should be below the full estimate {f}");
+        assert!(c >= 0.0);
     }
 
     #[test]

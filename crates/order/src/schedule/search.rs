@@ -93,6 +93,10 @@ fn scenarios(p: &TeamProblem<'_>, hazard_per_hour: f64, seed: u64) -> Vec<Scenar
 /// The reward `list` earns in one scenario, given its fault-free decode (`fault_free`, with
 /// reward `fault_free_reward`): at each failure the failed UAV's placement in progress is lost
 /// and the survivors decode the rest of the list from that moment.
+///
+/// Each failure re-decodes the rest of the list, so a scenario can cost a decode per UAV. When
+/// `budget` runs out first, the scenario stops with a value that is never above its true one
+/// (see [`safe_reward`]) and `false`; otherwise the value is exact and `true`.
 pub fn reward_under_failures(
     p: &TeamProblem<'_>,
     decoder: &mut Decoder<'_, '_>,
@@ -100,7 +104,8 @@ pub fn reward_under_failures(
     fault_free: &Schedule,
     fault_free_reward: f64,
     failures: &[f64],
-) -> f64 {
+    budget: &Budget,
+) -> (f64, bool) {
     let mut reward = fault_free_reward;
     let mut events: Vec<(f64, usize)> = failures
         .iter()
@@ -124,6 +129,9 @@ pub fn reward_under_failures(
             // Everything had started by t and u had finished its part: nothing changes.
             continue;
         }
+        if budget.out_of_time() {
+            return (safe_reward(p, &schedule, t), false);
+        }
         let kept: Vec<Placement> = schedule
             .placements
             .iter()
@@ -138,13 +146,29 @@ pub fn reward_under_failures(
         reward = decoder.resume(&kept, &alive, t, &rest).reward;
         schedule = decoder.schedule();
     }
-    reward
+    (reward, true)
+}
+
+/// The reward of `schedule`'s placements that end by `t` (and by the budget): a failure at or
+/// after `t` cannot take them back, and a re-decode after it only adds, so this is never above
+/// the scenario's reward.
+fn safe_reward(p: &TeamProblem<'_>, schedule: &Schedule, t: f64) -> f64 {
+    let by = p.budget_s().map_or(t, |b| b.min(t));
+    schedule
+        .placements
+        .iter()
+        .filter(|pl| pl.start_s + p.place_s(pl.brick) <= by)
+        .map(|pl| p.reward(pl.brick))
+        .sum()
 }
 
 struct Searcher<'a, 'w> {
     p: &'a TeamProblem<'w>,
     decoder: Decoder<'a, 'w>,
     scenarios: Vec<Scenario>,
+    budget: &'a Budget,
+    /// A score was cut short by the deadline: its expected reward is a conservative estimate.
+    cut_short: bool,
     decodes: u64,
     improvements: u64,
 }
@@ -158,10 +182,14 @@ impl Searcher<'_, '_> {
             Objective::Reward => [-d.reward, d.makespan_s, d.sum_end_s],
             Objective::Expected { .. } => {
                 let fault_free = self.decoder.schedule();
-                let total: f64 = self
-                    .scenarios
-                    .iter()
-                    .map(|f| {
+                let mut total = 0.0;
+                for f in &self.scenarios {
+                    // Past the deadline, a scenario not yet flown counts what its first
+                    // failure cannot take back.
+                    let (r, whole) = if self.cut_short {
+                        let first = f.iter().copied().fold(f64::INFINITY, f64::min);
+                        (safe_reward(self.p, &fault_free, first), false)
+                    } else {
                         reward_under_failures(
                             self.p,
                             &mut self.decoder,
@@ -169,9 +197,12 @@ impl Searcher<'_, '_> {
                             &fault_free,
                             d.reward,
                             f,
+                            self.budget,
                         )
-                    })
-                    .sum();
+                    };
+                    self.cut_short |= !whole;
+                    total += r;
+                }
                 [
                     -total / self.scenarios.len() as f64,
                     -d.reward,
@@ -392,6 +423,8 @@ fn search_thread(
         p,
         decoder: Decoder::new(p, mode),
         scenarios: scen,
+        budget,
+        cut_short: false,
         decodes: 0,
         improvements: 0,
     };
@@ -494,7 +527,7 @@ fn search_thread(
         list: best_list,
         decodes: s.decodes,
         improvements: s.improvements,
-        timed_out,
+        timed_out: timed_out || s.cut_short,
     }
 }
 
