@@ -55,12 +55,19 @@ pub fn killed_events(trace: &[Event], uav: u32, t: f64) -> Vec<Event> {
     if in_zone {
         out.push(at(EventKind::ZoneLeave));
     }
+    // An orange pair's brick placed by its partner (whose trace has the placement) is not
+    // held any more, although this agent's own trace never placed it.
+    let placed = |b| {
+        trace
+            .iter()
+            .any(|e| e.t <= t && matches!(e.kind, EventKind::Place { brick } if brick == b))
+    };
     // What it held falls, unless its pair's partner still holds the brick and carries on
     // (the partner learns of the loss only when it declares the agent out).
-    if let Some(brick) = holding {
+    if let Some(brick) = holding.filter(|&b| !placed(b)) {
         let partner_holds = trace
             .iter()
-            .filter(|e| e.uav != uav)
+            .filter(|e| e.uav != uav && e.t <= t)
             .fold(std::collections::BTreeMap::new(), |mut h, e| {
                 match e.kind {
                     EventKind::Grasp { brick } => {
@@ -371,6 +378,17 @@ mod tests {
         };
         assert!(!lost(killed_events(&trace, 0, 6.0)));
         assert!(lost(killed_events(&trace[..1], 0, 6.0)));
+        // The partner placed the pair's brick: the follower killed after it lost nothing (the
+        // follower's own trace has the grasp, not the placement).
+        let mut placed = trace.clone();
+        placed.push(at(8.0, 1, EventKind::Place { brick: b }));
+        assert!(!lost(killed_events(&placed, 0, 9.0)));
+        // A placement after the kill does not count, nor a partner's grasp after it.
+        let late = vec![
+            at(5.0, 0, EventKind::Grasp { brick: b }),
+            at(9.0, 1, EventKind::Place { brick: b }),
+        ];
+        assert!(lost(killed_events(&late, 0, 6.0)));
     }
 
     #[test]
