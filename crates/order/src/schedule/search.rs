@@ -21,7 +21,7 @@ use super::bounds::{
     reward_upper_bound_within, RewardBound,
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
-use super::sgs::{Decoder, Mode};
+use super::sgs::{Decoded, Decoder, Mode};
 use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -169,6 +169,8 @@ struct Searcher<'a, 'w> {
     budget: &'a Budget,
     /// A score was cut short by the deadline: its expected reward is a conservative estimate.
     cut_short: bool,
+    /// The last list's fault-free decode.
+    last: Option<Decoded>,
     decodes: u64,
     improvements: u64,
 }
@@ -177,6 +179,7 @@ impl Searcher<'_, '_> {
     fn score(&mut self, list: &[BrickId]) -> Score {
         self.decodes += 1;
         let d = self.decoder.decode(list);
+        self.last = Some(d);
         match self.p.objective() {
             Objective::Makespan => [d.makespan_s, d.sum_end_s, 0.0],
             Objective::Reward => [-d.reward, d.makespan_s, d.sum_end_s],
@@ -399,6 +402,8 @@ struct ThreadResult {
     mode: Mode,
     score: Score,
     list: Vec<BrickId>,
+    /// The best list's decode and schedule, when the thread still had them.
+    decoded: Option<(Decoded, Schedule)>,
     decodes: u64,
     improvements: u64,
     timed_out: bool,
@@ -425,6 +430,7 @@ fn search_thread(
         scenarios: scen,
         budget,
         cut_short: false,
+        last: None,
         decodes: 0,
         improvements: 0,
     };
@@ -439,6 +445,9 @@ fn search_thread(
     let mut timed_out = false;
     let mut best_list = starts[0].clone();
     let mut best = s.score(&best_list);
+    // The score count when the best was scored: the decoder still holds its decode while no
+    // other list has been scored since.
+    let mut best_at = s.decodes;
     for l in &starts[1..] {
         if budget.out_of_time() {
             timed_out = true;
@@ -448,6 +457,7 @@ fn search_thread(
         if better(&sc, &best) {
             best = sc;
             best_list = l.clone();
+            best_at = s.decodes;
         }
     }
     // The listener hears the objective itself: a makespan, or a (expected) reward.
@@ -502,6 +512,7 @@ fn search_thread(
             if better(&cur_score, &best) {
                 best = cur_score;
                 best_list = cur.clone();
+                best_at = s.decodes;
                 s.improvements += 1;
                 tell(&best, s.decodes);
             }
@@ -521,10 +532,18 @@ fn search_thread(
             stale = 0;
         }
     }
+    // A huge wall may be stopped after a decode or two: keep the best's decode rather than
+    // repeat it (an `expected` score ends on a scenario's decode, so it is decoded again).
+    let decoded = match (p.objective(), s.last) {
+        (Objective::Expected { .. }, _) => None,
+        (_, Some(d)) if best_at == s.decodes => Some((d, s.decoder.schedule())),
+        _ => None,
+    };
     ThreadResult {
         mode,
         score: best,
         list: best_list,
+        decoded,
         decodes: s.decodes,
         improvements: s.improvements,
         timed_out: timed_out || s.cut_short,
@@ -576,7 +595,7 @@ pub fn plan_schedule_with(
         Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
         _ => Vec::new(),
     };
-    let results: Vec<ThreadResult> = std::thread::scope(|sc| {
+    let mut results: Vec<ThreadResult> = std::thread::scope(|sc| {
         let handles: Vec<_> = (0..2u64)
             .map(|k| {
                 let starts = &starts;
@@ -610,10 +629,15 @@ pub fn plan_schedule_with(
             win = k;
         }
     }
-    let r = &results[win];
-    let mut decoder = Decoder::new(p, r.mode);
-    let d = decoder.decode(&r.list);
-    let schedule: Schedule = decoder.schedule();
+    let timed_out = results.iter().any(|r| r.timed_out);
+    let decodes = results.iter().map(|r| r.decodes).sum();
+    let improvements = results.iter().map(|r| r.improvements).sum();
+    let r = results.swap_remove(win);
+    let (d, schedule) = r.decoded.unwrap_or_else(|| {
+        let mut decoder = Decoder::new(p, r.mode);
+        let d = decoder.decode(&r.list);
+        (d, decoder.schedule())
+    });
     let expected_reward = match p.objective() {
         Objective::Expected { .. } => Some(-r.score[0]),
         _ => None,
@@ -625,7 +649,7 @@ pub fn plan_schedule_with(
     };
     let status = if value_meets_bound {
         Status::Optimal
-    } else if results.iter().any(|r| r.timed_out) {
+    } else if timed_out {
         Status::Timeout
     } else {
         Status::Feasible
@@ -639,8 +663,8 @@ pub fn plan_schedule_with(
         bound,
         stats: TeamStats {
             elapsed: t0.elapsed(),
-            decodes: results.iter().map(|r| r.decodes).sum(),
-            improvements: results.iter().map(|r| r.improvements).sum(),
+            decodes,
+            improvements,
         },
     }
 }
