@@ -44,12 +44,12 @@ pub struct FaultSpec {
     /// Probability per detection attempt.
     pub detect_fail: Option<f64>,
     /// `U@T` entries (a file may also write `{uav = U, at = T}`).
-    #[serde(default, deserialize_with = "entries::<_, UavFailure>")]
+    #[serde(default, deserialize_with = "uav_fails")]
     pub uav_fail: Vec<String>,
     /// Failures per hour.
     pub uav_hazard: Option<f64>,
     /// `A-B` entries (a file may also write `{from = A, to = B}`).
-    #[serde(default, deserialize_with = "entries::<_, Window>")]
+    #[serde(default, deserialize_with = "blackouts")]
     pub blackout: Vec<String>,
     /// Probability per message.
     pub msg_loss: Option<f64>,
@@ -57,15 +57,24 @@ pub struct FaultSpec {
     pub latency: Option<f64>,
 }
 
-/// A file's list of `T` in either of its forms, table or text (a bad entry gets `T`'s message,
-/// which names both forms), kept as the text that the flags give.
-fn entries<'de, D, T>(d: D) -> Result<Vec<String>, D::Error>
+/// A file's list `key` of `T` in either of its forms, table or text (a bad entry gets `T`'s
+/// message, which names both forms, after the key), kept as the text that the flags give.
+fn entries<'de, D, T>(d: D, key: &str) -> Result<Vec<String>, D::Error>
 where
     D: serde::Deserializer<'de>,
     T: Deserialize<'de> + std::fmt::Display,
 {
-    let v: Vec<T> = Vec::deserialize(d)?;
+    use serde::de::Error;
+    let v: Vec<T> = Vec::deserialize(d).map_err(|e| D::Error::custom(format!("{key}: {e}")))?;
     Ok(v.iter().map(T::to_string).collect())
+}
+
+fn uav_fails<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<String>, D::Error> {
+    entries::<D, UavFailure>(d, "uav_fail")
+}
+
+fn blackouts<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<String>, D::Error> {
+    entries::<D, Window>(d, "blackout")
 }
 
 impl FaultSpec {
@@ -180,7 +189,7 @@ mod tests {
             ("uav_fail = [5]", "{uav = U, at = T} or \"U@T\""),
             ("uav_fail = [{ uav = 1 }]", "{uav = U, at = T} or \"U@T\""),
             ("blackout = [3]", "{from = A, to = B} or \"A-B\""),
-            ("uav_fail = [\"x\"]", "expected U@T"),
+            ("uav_fail = [\"x\"]", "uav_fail: `x`: expected U@T"),
         ] {
             let e = crate::files::parse_toml::<FaultSpec>(text, p)
                 .unwrap_err()

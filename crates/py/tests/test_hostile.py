@@ -44,3 +44,30 @@ def test_hostile_arguments_raise_python_exceptions(name, call, needle):
     with pytest.raises((mason.MasonError, TypeError, ValueError)) as e:
         call()
     assert needle in str(e.value), str(e.value)
+
+
+ZERO_TIMES = """max_time_s = 1000000.0
+[uav]
+speed = 1e9
+check_s = 0.0
+takeoff_s = 0.0
+land_s = 0.0
+detect_s = 0.0
+above_s = 0.0
+zone_transit_s = 0.0
+[faults]
+grasp_fail = 0.999
+detect_fail = 0.999
+"""
+
+
+def test_a_mission_with_zero_durations_stops_at_its_event_cap(tmp_path):
+    # #32: zero durations make events without progress; the mission stops at its event cap
+    # with the CLI's message, once or in a batch, instead of filling the memory.
+    mission = tmp_path / "zero.toml"
+    mission.write_text(ZERO_TIMES)
+    wall = mason.Wall.builtin("thesis-2x5")
+    with pytest.raises(mason.InputError, match="event cap"):
+        mason.simulate(wall, mission=mission)
+    with pytest.raises(mason.InputError, match="event cap"):
+        mason.monte_carlo(wall, runs=4, mission=mission)
