@@ -3,7 +3,7 @@
 //! at run time from `GRASP-RESULTS.md` in the benchmark directory (GPL data, not copied here).
 
 use crate::support::{input_error, BenchError, BenchResult};
-use mason_order::schedule::{schedule_checked, Objective, TeamModel, TeamProblem};
+use mason_order::schedule::{schedule_checked, Metric, Objective, TeamModel, TeamProblem};
 use mason_order::Budget;
 use mason_report::text::format_ms;
 use mason_wall::{parse_cmcp, CmcpSizes};
@@ -109,6 +109,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
     let grasp = read_grasp(&dir);
     let mut text = format!(
         "CMCP walls ({}) under the cmcp model: 3 UAVs, 40 s placing + 10 s return, 0.80 m, rewards 1/2/4/6.\n\
+         metric: the distance rule in the plan (xy, the default, as CMCP's MILP) or in 3-D (xyz, as its GRASP).\n\
          Ours: every schedule checked by order::validate_schedule, so it breaks 0 precedence pairs.\n\
          bound: an upper bound on the reward (T = 2500 s) or a lower bound on the makespan (whole wall).\n\
          GRASP: the CMCP planner's published runs, read from GRASP-RESULTS.md (3 runs per wall).\n",
@@ -119,9 +120,10 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
         ("whole wall, no budget", None),
     ] {
         text.push_str(&format!(
-            "\n{title}\n  {:<22} {:<7} {:>6} {:>7} {:>7} {:>10} {:>9} {:>8} {:>9} {:>6} | {}\n",
+            "\n{title}\n  {:<22} {:<7} {:<6} {:>6} {:>7} {:>7} {:>10} {:>9} {:>8} {:>9} {:<8} {:>6} | {}\n",
             "wall",
             "sizes",
+            "metric",
             "bricks",
             "reward",
             "placed",
@@ -129,6 +131,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
             "bound",
             "gap",
             "time",
+            "status",
             "broken",
             if budget.is_some() {
                 "GRASP reward min/mean/max · placed · makespan · time · broken"
@@ -145,15 +148,21 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
             } else {
                 &[(CmcpSizes::Yaml, "yaml")]
             };
-            for &(sizes, sizes_name) in tables {
+            for (&(sizes, sizes_name), metric) in tables
+                .iter()
+                .flat_map(|t| [Metric::Xy, Metric::Xyz].map(|m| (t, m)))
+            {
                 let wall = parse_cmcp(&src, &path.display().to_string(), sizes)
+                    .map_err(|e| input_error(e.to_string()))?;
+                let model = TeamModel::cmcp()
+                    .with_metric(metric)
                     .map_err(|e| input_error(e.to_string()))?;
                 let objective = if budget.is_some() {
                     Objective::Reward
                 } else {
                     Objective::Makespan
                 };
-                let p = TeamProblem::new(&wall, TeamModel::cmcp(), 3, budget, objective)
+                let p = TeamProblem::new(&wall, model, 3, budget, objective)
                     .map_err(|e| input_error(e.to_string()))?;
                 let search = Budget::anytime(time_limit.map(std::time::Duration::from_secs_f64));
                 let c = schedule_checked(&p, &search, 0)
@@ -167,7 +176,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
                 };
                 let theirs = grasp
                     .get(stem)
-                    .filter(|_| sizes == CmcpSizes::Yaml)
+                    .filter(|_| sizes == CmcpSizes::Yaml && metric == Metric::Xyz)
                     .and_then(|g| {
                         let row = if budget.is_some() {
                             g.budget.as_ref()
@@ -194,9 +203,10 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
                         })
                     });
                 text.push_str(&format!(
-                    "  {:<22} {:<7} {:>6} {:>7} {:>7} {:>10} {:>9} {:>8} {:>9} {:>6} | {}\n",
+                    "  {:<22} {:<7} {:<6} {:>6} {:>7} {:>7} {:>10} {:>9} {:>8} {:>9} {:<8} {:>6} | {}\n",
                     stem,
                     sizes_name,
+                    metric.name(),
                     wall.len(),
                     o.reward,
                     c.evaluation.bricks,
@@ -204,6 +214,7 @@ pub fn cmcp(dir: Option<&Path>, time_limit: Option<f64>) -> BenchResult<String> 
                     format!("{:.0}", o.bound),
                     gap,
                     format_ms(o.stats.elapsed.as_secs_f64() * 1e3),
+                    o.status.to_string(),
                     0,
                     theirs.unwrap_or_else(|| "-".into())
                 ));

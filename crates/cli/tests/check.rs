@@ -594,3 +594,64 @@ fn garbage_and_extreme_values_are_refused_in_one_line() {
     ]);
     assert_input_error(&o, &["--connectivity", "4 or 8"]);
 }
+
+/// #31: the distance rule's metric. A schedule that overlaps two bricks 0.796 m apart in the
+/// plan and a level apart is valid under `xyz` only; `check schedule` reads the metric the
+/// file states, and `--metric` overrides it.
+#[test]
+fn the_metric_a_schedule_states_is_the_one_it_is_checked_under() {
+    let wall = data("cmcp-two-levels.txt");
+    let rows = r#""schedule": [
+        {"uav": 0, "brick": 3, "start_s": 0},
+        {"uav": 1, "brick": 1, "start_s": 40},
+        {"uav": 2, "brick": 2, "start_s": 40}
+    ]"#;
+    let xyz = file(
+        "metric-xyz.json",
+        &format!(r#"{{"model": "cmcp", "metric": "xyz", "uavs": 3, {rows}}}"#),
+    );
+    let plain = file(
+        "metric-none.json",
+        &format!(r#"{{"model": "cmcp", "uavs": 3, {rows}}}"#),
+    );
+    assert_valid(
+        &mason(&["check", "schedule", &wall, &xyz]),
+        &["model cmcp (distance xyz)"],
+    );
+    assert_broken(
+        &mason(&["check", "schedule", &wall, &xyz, "--metric", "xy"]),
+        "Concurrent",
+        &["0.796 m apart (xy)"],
+    );
+    assert_broken(
+        &mason(&["check", "schedule", &wall, &plain]),
+        "Concurrent",
+        &["0.796 m apart (xy)"],
+    );
+    assert_input_error(
+        &mason(&["check", "schedule", &wall, &plain, "--metric", "3d"]),
+        &["--metric 3d", "xy", "xyz"],
+    );
+    // plan says which metric it used, and plans around the rule it was given.
+    for (metric, overlap) in [("xy", false), ("xyz", true)] {
+        let json = output_of(&[
+            "plan",
+            &wall,
+            "--objective",
+            "makespan",
+            "--model",
+            "cmcp",
+            "--metric",
+            metric,
+            "--json",
+        ]);
+        let v: Value = serde_json::from_str(&json).unwrap();
+        assert_eq!(v["metric"], metric);
+        assert_eq!(v["team_model"]["concurrency"]["metric"], metric);
+        // Under xy the three conflict pairwise (120 s); under xyz 1 and 2 place together.
+        let makespan = v["makespan_s"].as_f64().unwrap();
+        assert_eq!(makespan, if overlap { 80.0 } else { 120.0 }, "{metric}");
+        let path = file(&format!("metric-plan-{metric}.json"), &json);
+        assert_valid(&mason(&["check", "schedule", &wall, &path]), &[metric]);
+    }
+}

@@ -2,7 +2,7 @@
 
 use crate::error::{InputError, InputResult};
 use crate::files::read_toml;
-use mason_order::schedule::{Objective, TeamModel, TeamModelPatch};
+use mason_order::schedule::{Metric, Objective, TeamModel, TeamModelPatch};
 use mason_order::CostModel;
 use std::path::Path;
 
@@ -18,8 +18,28 @@ pub fn load_model(path: Option<&Path>) -> InputResult<CostModel> {
     Ok(model)
 }
 
-/// Loads a team model: `thesis` (the default), `cmcp`, or a TOML file patching one of them.
-pub fn load_team_model(spec: Option<&str>) -> InputResult<TeamModel> {
+/// Loads a team model: `thesis` (the default), `cmcp`, or a TOML file patching one of them;
+/// with `metric` (`--metric xy|xyz`), its distance rule measured that way.
+pub fn load_team_model(spec: Option<&str>, metric: Option<&str>) -> InputResult<TeamModel> {
+    let model = team_model_named(spec)?;
+    match metric {
+        None => Ok(model),
+        Some(m) => {
+            let metric = Metric::parse(m).ok_or_else(|| {
+                InputError::bad(format!(
+                    "--metric {}: expected xy (horizontal plane) or xyz (3-D)",
+                    m.chars().take(80).collect::<String>()
+                ))
+            })?;
+            let name = model.name.clone();
+            model
+                .with_metric(metric)
+                .map_err(|e| InputError::bad(format!("--metric with model {name}: {e}")))
+        }
+    }
+}
+
+fn team_model_named(spec: Option<&str>) -> InputResult<TeamModel> {
     let spec = spec.unwrap_or("thesis");
     if let Some(m) = TeamModel::builtin(spec) {
         return Ok(m);
@@ -77,9 +97,15 @@ mod tests {
 
     #[test]
     fn builtin_team_models_and_a_missing_file() {
-        assert_eq!(load_team_model(None).unwrap().name, "thesis");
-        assert_eq!(load_team_model(Some("cmcp")).unwrap().name, "cmcp");
-        let e = load_team_model(Some("/nonexistent/x.toml"))
+        assert_eq!(load_team_model(None, None).unwrap().name, "thesis");
+        assert_eq!(load_team_model(Some("cmcp"), None).unwrap().name, "cmcp");
+        let xyz = load_team_model(Some("cmcp"), Some("xyz")).unwrap();
+        assert_eq!(xyz.concurrency.metric(), Some(Metric::Xyz));
+        let e = load_team_model(Some("cmcp"), Some("3d")).unwrap_err();
+        assert!(e.to_string().contains("--metric 3d: expected xy"), "{e}");
+        let e = load_team_model(Some("thesis"), Some("xy")).unwrap_err();
+        assert!(e.to_string().contains("zone rule"), "{e}");
+        let e = load_team_model(Some("/nonexistent/x.toml"), None)
             .unwrap_err()
             .to_string();
         assert!(e.contains("expected thesis, cmcp or a TOML file"), "{e}");

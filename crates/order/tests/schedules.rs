@@ -4,7 +4,7 @@
 
 use mason_order::schedule::search::SCENARIOS;
 use mason_order::schedule::{
-    bounds, exhaustive_schedule, plan_schedule, validate_schedule, validate_schedule_claim,
+    bounds, exhaustive_schedule, plan_schedule, validate_schedule, validate_schedule_claim, Metric,
     Objective, Placement, Schedule, ScheduleError, TeamModel, TeamProblem,
 };
 use mason_order::{Budget, Status};
@@ -39,6 +39,11 @@ fn random_model(rng: &mut ChaCha8Rng) -> TeamModel {
     if rng.gen_bool(0.3) {
         m.concurrency = mason_order::schedule::Concurrency::Distance {
             distance_m: rng.gen_range(0.0..2.0),
+            metric: if rng.gen_bool(0.5) {
+                Metric::Xy
+            } else {
+                Metric::Xyz
+            },
         };
     }
     if rng.gen_bool(0.3) {
@@ -594,7 +599,10 @@ fn the_reward_bound_is_not_rounded_below_a_whole_reward_it_reaches() {
     let text = "R".repeat(1300);
     let wall = parse_layer_text(&text, "a long row").unwrap();
     let mut model = TeamModel::cmcp();
-    model.concurrency = mason_order::schedule::Concurrency::Distance { distance_m: 0.1 };
+    model.concurrency = mason_order::schedule::Concurrency::Distance {
+        distance_m: 0.1,
+        metric: Metric::Xy,
+    };
     let p = TeamProblem::new(&wall, model, 3, Some(19_990.0), Objective::Reward).unwrap();
     let rb = bounds::reward_upper_bound(&p, 19_990.0);
     assert_eq!(rb.bound, 1200.0);
@@ -635,7 +643,10 @@ proptest! {
             t.reward = log_between(reward[k], 1e-300, 1e9);
         }
         if distance {
-            model.concurrency = mason_order::schedule::Concurrency::Distance { distance_m: 0.5 };
+            model.concurrency = mason_order::schedule::Concurrency::Distance {
+                distance_m: 0.5,
+                metric: if seed % 2 == 0 { Metric::Xy } else { Metric::Xyz },
+            };
         }
         let budget = log_between(budget_u, 1e-3, 1e9);
         let hazard = log_between(hazard_u, 1e-300, 1e3);

@@ -318,13 +318,14 @@ struct Best {
 ///
 /// `objective` is `"makespan"` (whole wall, shortest), `"reward"` (most reward by `budget`
 /// seconds) or `"expected"` (most expected reward by `budget` when each UAV fails at
-/// `uav_hazard` per hour). `model` is `"thesis"`, `"cmcp"` or a team-model TOML file.
+/// `uav_hazard` per hour). `model` is `"thesis"`, `"cmcp"` or a team-model TOML file;
+/// `metric` (`"xy"` or `"xyz"`) measures its distance rule in the plan or in 3-D.
 /// The search runs until `time_limit` seconds (None: a fixed number of decodes, the same
 /// schedule for the same seed), on two threads with the GIL released; Ctrl-C stops it.
 /// `progress`, if given, is called now and then with a dict of the best so far: `value`
 /// (makespan, or the (expected) reward), `bound`, `decodes` and `elapsed_s`.
 #[pyfunction]
-#[pyo3(signature = (wall, objective = "makespan", uavs = 3, model = "thesis", budget = None, uav_hazard = None, time_limit = 1.0, seed = 0, progress = None))]
+#[pyo3(signature = (wall, objective = "makespan", uavs = 3, model = "thesis", budget = None, uav_hazard = None, time_limit = 1.0, seed = 0, progress = None, metric = None))]
 #[allow(clippy::too_many_arguments)]
 fn plan_schedule(
     py: Python<'_>,
@@ -337,11 +338,12 @@ fn plan_schedule(
     time_limit: Option<f64>,
     seed: u64,
     progress: Option<Bound<'_, PyAny>>,
+    metric: Option<&str>,
 ) -> PyResult<PySchedule> {
     let uavs = crate::count(py, "uavs", uavs)?;
     let objective = mason_io::objective(objective, uav_hazard).map_err(bad(py))?;
     let limit = self::time_limit(py, time_limit)?;
-    let team = mason_io::load_team_model(Some(model)).map_err(bad(py))?;
+    let team = mason_io::load_team_model(Some(model), metric).map_err(bad(py))?;
     let w = wall.wall.clone();
     let problem = TeamProblem::new(&w, team, uavs, budget, objective).map_err(bad(py))?;
     let stop = Stop::new();

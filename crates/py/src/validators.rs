@@ -96,7 +96,8 @@ fn validate_order<'py>(
 /// `uavs` and `budget` default to what the schedule states. Returns `{"reward", "makespan_s",
 /// "bricks_placed"}` as recomputed.
 #[pyfunction]
-#[pyo3(signature = (wall, schedule, model = None, uavs = None, budget = None, all = false))]
+#[pyo3(signature = (wall, schedule, model = None, uavs = None, budget = None, all = false, metric = None))]
+#[allow(clippy::too_many_arguments)]
 fn validate_schedule<'py>(
     py: Python<'py>,
     wall: &PyWall,
@@ -105,13 +106,16 @@ fn validate_schedule<'py>(
     uavs: Option<i64>,
     budget: Option<f64>,
     all: bool,
+    metric: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let text = text_of(py, schedule, "schedule")?;
     let uavs = uavs.map(|u| crate::count(py, "uavs", u)).transpose()?;
     let w = &wall.wall;
     let path = Path::new("schedule");
     let file = artefacts::parse_schedule(&text, path, w).map_err(bad(py))?;
-    let setting = file.setting(path, model, uavs, budget).map_err(bad(py))?;
+    let setting = file
+        .setting(path, model, metric, uavs, budget)
+        .map_err(bad(py))?;
     let eval = file
         .check(w, &setting, all)
         .map_err(|found| broken(py, "schedule", &found))?;

@@ -255,7 +255,7 @@ impl Serialize for ScheduleDoc<'_, '_> {
             Objective::Expected { hazard_per_hour } => Some(hazard_per_hour),
             _ => None,
         };
-        let mut m = s.serialize_map(Some(18))?;
+        let mut m = s.serialize_map(Some(19))?;
         m.serialize_entry("bound", &Num(o.bound))?;
         m.serialize_entry("bricks_placed", &c.evaluation.bricks)?;
         m.serialize_entry("bricks_total", &wall.len())?;
@@ -263,6 +263,8 @@ impl Serialize for ScheduleDoc<'_, '_> {
         m.serialize_entry("expected_reward", &o.expected_reward)?;
         m.serialize_entry("gap", &Num(o.gap(p.objective())))?;
         m.serialize_entry("makespan_s", &Num(o.makespan_s))?;
+        // The distance rule's metric (`xy` or `xyz`; null under the zone rule).
+        m.serialize_entry("metric", &p.model().concurrency.metric())?;
         m.serialize_entry("model", &p.model().name)?;
         m.serialize_entry("objective", p.objective().name())?;
         m.serialize_entry("reward", &Num(o.reward))?;

@@ -28,6 +28,7 @@ pub mod limits;
 mod png;
 mod raster;
 pub mod stop;
+pub mod structure;
 mod text;
 pub mod violations;
 mod wall;

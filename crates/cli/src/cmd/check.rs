@@ -59,6 +59,10 @@ pub struct ScheduleArgs {
     /// Team model: thesis, cmcp or a TOML file (default: the file's, else thesis)
     #[arg(long)]
     pub model: Option<String>,
+    /// The distance rule's metric: xy (horizontal plane) or xyz (3-D) (default: the file's,
+    /// else the model's)
+    #[arg(long)]
+    pub metric: Option<String>,
     /// Team size (default: the file's, else the largest UAV index plus one)
     #[arg(long, allow_negative_numbers = true)]
     pub uavs: Option<usize>,
@@ -174,14 +178,20 @@ fn order(a: OrderArgs, all: bool) -> CliResult<()> {
 fn schedule(a: ScheduleArgs, all: bool) -> CliResult<()> {
     let wall = a.design.load()?;
     let file = artefacts::read_schedule(&a.schedule, &wall)?;
-    let setting = file.setting(&a.schedule, a.model.as_deref(), a.uavs, a.budget)?;
+    let setting = file.setting(
+        &a.schedule,
+        a.model.as_deref(),
+        a.metric.as_deref(),
+        a.uavs,
+        a.budget,
+    )?;
     let eval = match file.check(&wall, &setting, all) {
         Ok(eval) => eval,
         Err(found) => return broken(&a.schedule, all, &found),
     };
     let (model, uavs, budget) = (&setting.model, setting.uavs, setting.budget_s);
     println!(
-        "{}: valid team schedule ({}) · {} of {} bricks placed · reward {} · makespan {} (recomputed) · model {}, {} UAVs, budget {}",
+        "{}: valid team schedule ({}) · {} of {} bricks placed · reward {} · makespan {} (recomputed) · model {}{}, {} UAVs, budget {}",
         a.schedule.display(),
         file.format,
         eval.bricks,
@@ -192,6 +202,10 @@ fn schedule(a: ScheduleArgs, all: bool) -> CliResult<()> {
             file.claims.makespan_s.map(|m| format!("{} s", short(m)))
         ),
         model.name,
+        model
+            .concurrency
+            .metric()
+            .map_or(String::new(), |m| format!(" (distance {m})")),
         uavs,
         budget.map_or("none".to_string(), |t| format!("{t} s"))
     );

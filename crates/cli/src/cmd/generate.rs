@@ -1,5 +1,6 @@
 //! `mason generate`: seeded inputs for the README's scaling figures, the same for the same seed.
-//! `wall`: a layer-text wall (`mason_wall::generate::large_layer_text`); `scene`: a bird's-eye
+//! `wall`: a layer-text wall (`mason_wall::generate::large_layer_text`); `structure`: a CMCP
+//! wall, L, tower or storeys (`mason_wall::structure::structure_cmcp`); `scene`: a bird's-eye
 //! PNG of a warehouse with robots and goals (`mason_crew::generate::birdseye_scene`).
 
 use crate::fail::{input_error, write_file, CliResult};
@@ -16,6 +17,26 @@ pub enum GenerateCommand {
         /// Layers
         #[arg(long)]
         levels: usize,
+        /// Seed of the generator
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+    /// Print a CMCP-format structure of about N bricks (`yaml` sizes): a straight wall, an L
+    /// or a tower (a square ring), over --levels layers split into --storeys storeys (each
+    /// storey but the last topped by an orange ring beam)
+    Structure {
+        /// wall, l or tower
+        #[arg(long, default_value = "wall")]
+        shape: String,
+        /// About this many bricks
+        #[arg(long)]
+        bricks: usize,
+        /// Layers in all
+        #[arg(long)]
+        levels: usize,
+        /// Storeys (1 to --levels)
+        #[arg(long, default_value_t = 1)]
+        storeys: usize,
         /// Seed of the generator
         #[arg(long, default_value_t = 0)]
         seed: u64,
@@ -47,6 +68,16 @@ pub fn run(command: GenerateCommand) -> CliResult<()> {
             seed,
         } => {
             print!("{}", wall(bricks, levels, seed)?);
+            Ok(())
+        }
+        GenerateCommand::Structure {
+            shape,
+            bricks,
+            levels,
+            storeys,
+            seed,
+        } => {
+            print!("{}", structure(&shape, bricks, levels, storeys, seed)?);
             Ok(())
         }
         GenerateCommand::Scene {
@@ -88,6 +119,54 @@ pub fn wall(bricks: usize, levels: usize, seed: u64) -> CliResult<String> {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let text = mason_wall::generate::large_layer_text(&mut rng, bricks, levels);
     Ok(format!("{text}\n"))
+}
+
+/// The CMCP text of `mason generate structure`, refused when it would break the readers'
+/// limits (bricks, layers).
+pub fn structure(
+    shape: &str,
+    bricks: usize,
+    levels: usize,
+    storeys: usize,
+    seed: u64,
+) -> CliResult<String> {
+    use mason_wall::limits::{MAX_BRICKS, MAX_LAYERS};
+    use mason_wall::structure::{structure_cmcp, Shape, Structure};
+    use rand::SeedableRng;
+    let shape = Shape::parse(shape).ok_or_else(|| {
+        input_error(format!(
+            "--shape {}: expected wall, l or tower",
+            shape.chars().take(80).collect::<String>()
+        ))
+    })?;
+    // A layer may hold up to twice its share of bricks (reds only), a tower a few more.
+    if bricks == 0 || bricks > MAX_BRICKS / 2 {
+        return Err(input_error(format!(
+            "--bricks {bricks}: must lie in 1..={}",
+            MAX_BRICKS / 2
+        )));
+    }
+    if levels == 0 || levels > MAX_LAYERS.min(bricks) {
+        return Err(input_error(format!(
+            "--levels {levels}: must lie in 1..={} (at most one per brick)",
+            MAX_LAYERS.min(bricks)
+        )));
+    }
+    if storeys == 0 || storeys > levels {
+        return Err(input_error(format!(
+            "--storeys {storeys}: must lie in 1..={levels} (at most one per layer)"
+        )));
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    Ok(structure_cmcp(
+        &mut rng,
+        &Structure {
+            shape,
+            bricks,
+            levels,
+            storeys,
+        },
+    ))
 }
 
 /// The PNG bytes of `mason generate scene`.

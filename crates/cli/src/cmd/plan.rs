@@ -20,6 +20,10 @@ pub struct PlanArgs {
     /// model, thesis, cmcp or a TOML file (default thesis)
     #[arg(long)]
     pub model: Option<String>,
+    /// With --objective and a distance rule: measure it in the horizontal plane (xy, the
+    /// default) or in 3-D (xyz)
+    #[arg(long)]
+    pub metric: Option<String>,
     /// Plan a team schedule instead of a build order: makespan (whole wall, shortest),
     /// reward (most reward by --budget), expected (most expected reward by --budget when
     /// UAVs fail at --uav-hazard)
@@ -55,9 +59,9 @@ pub struct PlanArgs {
 pub fn run(a: PlanArgs) -> CliResult<()> {
     let started = std::time::Instant::now();
     check_outputs(&[&a.svg, &a.html])?;
-    if a.uav_hazard.is_some() || a.budget.is_some() {
+    if a.uav_hazard.is_some() || a.budget.is_some() || a.metric.is_some() {
         return Err(input_error(
-            "--budget and --uav-hazard belong to team schedules: add --objective",
+            "--budget, --uav-hazard and --metric belong to team schedules: add --objective",
         ));
     }
     let spec: PlannerSpec = a

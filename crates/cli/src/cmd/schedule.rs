@@ -24,7 +24,7 @@ pub fn run(a: PlanArgs) -> CliResult<()> {
         a.seed,
         a.time_limit,
     )?;
-    let team = mason_io::load_team_model(a.model.as_deref())?;
+    let team = mason_io::load_team_model(a.model.as_deref(), a.metric.as_deref())?;
     let wall = a.design.load()?;
     let problem = problem(&wall, team, &req)?;
     let checked = solve(&problem, &req)?;
@@ -212,11 +212,15 @@ pub fn schedule_table(p: &TeamProblem<'_>, c: &CheckedSchedule) -> String {
     let wall = p.wall();
     let o = &c.outcome;
     let mut out = format!(
-        "wall {} ({} bricks) · objective {} · model {} · {} UAVs · {:.1} ms · {} schedules decoded\n",
+        "wall {} ({} bricks) · objective {} · model {}{} · {} UAVs · {:.1} ms · {} schedules decoded\n",
         wall.name(),
         wall.len(),
         p.objective(),
         p.model().name,
+        p.model()
+            .concurrency
+            .metric()
+            .map_or(String::new(), |m| format!(" (distance {m})")),
         p.uavs(),
         o.stats.elapsed.as_secs_f64() * 1e3,
         o.stats.decodes

@@ -21,6 +21,8 @@ pub struct ScheduleClaims {
     pub uavs: Option<usize>,
     /// Team model name (`thesis`, `cmcp` or a file's name).
     pub model: Option<String>,
+    /// The distance rule's metric (`xy` or `xyz`) the schedule was planned under.
+    pub metric: Option<String>,
     /// The budget T (s).
     pub budget_s: Option<f64>,
     /// The reward.
@@ -50,6 +52,7 @@ struct ScheduleJson<'a> {
     schedule: Vec<&'a RawValue>,
     uavs: Option<usize>,
     model: Option<String>,
+    metric: Option<String>,
     budget_s: Option<f64>,
     reward: Option<f64>,
     makespan_s: Option<f64>,
@@ -100,6 +103,7 @@ pub fn parse_schedule(text: &str, path: &Path, wall: &Wall) -> InputResult<Sched
         let claims = ScheduleClaims {
             uavs: doc.uavs,
             model: doc.model,
+            metric: doc.metric,
             budget_s: doc.budget_s,
             reward: doc.reward,
             makespan_s: doc.makespan_s,
@@ -243,12 +247,14 @@ pub struct ScheduleSetting {
 
 impl ScheduleFile {
     /// The setting to check against: what is given, else what the file states (a model it
-    /// names must be built in, else it must be given), else the UAVs its rows use and no
-    /// budget. Errors name `path` and the option (`--model`, `--uavs`, `--budget`).
+    /// names must be built in, else it must be given; the distance rule's metric), else the
+    /// UAVs its rows use and no budget. Errors name `path` and the option (`--model`,
+    /// `--metric`, `--uavs`, `--budget`).
     pub fn setting(
         &self,
         path: &Path,
         model: Option<&str>,
+        metric: Option<&str>,
         uavs: Option<usize>,
         budget_s: Option<f64>,
     ) -> InputResult<ScheduleSetting> {
@@ -264,7 +270,21 @@ impl ScheduleFile {
             }
             (None, None) => None,
         };
-        let model = crate::load_team_model(name)?;
+        let model = crate::load_team_model(name, metric)?;
+        // No metric given: the one the file states, when the model has a distance rule.
+        let stated = match (metric, &self.claims.metric) {
+            (None, Some(m)) if model.concurrency.metric().is_some() => Some(m),
+            _ => None,
+        };
+        let model = match stated {
+            Some(m) => crate::load_team_model(name, Some(m)).map_err(|e| {
+                InputError::bad(format!(
+                    "{}: the metric the file states: {e}",
+                    path.display()
+                ))
+            })?,
+            None => model,
+        };
         let uavs = uavs.or(self.claims.uavs).unwrap_or(self.uavs_seen.max(1));
         if uavs == 0 || uavs > MAX_UAVS {
             return Err(InputError::bad(format!(

@@ -31,8 +31,8 @@ mod validate;
 pub use checked::{schedule_checked, CheckedSchedule};
 pub use exhaustive::exhaustive_schedule;
 pub use model::{
-    Concurrency, TeamModel, TeamModelError, TeamModelPatch, TypePatch, TypeSchedule, MAX_SECONDS,
-    MIN_PLACE_S,
+    Concurrency, Metric, TeamModel, TeamModelError, TeamModelPatch, TypePatch, TypeSchedule,
+    MAX_SECONDS, MIN_PLACE_S,
 };
 pub use problem::{
     brick_centre, Objective, ObjectiveParseError, Placement, Schedule, TeamOutcome, TeamProblem,

@@ -28,6 +28,52 @@ impl TypeSchedule {
     }
 }
 
+/// How the distance rule measures the distance between two brick centres.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Metric {
+    /// In the horizontal plane (x, y), as CMCP's exact model (its MILP) does: a UAV hovers
+    /// above the brick it places, so a height difference does not keep two UAVs apart.
+    #[default]
+    Xy,
+    /// In 3-D, the centres at their layers' mid-heights (closer to CMCP's GRASP).
+    Xyz,
+}
+
+impl Metric {
+    /// `xy` or `xyz`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::Xy => "xy",
+            Metric::Xyz => "xyz",
+        }
+    }
+
+    /// The metric named `s` (`xy` or `xyz`).
+    pub fn parse(s: &str) -> Option<Metric> {
+        match s {
+            "xy" => Some(Metric::Xy),
+            "xyz" => Some(Metric::Xyz),
+            _ => None,
+        }
+    }
+
+    /// The squared distance between two centres under this metric.
+    pub fn distance2(self, a: [f64; 3], b: [f64; 3]) -> f64 {
+        let axes = match self {
+            Metric::Xy => 2,
+            Metric::Xyz => 3,
+        };
+        (0..axes).map(|k| (a[k] - b[k]).powi(2)).sum()
+    }
+}
+
+impl std::fmt::Display for Metric {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Which bricks may be in their placing phase at the same time.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "lowercase", tag = "rule")]
@@ -35,11 +81,24 @@ pub enum Concurrency {
     /// At most one brick (one UAV, or an orange pair) places at any time: the thesis's zone.
     Zone,
     /// Two bricks whose centres are closer than `distance_m` never place at overlapping times
-    /// (CMCP). Centres are 3-D: the footprint's middle at the layer's mid-height.
+    /// (CMCP). A centre is the footprint's middle at the layer's mid-height; `metric` says
+    /// whether the height counts.
     Distance {
         /// The distance (m).
         distance_m: f64,
+        /// `xy` (the default) or `xyz`.
+        metric: Metric,
     },
+}
+
+impl Concurrency {
+    /// The distance rule's metric (`None` under the zone rule).
+    pub fn metric(&self) -> Option<Metric> {
+        match *self {
+            Concurrency::Zone => None,
+            Concurrency::Distance { metric, .. } => Some(metric),
+        }
+    }
 }
 
 /// Every parameter of a team schedule problem apart from the wall, the team and the budget.
@@ -109,7 +168,26 @@ impl TeamModel {
         TeamModel {
             name: "cmcp".into(),
             types,
-            concurrency: Concurrency::Distance { distance_m: 0.80 },
+            concurrency: Concurrency::Distance {
+                distance_m: 0.80,
+                metric: Metric::Xy,
+            },
+        }
+    }
+
+    /// The same model with the distance rule measured by `metric`; an error under the zone
+    /// rule, which measures nothing.
+    pub fn with_metric(mut self, metric: Metric) -> Result<TeamModel, TeamModelError> {
+        match &mut self.concurrency {
+            Concurrency::Distance { metric: m, .. } => {
+                *m = metric;
+                Ok(self)
+            }
+            Concurrency::Zone => Err(TeamModelError {
+                field: format!("metric = \"{metric}\""),
+                value: f64::NAN,
+                reason: "the metric belongs to the distance rule; this model uses the zone rule (concurrency = \"zone\")",
+            }),
         }
     }
 
@@ -165,7 +243,7 @@ impl TeamModel {
                 );
             }
         }
-        if let Concurrency::Distance { distance_m } = self.concurrency {
+        if let Concurrency::Distance { distance_m, .. } = self.concurrency {
             if !(0.0..=MAX_DISTANCE_M).contains(&distance_m) {
                 return err(
                     "distance_m".into(),
@@ -207,27 +285,42 @@ impl TeamModel {
             t.uavs = p.uavs.unwrap_or(t.uavs);
             t.reward = p.reward.unwrap_or(t.reward);
         }
-        let distance = match m.concurrency {
-            Concurrency::Distance { distance_m } => distance_m,
-            Concurrency::Zone => 0.80,
+        let (distance, metric) = match m.concurrency {
+            Concurrency::Distance { distance_m, metric } => (distance_m, metric),
+            Concurrency::Zone => (0.80, Metric::default()),
         };
-        m.concurrency = match patch.concurrency.as_deref() {
-            None if patch.distance_m.is_some() => Concurrency::Distance {
-                distance_m: patch.distance_m.unwrap_or(distance),
-            },
-            None => m.concurrency,
-            Some("zone") => Concurrency::Zone,
-            Some("distance") => Concurrency::Distance {
-                distance_m: patch.distance_m.unwrap_or(distance),
-            },
-            Some(other) => {
-                return Err(TeamModelError {
-                    field: format!("concurrency = \"{other}\""),
+        let metric = match patch.metric.as_deref() {
+            None => metric,
+            Some(s) => Metric::parse(s).ok_or_else(|| TeamModelError {
+                field: format!("metric = \"{}\"", s.chars().take(80).collect::<String>()),
+                value: f64::NAN,
+                reason: "expected \"xy\" (horizontal plane) or \"xyz\" (3-D)",
+            })?,
+        };
+        let distance_rule = Concurrency::Distance {
+            distance_m: patch.distance_m.unwrap_or(distance),
+            metric,
+        };
+        m.concurrency =
+            match patch.concurrency.as_deref() {
+                None if patch.distance_m.is_some() || patch.metric.is_some() => distance_rule,
+                None => m.concurrency,
+                Some("zone") if patch.metric.is_some() => return Err(TeamModelError {
+                    field: "concurrency = \"zone\"".into(),
                     value: f64::NAN,
-                    reason: "expected \"zone\" or \"distance\"",
-                })
-            }
-        };
+                    reason:
+                        "the zone rule takes no metric (it belongs to concurrency = \"distance\")",
+                }),
+                Some("zone") => Concurrency::Zone,
+                Some("distance") => distance_rule,
+                Some(other) => {
+                    return Err(TeamModelError {
+                        field: format!("concurrency = \"{other}\""),
+                        value: f64::NAN,
+                        reason: "expected \"zone\" or \"distance\"",
+                    })
+                }
+            };
         m.validate()?;
         Ok(m)
     }
@@ -260,6 +353,7 @@ pub struct TeamModelError {
 /// base = "cmcp"            # or "thesis" (the default)
 /// concurrency = "distance" # or "zone"
 /// distance_m = 1.0
+/// metric = "xy"            # or "xyz" (the distance rule only)
 /// [orange]
 /// place_s = 60
 /// reward = 8
@@ -273,6 +367,8 @@ pub struct TeamModelPatch {
     pub concurrency: Option<String>,
     /// The distance of the `distance` rule (m).
     pub distance_m: Option<f64>,
+    /// The metric of the `distance` rule: `xy` (the default) or `xyz`.
+    pub metric: Option<String>,
     /// Red bricks.
     pub red: Option<TypePatch>,
     /// Green bricks.
@@ -323,7 +419,13 @@ mod tests {
         let m = TeamModel::from_patch(&patch, "mine").unwrap();
         assert_eq!(m.of(BrickType::Orange).reward, 8.0);
         assert_eq!(m.of(BrickType::Orange).place_s, 40.0);
-        assert_eq!(m.concurrency, Concurrency::Distance { distance_m: 0.8 });
+        assert_eq!(
+            m.concurrency,
+            Concurrency::Distance {
+                distance_m: 0.8,
+                metric: Metric::Xy
+            }
+        );
         let zone = TeamModelPatch {
             concurrency: Some("zone".into()),
             ..patch
@@ -332,6 +434,42 @@ mod tests {
             TeamModel::from_patch(&zone, "z").unwrap().concurrency,
             Concurrency::Zone
         );
+    }
+
+    #[test]
+    fn the_metric_key_sets_the_distance_rule_and_nothing_else() {
+        let xyz = TeamModelPatch {
+            base: Some("cmcp".into()),
+            metric: Some("xyz".into()),
+            ..TeamModelPatch::default()
+        };
+        let m = TeamModel::from_patch(&xyz, "m").unwrap();
+        assert_eq!(m.concurrency.metric(), Some(Metric::Xyz));
+        // On the thesis base, a metric alone turns the distance rule on (as distance_m does).
+        let thesis = TeamModelPatch {
+            base: None,
+            ..xyz.clone()
+        };
+        let t = TeamModel::from_patch(&thesis, "t").unwrap();
+        assert_eq!(
+            t.concurrency,
+            Concurrency::Distance {
+                distance_m: 0.8,
+                metric: Metric::Xyz
+            }
+        );
+        let bad = TeamModelPatch {
+            metric: Some("3d".into()),
+            ..xyz.clone()
+        };
+        let e = TeamModel::from_patch(&bad, "b").unwrap_err();
+        assert!(e.to_string().contains("metric = \"3d\""), "{e}");
+        let zone = TeamModelPatch {
+            concurrency: Some("zone".into()),
+            ..xyz
+        };
+        assert!(TeamModel::from_patch(&zone, "z").is_err());
+        assert!(TeamModel::thesis().with_metric(Metric::Xy).is_err());
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! The team schedule problem (DESIGN §4.1) and what a planner returns.
 
-use super::model::{Concurrency, TeamModel, TeamModelError};
+use super::model::{Concurrency, Metric, TeamModel, TeamModelError};
 use crate::outcome::Status;
 use mason_wall::{Brick, BrickId, Wall, BRICK_HEIGHT};
 use serde::Serialize;
@@ -168,7 +168,11 @@ pub fn brick_centre(b: &Brick) -> [f64; 3] {
     ]
 }
 
-fn distance_conflicts(wall: &Wall, d: f64) -> Result<Vec<Vec<BrickId>>, TeamProblemError> {
+fn distance_conflicts(
+    wall: &Wall,
+    d: f64,
+    metric: Metric,
+) -> Result<Vec<Vec<BrickId>>, TeamProblemError> {
     let n = wall.len();
     let centres: Vec<[f64; 3]> = wall.bricks().iter().map(brick_centre).collect();
     let mut by_x: Vec<usize> = (0..n).collect();
@@ -180,10 +184,7 @@ fn distance_conflicts(wall: &Wall, d: f64) -> Result<Vec<Vec<BrickId>>, TeamProb
             if centres[j][0] - centres[i][0] >= d {
                 break;
             }
-            let dist2: f64 = (0..3)
-                .map(|a| (centres[i][a] - centres[j][a]).powi(2))
-                .sum();
-            if dist2 < d * d {
+            if metric.distance2(centres[i], centres[j]) < d * d {
                 out[i].push(BrickId(j as u32));
                 out[j].push(BrickId(i as u32));
                 pairs += 1;
@@ -256,7 +257,9 @@ impl<'w> TeamProblem<'w> {
             .collect();
         let conflicts = match model.concurrency {
             Concurrency::Zone => Vec::new(),
-            Concurrency::Distance { distance_m } => distance_conflicts(wall, distance_m)?,
+            Concurrency::Distance { distance_m, metric } => {
+                distance_conflicts(wall, distance_m, metric)?
+            }
         };
         Ok(TeamProblem {
             wall,

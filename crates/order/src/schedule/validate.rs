@@ -2,7 +2,7 @@
 //! planner. It recomputes what it needs from the wall and the model: supports from the wall's
 //! canonical precedence, centres from the footprints, every time from the placements.
 
-use super::model::{Concurrency, TeamModel};
+use super::model::{Concurrency, Metric, TeamModel};
 use super::problem::{Schedule, TeamStart};
 use mason_wall::violations::Violations;
 use mason_wall::{BrickId, Wall, BRICK_HEIGHT};
@@ -397,12 +397,14 @@ fn check(
         for &(rs, re, j) in &running {
             let why = match model.concurrency {
                 Concurrency::Zone => Some("the zone holds one brick at a time".to_string()),
-                Concurrency::Distance { distance_m } => {
+                Concurrency::Distance { distance_m, metric } => {
                     let (a, b) = (centre(i), centre(j));
-                    let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2))
-                        .sqrt();
+                    let axes = if metric == Metric::Xy { 2 } else { 3 };
+                    let d = (0..axes).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
                     (d < distance_m).then(|| {
-                        format!("their centres are {d:.3} m apart, closer than {distance_m} m")
+                        format!(
+                            "their centres are {d:.3} m apart ({metric}), closer than {distance_m} m"
+                        )
                     })
                 }
             };
@@ -985,28 +987,28 @@ mod tests {
         mason_wall::parse_cmcp(text, "spread", mason_wall::CmcpSizes::Yaml).unwrap()
     }
 
+    /// Two bricks placed at the same time under `metric`: the rules they break.
+    fn together_rules(w: &Wall, metric: Metric, a: u32, b: u32) -> Vec<String> {
+        let m = TeamModel::cmcp().with_metric(metric).unwrap();
+        let together = Schedule {
+            placements: [a, b]
+                .iter()
+                .enumerate()
+                .map(|(u, &l)| Placement {
+                    brick: w.by_label(l).unwrap(),
+                    uavs: vec![u],
+                    start_s: 0.0,
+                })
+                .collect(),
+        };
+        let found = schedule_violations(w, &m, 3, None, &together);
+        found.iter().map(rule).collect()
+    }
+
     #[test]
-    fn the_distance_rule_measures_all_three_axes() {
+    fn the_distance_rule_measures_all_three_axes_under_xyz() {
         let w = spread();
-        let m = TeamModel::cmcp();
-        let together = |a: u32, b: u32| Schedule {
-            placements: vec![
-                Placement {
-                    brick: w.by_label(a).unwrap(),
-                    uavs: vec![0],
-                    start_s: 0.0,
-                },
-                Placement {
-                    brick: w.by_label(b).unwrap(),
-                    uavs: vec![1],
-                    start_s: 0.0,
-                },
-            ],
-        };
-        let rules = |a, b| {
-            let found = schedule_violations(&w, &m, 3, None, &together(a, b));
-            found.iter().map(rule).collect::<Vec<_>>()
-        };
+        let rules = |a, b| together_rules(&w, Metric::Xyz, a, b);
         // 0.5 m apart in y: too close; 0.9 m: far enough.
         assert_eq!(rules(1, 2), ["Concurrent"]);
         assert!(rules(3, 4).is_empty());
@@ -1022,6 +1024,60 @@ mod tests {
         let (a, b) = (centre(9), centre(10));
         assert_eq!(((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt(), 0.8);
         assert!(rules(9, 10).is_empty());
+    }
+
+    #[test]
+    fn the_distance_rule_ignores_height_under_xy() {
+        let w = spread();
+        let rules = |a, b| together_rules(&w, Metric::Xy, a, b);
+        assert_eq!(rules(1, 2), ["Concurrent"]);
+        assert!(rules(3, 4).is_empty());
+        // A level apart no longer helps: 0.78 m, 0.5 m and 0.75 m in the plan are too close.
+        assert_eq!(rules(5, 6), ["Concurrent"]);
+        assert_eq!(rules(7, 8), ["Concurrent"]);
+        assert_eq!(rules(11, 12), ["Concurrent"]);
+        assert_eq!(rules(13, 14), ["Concurrent"]);
+        assert!(rules(9, 10).is_empty());
+        // The default model measures in the plan.
+        assert_eq!(
+            TeamModel::cmcp().concurrency.metric(),
+            Some(Metric::Xy),
+            "xy is the default"
+        );
+    }
+
+    /// #31: `wall.big` at T = 2500 and a 599-brick wall overlapped bricks 0.796 m apart in the
+    /// plan and a level apart, valid only when the height counts.
+    #[test]
+    fn bricks_0_796_m_apart_on_two_levels_overlap_only_under_xyz() {
+        let text = "\
+1 1 0 0 0.1 0
+2 1 0.796 0 0.3 0
+";
+        let w = mason_wall::parse_cmcp(text, "levels", mason_wall::CmcpSizes::Yaml).unwrap();
+        assert_eq!(together_rules(&w, Metric::Xy, 1, 2), ["Concurrent"]);
+        assert!(together_rules(&w, Metric::Xyz, 1, 2).is_empty());
+        let e = &schedule_violations(
+            &w,
+            &TeamModel::cmcp(),
+            3,
+            None,
+            &Schedule {
+                placements: vec![
+                    Placement {
+                        brick: BrickId(0),
+                        uavs: vec![0],
+                        start_s: 0.0,
+                    },
+                    Placement {
+                        brick: BrickId(1),
+                        uavs: vec![1],
+                        start_s: 20.0,
+                    },
+                ],
+            },
+        )[0];
+        assert!(e.to_string().contains("0.796 m apart (xy)"), "{e}");
     }
 
     #[test]

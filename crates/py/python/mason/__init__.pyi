@@ -131,6 +131,7 @@ def plan_schedule(
     time_limit: Optional[float] = 1.0,
     seed: int = 0,
     progress: Optional[Callable[[dict[str, float]], Any]] = None,
+    metric: Optional[Literal["xy", "xyz"]] = None,
 ) -> Schedule:
     """Plans a team schedule and validates it; progress gets the best so far now and then."""
 
@@ -180,6 +181,7 @@ def validate_schedule(
     uavs: Optional[int] = None,
     budget: Optional[float] = None,
     all: bool = False,
+    metric: Optional[Literal["xy", "xyz"]] = None,
 ) -> dict[str, Any]:
     """Checks a team schedule (a Schedule, plan --objective --json, or uav,brick,start[,end] CSV text)."""
 
