@@ -593,14 +593,18 @@ fn a_huge_scenario_or_map_line_is_refused_without_being_split_or_echoed() {
 }
 
 /// Runs `args` and asserts that, when the whole command took over 10 % more than `limit`
-/// seconds, it said so on stderr.
+/// seconds, it said so on stderr. Starting a process is not the command's time: it is
+/// measured on `mason --version` under the same load, and allowed for three times over.
 fn assert_overrun_reported(args: &[&str], limit: f64) {
+    let started = std::time::Instant::now();
+    let _ = mason(&["--version"]);
+    let spawn = started.elapsed().as_secs_f64();
     let started = std::time::Instant::now();
     let o = mason(args);
     let took = started.elapsed().as_secs_f64();
     let err = stderr(&o);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{err}");
-    if took > 1.1 * limit + 0.05 {
+    if took > 1.1 * limit + 3.0 * spawn + 0.05 {
         assert!(
             err.contains("overrun") && err.contains(&format!("--time-limit {limit} s")),
             "took {took:.2} s under --time-limit {limit}, no overrun reported: {err}"
