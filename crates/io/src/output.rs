@@ -98,6 +98,46 @@ pub fn check_output(path: &Path) -> InputResult<()> {
     Ok(())
 }
 
+/// Checks, before any work, that an output folder (a ROS 2 bag: its files are written into it
+/// with [`write_files`]) can go to `path`: its parent folder exists, and `path` is nothing yet
+/// (it is made by [`make_output_folder`]) or a folder. A file, FIFO, socket or device there is
+/// refused, never replaced.
+pub fn check_output_folder(path: &Path) -> InputResult<()> {
+    let parent = folder_of(path);
+    if !parent.is_dir() {
+        return Err(InputError::bad(format!(
+            "{}: the folder {} does not exist (create it first)",
+            path.display(),
+            parent.display()
+        )));
+    }
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(_) => Err(InputError::bad(format!(
+            "{}: is not a folder; give a folder name (it is never replaced)",
+            path.display()
+        ))),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(InputError::bad(format!(
+            "{}: cannot be written ({e})",
+            path.display()
+        ))),
+    }
+}
+
+/// Makes the output folder `path` (checked by [`check_output_folder`]) if it is missing.
+pub fn make_output_folder(path: &Path) -> InputResult<()> {
+    check_output_folder(path)?;
+    match std::fs::create_dir(path) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && path.is_dir() => Ok(()),
+        Err(e) => Err(InputError::bad(format!(
+            "{}: cannot make the folder ({e})",
+            path.display()
+        ))),
+    }
+}
+
 /// The temporary name `path` is written under before it is renamed into place.
 fn temporary(path: &Path) -> PathBuf {
     let name = path

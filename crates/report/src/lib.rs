@@ -8,6 +8,8 @@
 //! clocks for tables ([`text`]).
 //! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink,
 //! with UAV poses logged when [`PoseSampler`] says, for simulated traces and live agents alike.
+//! ROS 2 bags of a mission ([`mission_rosbag`]: rosbag2, CDR written by [`Cdr`]) and the wall
+//! as ROS 2 markers, shared with the ROS 2 bridge ([`wall_scene_json`]).
 //!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
@@ -22,6 +24,7 @@ mod json;
 mod mcap;
 mod page;
 mod replay;
+mod rosbag;
 mod reward;
 mod schedule_svg;
 mod svg;
@@ -41,6 +44,11 @@ pub use json::{
 };
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
+pub use rosbag::{
+    cube_array, mission_rosbag, pose_stamped, string_message, uav_topics, wall_cubes,
+    wall_scene_json, BagMeta, BrickStatus, Cdr, Cube, Qos, RosBag, RosBagFiles, RosType, Stamp,
+    TopicId, BRICK_NS, FRAME, MISSION_TOPIC, ROS_DISTRO, SCENE_VERSION, WALL_TOPIC,
+};
 pub use reward::{reward_svg, Series};
 pub use schedule_svg::schedule_svg;
 pub use svg::{escape, robot_colour};
