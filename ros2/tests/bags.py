@@ -43,13 +43,23 @@ def installed_typestore():
     return store
 
 
-def fields(msg_text: str) -> list:
-    """A definition's field and constant lines, comments and blank lines left out."""
+PRIMITIVES = {"bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16",
+              "int32", "uint32", "int64", "uint64", "string", "wstring"}
+
+
+def fields(msg_text: str, package: str) -> list:
+    """A definition's field and constant lines, comments and blank lines left out, and every
+    type named in full (``Pose`` in geometry_msgs is ``geometry_msgs/Pose``)."""
     out = []
     for line in msg_text.splitlines():
         line = line.split("#", 1)[0].strip()
-        if line:
-            out.append(" ".join(line.split()))
+        if not line:
+            continue
+        ty, rest = line.split(None, 1)
+        base = ty.split("[", 1)[0].split("<", 1)[0]
+        if "/" not in base and base not in PRIMITIVES:
+            ty = f"{package}/{ty}"
+        out.append(" ".join([ty] + rest.split()))
     return out
 
 
@@ -66,10 +76,12 @@ def read_rosbags(bag: Path) -> list:
 
 def read_mcap_ros2(bag: Path) -> list:
     """Every message as (topic, schema name, log time ns, decoded) through mcap-ros2-support."""
-    from mcap_ros2.reader import read_ros2_messages
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
 
-    mcap = next(bag.glob("*.mcap"))
-    return [(m.channel.topic, m.schema.name, m.log_time_ns, m.ros_msg) for m in read_ros2_messages(str(mcap))]
+    with open(next(bag.glob("*.mcap")), "rb") as f:
+        reader = make_reader(f, decoder_factories=[DecoderFactory()])
+        return [(c.topic, s.name, m.log_time, d) for s, c, m, d in reader.iter_decoded_messages()]
 
 
 def rclpy_decode(msgtype: str, raw: bytes):
@@ -99,12 +111,14 @@ def check_bag(bag: Path, events: list, uavs: int, bricks: int) -> dict:
         assert encoding == "ros2msg", name
         sections = text.split("=" * 80 + "\n")
         own = share_dir() / (name + ".msg")
-        assert fields(sections[0]) == fields(own.read_text()), name
+        pkg = name.split("/")[0]
+        assert fields(sections[0], pkg) == fields(own.read_text(), pkg), name
         for sec in sections[1:]:
             head, body = sec.split("\n", 1)
             assert head.startswith("MSG: ")
             pkg, typ = head[5:].split("/")
-            assert fields(body) == fields((share_dir() / pkg / "msg" / f"{typ}.msg").read_text()), head
+            real = (share_dir() / pkg / "msg" / f"{typ}.msg").read_text()
+            assert fields(body, pkg) == fields(real, pkg), head
     meta = (bag / "metadata.yaml").read_text()
     for t in RCLPY_TYPES:
         if f"type: {t}" in meta:

@@ -156,9 +156,7 @@ impl RosBag {
             "rosbag2_bagfile_information:\n{}",
             self.metadata_body(&mcap_name, "  ")
         );
-        let mcap = std::mem::replace(&mut self.out, empty_writer()?)
-            .into_inner()
-            .into_inner();
+        let mcap = self.out.into_inner().into_inner();
         Ok(RosBagFiles {
             mcap_name,
             mcap,
@@ -201,13 +199,6 @@ impl RosBag {
         );
         y.lines().map(|l| format!("{indent}{l}\n")).collect()
     }
-}
-
-/// A writer to swap in for the finished one.
-fn empty_writer() -> Result<::mcap::Writer<Cursor<Vec<u8>>>, McapLogError> {
-    Ok(::mcap::WriteOptions::new()
-        .compression(None)
-        .create(Cursor::new(Vec::new()))?)
 }
 
 #[cfg(test)]

@@ -270,7 +270,7 @@ mod tests {
         for dep in ["std_msgs/Header", "geometry_msgs/Pose", "visualization_msgs/MeshFile"] {
             assert_eq!(d.matches(&format!("\nMSG: {dep}\n")).count(), 1, "{dep}");
         }
-        assert_eq!(d.matches(SEPARATOR).count(), 11);
+        assert_eq!(d.matches(SEPARATOR).count(), 12);
         assert_eq!(RosType::String.definition(), "string data\n");
         // Every type a definition names is defined in it (or is a primitive).
         for t in [RosType::PoseStamped, RosType::MarkerArray] {
