@@ -75,6 +75,7 @@ def test_an_abort_from_ros_lands_every_agent_and_junk_is_counted(mason_zenoh, tm
         out, err = team.communicate(timeout=180)
     assert sub.wait_for(lambda s: s.missions and s.missions[-1]["rejected"].get("team/malformed", 0) >= 3, 10), \
         sub.missions[-1]
+    assert (tmp_path / "out" / "trace.json").is_file(), err
     rejected = sub.missions[-1]["rejected"]
     assert rejected.get("command/malformed") == 3 and rejected.get("command/range") == 1, rejected
     doc = json.loads((tmp_path / "out" / "trace.json").read_text())

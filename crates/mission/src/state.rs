@@ -168,7 +168,7 @@ impl Observer for Vec<Event> {
 }
 
 /// Every outcome a state transition may carry (the simulator's and the agents').
-pub const OUTCOMES: [&str; 27] = [
+pub const OUTCOMES: [&str; 30] = [
     "start",
     "ok",
     "airborne",
@@ -196,6 +196,9 @@ pub const OUTCOMES: [&str; 27] = [
     "rejoined",
     "killed",
     "pair_left",
+    "commanded",
+    "aborted",
+    "held",
 ];
 
 /// The outcome named `s`, if it is one of [`OUTCOMES`].
