@@ -204,6 +204,25 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_bag_folder_is_made_once_and_never_replaces_a_file() {
+        let dir = std::env::temp_dir().join(format!("mason-io-bag-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bag = dir.join("bag");
+        check_output_folder(&bag).unwrap();
+        make_output_folder(&bag).unwrap();
+        make_output_folder(&bag).unwrap();
+        assert!(bag.is_dir());
+        let file = dir.join("file");
+        std::fs::write(&file, "keep").unwrap();
+        let e = make_output_folder(&file).unwrap_err();
+        assert!(e.to_string().contains("is not a folder"), "{e}");
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+        let e = check_output_folder(&dir.join("missing/bag")).unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn outputs_are_written_all_or_none() {
         let dir = std::env::temp_dir().join(format!("mason-io-out-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -24,8 +24,8 @@ mod json;
 mod mcap;
 mod page;
 mod replay;
-mod rosbag;
 mod reward;
+mod rosbag;
 mod schedule_svg;
 mod svg;
 pub mod text;
@@ -44,12 +44,12 @@ pub use json::{
 };
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
+pub use reward::{reward_svg, Series};
 pub use rosbag::{
     cube_array, mission_rosbag, pose_stamped, string_message, uav_topics, wall_cubes,
     wall_scene_json, BagMeta, BrickStatus, Cdr, Cube, Qos, RosBag, RosBagFiles, RosType, Stamp,
     TopicId, BRICK_NS, FRAME, MISSION_TOPIC, ROS_DISTRO, SCENE_VERSION, WALL_TOPIC,
 };
-pub use reward::{reward_svg, Series};
 pub use schedule_svg::schedule_svg;
 pub use svg::{escape, robot_colour};
 pub use wall_layout::{front_layout, Band, FrontLayout, Spot, CAPTION_M};

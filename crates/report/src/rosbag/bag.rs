@@ -239,7 +239,10 @@ mod tests {
         assert!(m.contains("  message_count: 3\n"));
         assert!(m.contains("        name: /p\n"));
         assert!(m.contains("      message_count: 2\n"));
-        assert!(m.contains("            durability: transient_local\n"), "{m}");
+        assert!(
+            m.contains("            durability: transient_local\n"),
+            "{m}"
+        );
         assert!(files.mcap.starts_with(b"\x89MCAP0\r\n"));
     }
 }

@@ -267,7 +267,11 @@ mod tests {
     fn definitions_list_each_dependency_once_after_a_separator() {
         let d = RosType::MarkerArray.definition();
         assert!(d.starts_with("visualization_msgs/Marker[] markers\n"));
-        for dep in ["std_msgs/Header", "geometry_msgs/Pose", "visualization_msgs/MeshFile"] {
+        for dep in [
+            "std_msgs/Header",
+            "geometry_msgs/Pose",
+            "visualization_msgs/MeshFile",
+        ] {
             assert_eq!(d.matches(&format!("\nMSG: {dep}\n")).count(), 1, "{dep}");
         }
         assert_eq!(d.matches(SEPARATOR).count(), 12);
@@ -275,8 +279,15 @@ mod tests {
         // Every type a definition names is defined in it (or is a primitive).
         for t in [RosType::PoseStamped, RosType::MarkerArray] {
             let d = t.definition();
-            for line in d.lines().filter(|l| !l.starts_with('=') && !l.starts_with("MSG:")) {
-                let ty = line.split_whitespace().next().unwrap().trim_end_matches("[]");
+            for line in d
+                .lines()
+                .filter(|l| !l.starts_with('=') && !l.starts_with("MSG:"))
+            {
+                let ty = line
+                    .split_whitespace()
+                    .next()
+                    .unwrap()
+                    .trim_end_matches("[]");
                 if ty.contains('/') {
                     assert!(d.contains(&format!("MSG: {ty}\n")), "{ty} in {t:?}");
                 }

@@ -333,7 +333,13 @@ mod tests {
             ev(2.0, 0, EventKind::Grasp { brick: b0 }),
             ev(3.0, 0, EventKind::Place { brick: b0 }),
             ev(3.5, 1, EventKind::Fail),
-            ev(4.0, 0, EventKind::Comm { mode: CommMode::Windows }),
+            ev(
+                4.0,
+                0,
+                EventKind::Comm {
+                    mode: CommMode::Windows,
+                },
+            ),
         ];
         let files = mission_rosbag("two", &meta, &trace, 5.0).unwrap();
         let c = counts(&files);
@@ -402,7 +408,10 @@ mod tests {
         let unknown = [ev(0.0, 0, EventKind::Place { brick: BrickId(4) })];
         assert!(matches!(
             mission_rosbag("x", &meta, &unknown, 1.0),
-            Err(McapLogError::UnknownBrick { brick: 4, bricks: 1 })
+            Err(McapLogError::UnknownBrick {
+                brick: 4,
+                bricks: 1
+            })
         ));
     }
 }
