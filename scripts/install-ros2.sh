@@ -22,18 +22,9 @@ PINS=(
 )
 # The pins are installed once: a stamp file holds the list they were installed from.
 STAMP="$ENV/.mason-pins"
-if ! python3 -c "import venv, ensurepip" 2>/dev/null; then
-    SUDO=""
-    if [ "$(id -u)" != "0" ]; then
-        SUDO="sudo"
-    fi
-    export DEBIAN_FRONTEND=noninteractive
-    $SUDO apt-get update -qq
-    $SUDO apt-get install -y -qq --no-install-recommends python3-venv >/dev/null
-fi
-if [ ! -x "$PY" ]; then
-    python3 -m venv "$ENV"
-fi
+# The venv itself (python3-venv from Debian's packages if missing), made by the project's
+# one venv script (with eclipse-zenoh, one of the pins).
+MASON_PYENV="$ENV" scripts/install-python.sh eclipse-zenoh 1.10.2 >/dev/null
 if [ "$(cat "$STAMP" 2>/dev/null)" != "${PINS[*]}" ]; then
     "$PY" -m pip install --quiet --disable-pip-version-check "${PINS[@]}" >&2
     echo "${PINS[*]}" >"$STAMP"

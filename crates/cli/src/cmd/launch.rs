@@ -97,11 +97,11 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
     if let Some(dir) = &a.rosbag {
         let rejected: std::collections::BTreeMap<String, u64> =
             serde_json::from_value(doc["summary"]["dropped"].clone()).unwrap_or_default();
-        let src = crate::cmd::rosbag::BagSource {
+        let src = mason_report::BagMeta {
             uavs: n,
             arena: &setting.config.arena,
             wall: &setting.wall,
-            coord: setting.coord,
+            mode: crate::cmd::rosbag::start_mode(setting.coord),
             rejected: &rejected,
         };
         crate::fail::write_all(&crate::cmd::rosbag::files(

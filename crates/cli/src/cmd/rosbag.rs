@@ -2,23 +2,15 @@
 //! ([`mason_report::mission_rosbag`]), written as `DIR/metadata.yaml` and `DIR/<DIR>_0.mcap`.
 
 use crate::fail::{input_error, CliResult};
-use mason_mission::{Arena, CommMode, Coord, Event};
-use mason_wall::Wall;
-use std::collections::BTreeMap;
+use mason_mission::{CommMode, Coord, Event};
 use std::path::{Path, PathBuf};
 
-/// What the bag is of.
-pub struct BagSource<'a> {
-    /// The team size.
-    pub uavs: usize,
-    /// The arena.
-    pub arena: &'a Arena,
-    /// The wall.
-    pub wall: &'a Wall,
-    /// The coordination policy (the UAVs' mode at the start: windows, or comm).
-    pub coord: Coord,
-    /// Messages dropped on arrival, by cause.
-    pub rejected: &'a BTreeMap<String, u64>,
+/// The UAVs' mode at the start of a mission flown under `coord`.
+pub fn start_mode(coord: Coord) -> CommMode {
+    match coord {
+        Coord::Windows => CommMode::Windows,
+        Coord::Comm | Coord::Auto => CommMode::Comm,
+    }
 }
 
 /// Checks, before any work, that a bag can go to `dir`.
@@ -32,7 +24,7 @@ pub fn check(dir: &Option<PathBuf>) -> CliResult<()> {
 /// The bag's two files (its folder made if missing), to write with the command's other outputs.
 pub fn files(
     dir: &Path,
-    src: &BagSource<'_>,
+    meta: &mason_report::BagMeta<'_>,
     trace: &[Event],
     end_s: f64,
 ) -> CliResult<Vec<(PathBuf, Vec<u8>)>> {
@@ -41,18 +33,7 @@ pub fn files(
         .map(|n| n.to_string_lossy().into_owned())
         .filter(|n| !n.is_empty() && n != "." && n != "..")
         .unwrap_or_else(|| "mason".into());
-    let mode = match src.coord {
-        Coord::Windows => CommMode::Windows,
-        Coord::Comm | Coord::Auto => CommMode::Comm,
-    };
-    let meta = mason_report::BagMeta {
-        uavs: src.uavs,
-        arena: src.arena,
-        wall: src.wall,
-        mode,
-        rejected: src.rejected,
-    };
-    let bag = mason_report::mission_rosbag(&name, &meta, trace, end_s)
+    let bag = mason_report::mission_rosbag(&name, meta, trace, end_s)
         .map_err(|e| input_error(format!("internal error: {}: {e}", dir.display())))?;
     mason_io::make_output_folder(dir)?;
     Ok(vec![

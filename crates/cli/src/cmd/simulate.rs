@@ -235,11 +235,11 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
         }
         if let Some(dir) = &a.rosbag {
             let none = Default::default();
-            let src = crate::cmd::rosbag::BagSource {
+            let src = mason_report::BagMeta {
                 uavs: m.uavs,
                 arena: &config.arena,
                 wall,
-                coord,
+                mode: crate::cmd::rosbag::start_mode(coord),
                 rejected: &none,
             };
             files.extend(crate::cmd::rosbag::files(

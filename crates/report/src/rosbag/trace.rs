@@ -367,18 +367,31 @@ mod tests {
         assert_eq!(last.log_time, 5_000_000_000);
     }
 
+    /// A one-brick wall, the default arena, no rejections.
+    fn one_brick() -> (Wall, Arena, BTreeMap<String, u64>) {
+        let wall = mason_wall::parse_layer_text("R", "one").unwrap();
+        (wall, Arena::default(), BTreeMap::new())
+    }
+
+    /// A bag of one UAV building `wall`.
+    fn lone_uav<'a>(
+        wall: &'a Wall,
+        arena: &'a Arena,
+        none: &'a BTreeMap<String, u64>,
+    ) -> BagMeta<'a> {
+        BagMeta {
+            uavs: 1,
+            arena,
+            wall,
+            mode: CommMode::Comm,
+            rejected: none,
+        }
+    }
+
     #[test]
     fn a_uav_heard_again_after_a_failure_is_a_new_incarnation() {
-        let wall = mason_wall::parse_layer_text("R", "one").unwrap();
-        let arena = Arena::default();
-        let none = BTreeMap::new();
-        let meta = BagMeta {
-            uavs: 1,
-            arena: &arena,
-            wall: &wall,
-            mode: CommMode::Comm,
-            rejected: &none,
-        };
+        let (wall, arena, none) = one_brick();
+        let meta = lone_uav(&wall, &arena, &none);
         let mut f = Filler::new("one", &meta).unwrap();
         f.event(&state(0.0, 0, UavState::Check)).unwrap();
         f.event(&ev(1.0, 0, EventKind::Fail)).unwrap();
@@ -390,16 +403,8 @@ mod tests {
 
     #[test]
     fn a_stranger_or_an_unknown_brick_is_refused() {
-        let wall = mason_wall::parse_layer_text("R", "one").unwrap();
-        let arena = Arena::default();
-        let none = BTreeMap::new();
-        let meta = BagMeta {
-            uavs: 1,
-            arena: &arena,
-            wall: &wall,
-            mode: CommMode::Comm,
-            rejected: &none,
-        };
+        let (wall, arena, none) = one_brick();
+        let meta = lone_uav(&wall, &arena, &none);
         let stranger = [state(0.0, 1, UavState::Check)];
         assert!(matches!(
             mission_rosbag("x", &meta, &stranger, 1.0),
