@@ -4,6 +4,10 @@
 //! `PREFIX/MISSION/*/*` and skips its own key. Every other sample is handed over as it came,
 //! its bytes and its key's last two chunks ([`Arrival`]), for the agent's check on arrival
 //! ([`mason_mission::agent::Agent::admit`]): nothing is decoded here.
+//!
+//! An agent also answers queries on `PREFIX/MISSION/UAV/scene` with the wall it builds
+//! ([`ZenohLink::serve_scene`]): how a client that is not a teammate (the ROS 2 bridge) learns
+//! where each brick goes. A query is not a sample: the teammates' subscriptions never see it.
 
 use crate::error::{FleetError, FleetResult};
 use crate::network::Network;
@@ -14,6 +18,7 @@ use std::sync::mpsc;
 use std::time::Instant;
 use zenoh::bytes::Encoding;
 use zenoh::pubsub::{Publisher, Subscriber};
+use zenoh::query::Queryable;
 use zenoh::{Session, Wait};
 
 /// How long a dropped connection waits before it is tried again at first, and at most (ms).
@@ -26,7 +31,11 @@ pub struct ZenohLink {
     publishers: HashMap<&'static str, Publisher<'static>>,
     rx: mpsc::Receiver<Arrival>,
     _subscriber: Subscriber<()>,
+    scene: Option<Queryable<()>>,
 }
+
+/// The last chunk of the key an agent answers scene queries on.
+pub const SCENE_KIND: &str = "scene";
 
 fn json_list(items: &[String]) -> String {
     serde_json::to_string(items).expect("strings")
@@ -84,7 +93,29 @@ impl ZenohLink {
             publishers: HashMap::new(),
             rx,
             _subscriber: subscriber,
+            scene: None,
         })
+    }
+
+    /// Answers every query on `PREFIX/MISSION/UAV/scene` with `scene` (JSON, e.g.
+    /// [`mason_report::wall_scene_json`]) for as long as the session is open.
+    pub fn serve_scene(&mut self, scene: &serde_json::Value) -> FleetResult<()> {
+        let key = format!("{}/{SCENE_KIND}", self.prefix);
+        let bytes = serde_json::to_vec(scene).expect("a JSON value serialises");
+        let reply_key = key.clone();
+        let queryable = self
+            .session
+            .declare_queryable(&key)
+            .callback(move |query| {
+                let _ = query
+                    .reply(&reply_key, bytes.clone())
+                    .encoding(Encoding::APPLICATION_JSON)
+                    .wait();
+            })
+            .wait()
+            .map_err(|e| FleetError::Network(format!("zenoh: cannot serve {key}: {e}")))?;
+        self.scene = Some(queryable);
+        Ok(())
     }
 
     fn publisher(&mut self, kind: MessageKind) -> Option<&Publisher<'static>> {
@@ -107,8 +138,10 @@ impl ZenohLink {
             session,
             publishers,
             _subscriber,
+            scene,
             ..
         } = self;
+        drop(scene);
         drop(_subscriber);
         drop(publishers);
         let _ = session.close().wait();

@@ -47,4 +47,4 @@ pub use faults::check_uav;
 pub use faults::{parse_at, parse_window, read_mission, FaultSpec};
 pub use files::{read_input, read_input_text, read_toml, MAX_INPUT_BYTES, MAX_TOML_BYTES};
 pub use models::{load_model, load_team_model, objective, time_limit, MAX_TIME_LIMIT_S};
-pub use output::{check_output, write_file, write_files};
+pub use output::{check_output, check_output_folder, make_output_folder, write_file, write_files};

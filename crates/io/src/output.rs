@@ -99,6 +99,46 @@ pub fn check_output(path: &Path) -> InputResult<()> {
     Ok(())
 }
 
+/// Checks, before any work, that an output folder (a ROS 2 bag: its files are written into it
+/// with [`write_files`]) can go to `path`: its parent folder exists, and `path` is nothing yet
+/// (it is made by [`make_output_folder`]) or a folder. A file, FIFO, socket or device there is
+/// refused, never replaced.
+pub fn check_output_folder(path: &Path) -> InputResult<()> {
+    let parent = folder_of(path);
+    if !parent.is_dir() {
+        return Err(InputError::bad(format!(
+            "{}: the folder {} does not exist (create it first)",
+            path.display(),
+            parent.display()
+        )));
+    }
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => Ok(()),
+        Ok(_) => Err(InputError::bad(format!(
+            "{}: is not a folder; give a folder name (it is never replaced)",
+            path.display()
+        ))),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(InputError::bad(format!(
+            "{}: cannot be written ({e})",
+            path.display()
+        ))),
+    }
+}
+
+/// Makes the output folder `path` (checked by [`check_output_folder`]) if it is missing.
+pub fn make_output_folder(path: &Path) -> InputResult<()> {
+    check_output_folder(path)?;
+    match std::fs::create_dir(path) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && path.is_dir() => Ok(()),
+        Err(e) => Err(InputError::bad(format!(
+            "{}: cannot make the folder ({e})",
+            path.display()
+        ))),
+    }
+}
+
 /// The temporary name `path` is written under before it is renamed into place.
 fn temporary(path: &Path) -> PathBuf {
     let name = path
@@ -163,6 +203,25 @@ pub fn write_file(path: &Path, contents: &[u8]) -> InputResult<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bag_folder_is_made_once_and_never_replaces_a_file() {
+        let dir = std::env::temp_dir().join(format!("mason-io-bag-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bag = dir.join("bag");
+        check_output_folder(&bag).unwrap();
+        make_output_folder(&bag).unwrap();
+        make_output_folder(&bag).unwrap();
+        assert!(bag.is_dir());
+        let file = dir.join("file");
+        std::fs::write(&file, "keep").unwrap();
+        let e = make_output_folder(&file).unwrap_err();
+        assert!(e.to_string().contains("is not a folder"), "{e}");
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+        let e = check_output_folder(&dir.join("missing/bag")).unwrap_err();
+        assert!(e.to_string().contains("does not exist"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn outputs_are_written_all_or_none() {

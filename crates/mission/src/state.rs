@@ -212,7 +212,7 @@ impl Observer for Vec<Event> {
 }
 
 /// Every outcome a state transition may carry (the simulator's and the agents').
-pub const OUTCOMES: [&str; 27] = [
+pub const OUTCOMES: [&str; 30] = [
     "start",
     "ok",
     "airborne",
@@ -240,6 +240,9 @@ pub const OUTCOMES: [&str; 27] = [
     "rejoined",
     "killed",
     "pair_left",
+    "commanded",
+    "aborted",
+    "held",
 ];
 
 /// The outcome named `s`, if it is one of [`OUTCOMES`].

@@ -8,6 +8,8 @@
 //! clocks for tables ([`text`]).
 //! MCAP logs for Foxglove ([`McapLog`], [`mission_mcap`]): written into any `Write + Seek` sink,
 //! with UAV poses logged when [`PoseSampler`] says, for simulated traces and live agents alike.
+//! ROS 2 bags of a mission ([`mission_rosbag`]: rosbag2, CDR written by [`Cdr`]) and the wall
+//! as ROS 2 markers, shared with the ROS 2 bridge ([`wall_scene_json`]).
 //!
 //! ```
 //! let wall = mason_wall::parse_layer_text("R G\nB R R", "example").unwrap();
@@ -23,6 +25,7 @@ mod mcap;
 mod page;
 mod replay;
 mod reward;
+mod rosbag;
 mod schedule_svg;
 mod svg;
 pub mod text;
@@ -42,6 +45,11 @@ pub use json::{
 pub use page::{pre, report_page, Section};
 pub use replay::{crew_replay_html, mission_replay_html};
 pub use reward::{reward_svg, Series};
+pub use rosbag::{
+    cube_array, mission_rosbag, pose_stamped, string_message, uav_topics, wall_cubes,
+    wall_scene_json, BagMeta, BrickStatus, Cdr, Cube, Qos, RosBag, RosBagFiles, RosType, Stamp,
+    TopicId, BRICK_NS, FRAME, MISSION_TOPIC, ROS_DISTRO, SCENE_VERSION, WALL_TOPIC,
+};
 pub use schedule_svg::schedule_svg;
 pub use svg::{escape, robot_colour};
 pub use wall_layout::{front_layout, Band, FrontLayout, Spot, CAPTION_M};

@@ -254,6 +254,11 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
             .map_err(|e| input_error(format!("cannot handle Ctrl-C: {e}")))?;
     }
     let mut link = ZenohLink::open(&net, a.uav)?;
+    // The wall, for clients that are not teammates (the ROS 2 bridge).
+    link.serve_scene(&mason_report::wall_scene_json(
+        &setting.config.arena,
+        &setting.wall,
+    ))?;
     let report = fly_agent(&setting, &net, &opts, &mut link, &stop);
     link.close();
     let report = report?;

@@ -39,6 +39,10 @@ pub struct LaunchArgs {
     /// Wall seconds between the launch and mission time 0 (the agents open their sessions)
     #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub lead: f64,
+    /// Also write the merged trace as a ROS 2 bag in this folder (made if missing; see
+    /// `simulate --rosbag`)
+    #[arg(long)]
+    pub rosbag: Option<PathBuf>,
 }
 
 /// Parses `U@T` values of `flag` for a team of `uavs`.
@@ -61,6 +65,7 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
         ));
     }
     let setting = a.fleet.resolve()?;
+    crate::cmd::rosbag::check(&a.rosbag)?;
     let n = setting.config.uavs;
     let opts = LaunchOptions {
         exe: std::env::current_exe()
@@ -87,7 +92,25 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
     };
     let done = mason_fleet::launch(&setting, &opts, &interrupted, &mut started)?;
     let out_file = a.out.join("trace.json");
-    crate::fail::write_file(&out_file, pretty(&done.to_json(&setting)).as_bytes())?;
+    let doc = done.to_json(&setting);
+    crate::fail::write_file(&out_file, pretty(&doc).as_bytes())?;
+    if let Some(dir) = &a.rosbag {
+        let rejected: std::collections::BTreeMap<String, u64> =
+            serde_json::from_value(doc["summary"]["dropped"].clone()).unwrap_or_default();
+        let src = mason_report::BagMeta {
+            uavs: n,
+            arena: &setting.config.arena,
+            wall: &setting.wall,
+            mode: crate::cmd::rosbag::start_mode(setting.coord),
+            rejected: &rejected,
+        };
+        crate::fail::write_all(&crate::cmd::rosbag::files(
+            dir,
+            &src,
+            &done.events,
+            done.end(),
+        )?)?;
+    }
     let total = setting.wall.len();
     let placed = done.placed();
     let makespan = done.makespan(total);

@@ -9,6 +9,7 @@ pub mod generate;
 pub mod launch;
 pub mod mission;
 pub mod plan;
+pub mod rosbag;
 pub mod schedule;
 pub mod simulate;
 pub mod wall;

@@ -73,6 +73,11 @@ pub struct SimArgs {
     /// (foxglove.Log); JSON messages, mission time in ns (see README)
     #[arg(long)]
     pub mcap: Option<PathBuf>,
+    /// Write the run as a ROS 2 bag in this folder (single run; made if missing): rosbag2
+    /// metadata.yaml and one MCAP file, CDR messages with ROS 2 message definitions; the
+    /// topics of the ROS 2 bridge (see README)
+    #[arg(long)]
+    pub rosbag: Option<PathBuf>,
 }
 
 /// The name of a policy, as on the command line.
@@ -83,6 +88,7 @@ pub fn coord_name(c: Coord) -> String {
 /// `mason simulate`.
 pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
     check_outputs(&[&a.svg, &a.html, &a.mcap])?;
+    crate::cmd::rosbag::check(&a.rosbag)?;
     if a.runs == 0 {
         return Err(input_error("--runs must be at least 1"));
     }
@@ -161,9 +167,10 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
         order = flight.order;
         assignment = Some(flight.lists);
     }
-    if a.runs > 1 && (a.svg.is_some() || a.html.is_some() || a.mcap.is_some()) {
+    let one_mission = [&a.svg, &a.html, &a.mcap, &a.rosbag];
+    if a.runs > 1 && one_mission.iter().any(|o| o.is_some()) {
         return Err(input_error(
-            "--svg, --html and --mcap show one mission; drop --runs (or use --runs 1 --seed S)",
+            "--svg, --html, --mcap and --rosbag show one mission; drop --runs (or use --runs 1 --seed S)",
         ));
     }
     let input = MissionInput {
@@ -226,6 +233,22 @@ pub fn run(a: SimArgs, quiet: bool) -> CliResult<()> {
             let bytes = mason_report::mission_mcap(&meta, &trace, r.metrics.end_s)
                 .map_err(|e| input_error(format!("internal error: {}: {e}", path.display())))?;
             files.push((path.clone(), bytes));
+        }
+        if let Some(dir) = &a.rosbag {
+            let none = Default::default();
+            let src = mason_report::BagMeta {
+                uavs: m.uavs,
+                arena: &config.arena,
+                wall,
+                mode: crate::cmd::rosbag::start_mode(coord),
+                rejected: &none,
+            };
+            files.extend(crate::cmd::rosbag::files(
+                dir,
+                &src,
+                &trace,
+                r.metrics.end_s,
+            )?);
         }
         write_all(&files)?;
         if a.json {

@@ -79,6 +79,15 @@ mod tests {
     use super::super::testkit::Fixture;
     use super::super::{Arrival, Command, Order};
     use super::*;
+
+    #[test]
+    fn command_outcomes_read_back_from_a_trace() {
+        // Regression: `mason launch` could not read back the trace of an aborted team
+        // ("unknown outcome `aborted`"): every outcome a command causes is a known one.
+        for o in [COMMANDED, ABORTED, HELD] {
+            assert_eq!(crate::state::outcome(o), Some(o));
+        }
+    }
     use crate::coord::Coord;
     use crate::state::{EventKind, UavState};
 

@@ -57,6 +57,9 @@ mod trace;
 mod values;
 mod writer;
 
+pub(crate) use trace::trace_poses;
+pub(crate) use values::nanos;
+
 #[cfg(test)]
 mod tests;
 

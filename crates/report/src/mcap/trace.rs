@@ -22,7 +22,7 @@ use std::io::{Cursor, Seek, Write};
 type Position = (f64, f64, f64);
 
 /// A pose to log: mission time, UAV, pose.
-type Sample = (f64, u32, UavPose);
+pub(crate) type Sample = (f64, u32, UavPose);
 
 /// Writes a simulated mission's trace into `log`, ending at `end_s`: every event, and each
 /// UAV's poses as its [`PoseSampler`] decides: at each of its state events, at the ticks of
@@ -37,7 +37,7 @@ pub fn write_trace<W: Write + Seek>(
     trace: &[Event],
     end_s: f64,
 ) -> Result<(), McapLogError> {
-    let samples = poses(log, trace, end_s)?;
+    let samples = trace_poses(log.uavs(), trace, end_s)?;
     let mut events = trace.iter().peekable();
     for (t, uav, p) in samples {
         while let Some(e) = events.next_if(|e| e.t < t) {
@@ -51,14 +51,13 @@ pub fn write_trace<W: Write + Seek>(
     Ok(())
 }
 
-/// Every UAV's poses (see [`write_trace`]), in time order: at one time, UAVs in order, and a
-/// UAV's poses in the order made.
-fn poses<W: Write + Seek>(
-    log: &McapLog<'_, W>,
+/// Every UAV's poses in a team of `uavs` (see [`write_trace`]), in time order: at one time,
+/// UAVs in order, and a UAV's poses in the order made. Shared with the ROS 2 bag.
+pub(crate) fn trace_poses(
+    uavs: usize,
     trace: &[Event],
     end_s: f64,
 ) -> Result<Vec<Sample>, McapLogError> {
-    let uavs = log.uavs();
     let mut samplers: Vec<PoseSampler> = (0..uavs as u32).map(PoseSampler::new).collect();
     // Where each UAV's current leg starts: its last state event's time and position.
     let mut leg_start: Vec<Option<(f64, Position)>> = vec![None; uavs];
@@ -67,7 +66,10 @@ fn poses<W: Write + Seek>(
         let EventKind::State { state, x, y, .. } = e.kind else {
             continue;
         };
-        let i = log.check_uav(e.uav)?;
+        let i = e.uav as usize;
+        if i >= uavs {
+            return Err(McapLogError::UnknownUav { uav: e.uav, uavs });
+        }
         let here = (x, y, altitude(e.uav, state));
         if let Some((t0, from)) = leg_start[i] {
             fly_leg(&mut samplers[i], (t0, from), (e.t, here), &mut samples);
@@ -154,7 +156,6 @@ mod tests {
             arena: &arena,
             wall: &wall,
         };
-        let log = McapLog::new(Cursor::new(Vec::new()), &meta).unwrap();
         let cruise = cruise_altitude(1);
         // UAV 1 climbs in place, flies 4 m north, hovers; UAV 0 logs nothing.
         let trace = [
@@ -163,7 +164,7 @@ mod tests {
             state(3.0, 1, UavState::Detect, 10.0, 14.0),
             state(4.0, 1, UavState::Grasp, 10.0, 14.0),
         ];
-        let poses = poses(&log, &trace, 5.0).unwrap();
+        let poses = trace_poses(meta.uavs, &trace, 5.0).unwrap();
         let times: Vec<f64> = poses.iter().map(|p| p.0).collect();
         // Every state event, the ticks inside each leg that moves (none while hovering), the end.
         assert_eq!(

@@ -5,7 +5,7 @@
 use serde_json::{json, Value};
 
 /// Mission seconds → nanoseconds (negative and NaN → 0).
-pub(super) fn nanos(t: f64) -> u64 {
+pub(crate) fn nanos(t: f64) -> u64 {
     (t.max(0.0) * 1e9).round() as u64
 }
 
