@@ -1,0 +1,96 @@
+//! One pass over the image: every pixel's class, and how much of each cell's floor an
+//! obstacle covers.
+//!
+//! A pixel belongs to the cell under its centre on the floor, through the inverse homography.
+//! Only the cell's middle (the central 60 % × 60 %) is counted: a tall obstacle's top leans
+//! over its neighbours' edges under a perspective camera, and its own middle is always covered.
+//! Robot and goal pixels cover floor, not obstacle. The pass runs on all cores, in bands of
+//! rows; the counts are summed in band order, so the result does not depend on the cores.
+
+use super::colour::{Class, Classifier};
+use super::homography::Homography;
+use image::RgbImage;
+use rayon::prelude::*;
+
+/// A pixel outside the floor.
+pub const OUTSIDE: u8 = 5;
+
+/// Obstacle and floor pixels counted in the middle of each cell.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coverage {
+    /// Obstacle pixels per cell, row-major.
+    pub obstacle: Vec<u32>,
+    /// Pixels per cell that showed floor, robots or goals.
+    pub floor: Vec<u32>,
+}
+
+impl Coverage {
+    /// The share of the middle of cell `i` an obstacle covers; `None` when no pixel was
+    /// counted there.
+    pub fn share(&self, i: usize) -> Option<f64> {
+        let total = self.obstacle[i] + self.floor[i];
+        (total > 0).then(|| f64::from(self.obstacle[i]) / f64::from(total))
+    }
+}
+
+/// The middle of a cell, as a fraction of its side from each edge.
+const MIDDLE: (f64, f64) = (0.2, 0.8);
+const BAND_ROWS: usize = 32;
+
+/// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) and counts the cells'
+/// coverage, for a floor of `w` × `h` cells seen through `image_to_floor`.
+pub fn classify(
+    img: &RgbImage,
+    classifier: &Classifier,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+) -> (Vec<u8>, Coverage) {
+    let width = img.width() as usize;
+    let cells = w as usize * h as usize;
+    let raw = img.as_raw();
+    let mut classes = vec![OUTSIDE; raw.len() / 3];
+    let counts: Vec<Coverage> = classes
+        .par_chunks_mut(width * BAND_ROWS)
+        .enumerate()
+        .map(|(band, out)| {
+            let mut cov = Coverage {
+                obstacle: vec![0; cells],
+                floor: vec![0; cells],
+            };
+            for (k, class) in out.iter_mut().enumerate() {
+                let i = band * width * BAND_ROWS + k;
+                let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+                let Some((u, v)) = image_to_floor.apply((x, y)) else {
+                    continue;
+                };
+                if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
+                    continue;
+                }
+                let c = classifier.classify([raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]]);
+                *class = c as u8;
+                let (fu, fv) = (u.fract(), v.fract());
+                if fu < MIDDLE.0 || fu > MIDDLE.1 || fv < MIDDLE.0 || fv > MIDDLE.1 {
+                    continue;
+                }
+                let cell = v as usize * w as usize + u as usize;
+                match c {
+                    Class::Obstacle => cov.obstacle[cell] += 1,
+                    Class::Unsure => {}
+                    _ => cov.floor[cell] += 1,
+                }
+            }
+            cov
+        })
+        .collect();
+    let mut total = Coverage {
+        obstacle: vec![0; cells],
+        floor: vec![0; cells],
+    };
+    for c in counts {
+        for i in 0..cells {
+            total.obstacle[i] += c.obstacle[i];
+            total.floor[i] += c.floor[i];
+        }
+    }
+    (classes, total)
+}
