@@ -3,9 +3,10 @@ writes each image with its ground truth (grid, blocked cells, robots, goals, flo
 
     python render.py OUT_DIR --family A --seeds 0-99 [--cells 24x16] [--robots 4-30]
 
-A scene is a floor of W x H cells (1 world unit per cell) at z = 0, seen by a pinhole camera.
-World x runs along the grid's columns and world y along its rows, so cell (x, y) covers
-[x, x+1] x [y, y+1]. Everything random comes from the seed and the family, so a scene is
+A scene is a floor of W x H cells (1 world unit per cell) at z = 0 (z up), seen by a pinhole
+camera. Cell (x, y) (column x, row y, row 0 at the top of a straight-down view) covers world
+[x, x+1] x [H-y-1, H-y]: rows run along -y, as a camera looking down on a right-handed world
+with x to the right sees them. Everything random comes from the seed and the family, so a scene is
 rebuilt bit for bit by the same command.
 """
 import argparse
@@ -75,7 +76,7 @@ def pick_layout(rng, w, h, n_robots, fam, robot_size, goal_size):
     order = rng.permutation(len(free))
     robots, goals = [], []
     taken = []  # (cx, cy, half size) of everything placed
-    reach = lambda s: s / 2 + 0.06
+    reach = lambda s: s / 2 + 0.1
 
     def fits(cx, cy, half):
         for ox, oy, oh in taken:
@@ -110,7 +111,7 @@ def camera(rng, w, h, cell_px, tilt_max):
     centre = np.array([w / 2, h / 2, 0.0])
     offset = np.array([math.sin(tilt) * math.cos(azim), math.sin(tilt) * math.sin(azim), math.cos(tilt)])
     origin = centre + offset * height
-    up = np.array([0.0, -1.0, 0.0])
+    up = np.array([0.0, 1.0, 0.0])
     if tilt == 0:
         # Straight down: the floor fills the image exactly.
         fov = 2 * math.degrees(math.atan((w / 2) / height))
@@ -118,7 +119,7 @@ def camera(rng, w, h, cell_px, tilt_max):
                     size=(int(round(w * cell_px)), int(round(h * cell_px))), tilt=0.0)
     cam = dict(origin=origin, target=centre, up=up, fov=1.0, size=(1, 1), tilt=math.degrees(tilt))
     corners = [(0, 0), (w, 0), (w, h), (0, h)]
-    pts = np.array([project_unit(cam, (x, y, 0.0)) for x, y in corners])
+    pts = np.array([project_unit(cam, (x, h - y, 0.0)) for x, y in corners])
     half_x = np.abs(pts[:, 0]).max() * 1.06
     half_y = np.abs(pts[:, 1]).max() * 1.06
     side = math.hypot(w, h)
@@ -207,9 +208,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
         objs["sun"] = {"type": "directional", "direction": list(-sun),
                        "irradiance": {"type": "rgb", "value": light["sun"]}}
     for i, s in enumerate(shelves):
-        objs[f"shelf{i}"] = box(s["x"] + s["w"] / 2, s["y"] + s["h"] / 2, 0, s["w"] - 0.04, s["h"] - 0.04,
+        objs[f"shelf{i}"] = box(s["x"] + s["w"] / 2, h - (s["y"] + s["h"] / 2), 0, s["w"] - 0.04, s["h"] - 0.04,
                                 s["height"], plastic(s["colour"], 0.3))
     for i, (cx, cy) in enumerate(robots):
+        cy = h - cy
         col = robot["colour"] * rng.uniform(0.85, 1.1)
         mat = plastic(np.clip(col, 0, 1), robot["rough"])
         r, hgt = robot["size"] / 2, robot["height"]
@@ -222,6 +224,7 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
             else:
                 objs[f"robot{i}top"] = {"type": "disk", "to_world": T.translate([cx, cy, hgt]).scale([r, r, 1]), "bsdf": mat}
     for i, (cx, cy) in enumerate(goals):
+        cy = h - cy
         mat = diffuse(goal["colour"])
         r = goal["size"] / 2
         z = 0.003
@@ -306,7 +309,7 @@ def render_one(args, seed, out_dir):
     else:
         path = os.path.join(out_dir, name + ".png")
         pixels.save(path, optimize=True)
-    corners = [project(cam, (x, y, 0.0)) for x, y in [(0, 0), (w, 0), (w, h), (0, h)]]
+    corners = [project(cam, (x, h - y, 0.0)) for x, y in [(0, 0), (w, 0), (w, h), (0, h)]]
     truth = {
         "image": os.path.basename(path),
         "renderer": f"mitsuba {mi.__version__} scalar_rgb, path tracer, {args.spp} spp",
