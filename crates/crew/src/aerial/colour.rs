@@ -2,7 +2,7 @@
 //!
 //! Colours are judged after white balance on the floor (the floor's median colour becomes
 //! grey), by hue, saturation s = (max − min) / max and chroma c = (max − min) relative to the
-//! floor's brightness. A shadow darkens the floor but keeps its hue-less grey (s stays low),
+//! floor's brightness. Robots and goals need less colour than obstacles (see the constants). A shadow darkens the floor but keeps its hue-less grey (s stays low),
 //! so a shadow stays floor; a robot in a shadow keeps its hue. The floor's lit brightness is
 //! its median, so chroma does not depend on exposure.
 
@@ -107,15 +107,17 @@ pub struct Classifier {
     goal: Hue,
 }
 
-/// Saturation above which a pixel has a colour (below it, it is floor or shadow).
-const MIN_SATURATION: f64 = 0.35;
-/// Chroma (max − min, relative to the lit floor) above which a colour is clear; below it the
-/// pixel is too dark to tell from a shadow's noise.
-const MIN_CHROMA: f64 = 0.06;
-/// Half-width of the robots' and goals' hue bands, in degrees.
-const HUE_BAND: f64 = 25.0;
-/// Hues this far from a band's centre but outside the band cannot be told apart.
-const HUE_DOUBT: f64 = 45.0;
+/// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
+/// small marks are blurred and their colour washed out by JPEG.
+const MARK_COLOUR: (f64, f64) = (0.25, 0.05);
+/// Saturation and chroma of an obstacle's pixel: higher, since shadows under a blue sky are
+/// bluish after white balance on the sunlit floor.
+const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
+/// Half-width of the robots' and the goals' hue bands, in degrees (robots are a clear colour;
+/// goals are paint or tape on the floor, whose green varies more).
+const HUE_BAND: (f64, f64) = (25.0, 35.0);
+/// Hues this much beyond a band cannot be told apart from it.
+const HUE_DOUBT: f64 = 10.0;
 
 impl Classifier {
     /// A classifier for a floor whose median colour (0–255 per channel) is `floor`.
@@ -135,16 +137,19 @@ impl Classifier {
         let max = rgb[0].max(rgb[1]).max(rgb[2]);
         let min = rgb[0].min(rgb[1]).min(rgb[2]);
         let chroma = max - min;
-        if max <= 0.0 || chroma < MIN_CHROMA || chroma < MIN_SATURATION * max {
+        let clear = |(s, c): (f64, f64)| chroma >= c && chroma >= s * max;
+        if max <= 0.0 || !clear(MARK_COLOUR) {
             return Class::Floor;
         }
         let (hue, _) = hue_saturation(rgb);
         let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
-        if dr <= HUE_BAND && dr < dg {
+        if dr <= HUE_BAND.0 && dr < dg {
             Class::Robot
-        } else if dg <= HUE_BAND {
+        } else if dg <= HUE_BAND.1 {
             Class::Goal
-        } else if dr <= HUE_DOUBT || dg <= HUE_DOUBT {
+        } else if !clear(OBSTACLE_COLOUR) {
+            Class::Floor
+        } else if dr <= HUE_BAND.0 + HUE_DOUBT || dg <= HUE_BAND.1 + HUE_DOUBT {
             Class::Unsure
         } else {
             Class::Obstacle
@@ -170,8 +175,8 @@ mod tests {
         assert_eq!(c.classify([45, 8, 6]), Class::Robot);
         assert_eq!(c.classify([20, 120, 30]), Class::Goal);
         assert_eq!(c.classify([30, 60, 150]), Class::Obstacle);
-        // Orange between red and yellow: neither a robot's colour nor clearly another.
-        assert_eq!(c.classify([200, 100, 20]), Class::Unsure);
+        // Amber, between red and yellow: neither a robot's colour nor clearly another.
+        assert_eq!(c.classify([220, 120, 20]), Class::Unsure);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! slice's brightness (robots and shelves cover less than half a slice, so the median sees the
 //! floor). Minus its running median, painted lines stand out as narrow dips (dark lines) or
 //! peaks (bright lines). N cells put N − 1 inner lines at k/N of the floor; N's score is the
-//! lower quartile, over k, of the extreme within a narrow window there, in units of the
+//! lower quartile, over k, of the extreme within ±1 sample there, in units of the
 //! profile's noise (1.4826 × its median absolute deviation). N/2 cells score as well as N (their
 //! lines are among N's) and 2N scores low (half its places fall between lines), so the answer
 //! is the largest N scoring close to the best. A best score under [`MIN_SCORE`] means no lines.
@@ -44,7 +44,8 @@ pub fn cells_along(profile: &[f64]) -> Option<(u32, f64)> {
     let most = (n / MIN_SAMPLES_PER_CELL).min(1024);
     for cells in 2..=most {
         let spacing = n as f64 / cells as f64;
-        let half = ((0.12 * spacing).round() as usize).max(1);
+        // The same window for every N, so that noise lifts every N's score alike.
+        let half = 1;
         for dark in [true, false] {
             let mut extremes: Vec<f64> = (1..cells)
                 .map(|k| {

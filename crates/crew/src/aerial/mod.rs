@@ -460,7 +460,12 @@ pub fn read_aerial_image(
         config.robot_colour,
         config.goal_colour,
     );
-    let (mut classes, coverage) = pixels::classify(img, &classifier, &image_to_floor, (gw, gh));
+    let nadir = floor_to_image.nadir((
+        f64::from(img.width()) / 2.0,
+        f64::from(img.height()) / 2.0,
+    ));
+    let (mut classes, coverage) =
+        pixels::classify(img, &classifier, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
             .apply(((i % gw as usize) as f64 + 0.5, (i / gw as usize) as f64 + 0.5))
@@ -484,7 +489,7 @@ pub fn read_aerial_image(
                 source,
                 cell_centre_px(i),
                 format!(
-                    "cell ({}, {}) is {:.0} % covered by an obstacle: cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
+                    "cell ({}, {}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over): cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
                     i % gw as usize,
                     i / gw as usize,
                     share * 100.0,
@@ -498,10 +503,6 @@ pub fn read_aerial_image(
     let grid = Grid::new(gw, gh, blocked);
     let width = img.width() as usize;
     let px = cell_size_px(&floor_to_image, (fw, fh));
-    let nadir = floor_to_image.nadir((
-        f64::from(img.width()) / 2.0,
-        f64::from(img.height()) / 2.0,
-    ));
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let robots = marks(
         blobs::find(&mut classes, width, Class::Robot as u8),

@@ -2,8 +2,11 @@
 //! obstacle covers.
 //!
 //! A pixel belongs to the cell under its centre on the floor, through the inverse homography.
-//! Only the cell's middle (the central 60 % × 60 %) is counted: a tall obstacle's top leans
-//! over its neighbours' edges under a perspective camera, and its own middle is always covered.
+//! Under a perspective camera a tall obstacle's top leans away from the nadir (the point under
+//! the camera), over the near side of the cells beyond it; nothing leans toward the nadir. So
+//! only a window of the cell is counted: along each axis, 0.4–0.95 of the cell on the side away
+//! from the nadir (0.2–0.8 when the nadir is level with the cell, or unknown). An obstacle on
+//! the cell covers that window whole; a neighbour's top leaning less than 0.4 cell misses it.
 //! Robot and goal pixels cover floor, not obstacle. The pass runs on all cores, in bands of
 //! rows; the counts are summed in band order, so the result does not depend on the cores.
 
@@ -33,8 +36,15 @@ impl Coverage {
     }
 }
 
-/// The middle of a cell, as a fraction of its side from each edge.
-const MIDDLE: (f64, f64) = (0.2, 0.8);
+/// The counted window of a cell along one axis (fractions of the side), for a cell from `lo`
+/// to `lo + 1` and the nadir at `nadir` on that axis.
+fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
+    match nadir {
+        Some(n) if n < lo => (0.4, 0.95),
+        Some(n) if n > lo + 1.0 => (0.05, 0.6),
+        _ => (0.2, 0.8),
+    }
+}
 const BAND_ROWS: usize = 32;
 
 /// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) and counts the cells'
@@ -44,6 +54,7 @@ pub fn classify(
     classifier: &Classifier,
     image_to_floor: &Homography,
     (w, h): (u32, u32),
+    nadir: Option<(f64, f64)>,
 ) -> (Vec<u8>, Coverage) {
     let width = img.width() as usize;
     let cells = w as usize * h as usize;
@@ -69,7 +80,11 @@ pub fn classify(
                 let c = classifier.classify([raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]]);
                 *class = c as u8;
                 let (fu, fv) = (u.fract(), v.fract());
-                if fu < MIDDLE.0 || fu > MIDDLE.1 || fv < MIDDLE.0 || fv > MIDDLE.1 {
+                let (wu, wv) = (
+                    window(u.floor(), nadir.map(|n| n.0)),
+                    window(v.floor(), nadir.map(|n| n.1)),
+                );
+                if fu < wu.0 || fu > wu.1 || fv < wv.0 || fv > wv.1 {
                     continue;
                 }
                 let cell = v as usize * w as usize + u as usize;

@@ -193,11 +193,11 @@ fn refuses_what_it_cannot_read() {
     };
     assert!(refusal(&scene(), &cfg).contains("does not fit"));
 
-    // An orange blob: neither the robots' red nor clearly another colour.
+    // An amber blob: neither the robots' red nor clearly another colour.
     let mut img = scene().straight(12);
     for y in 40..48 {
         for x in 70..78 {
-            img.put_pixel(x, y, Rgb([220, 110, 20]));
+            img.put_pixel(x, y, Rgb([220, 120, 20]));
         }
     }
     let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
