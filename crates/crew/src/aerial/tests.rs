@@ -205,10 +205,11 @@ fn refuses_what_it_cannot_read() {
         .to_string();
     assert!(e.contains("neither the robots'"), "{e}");
 
-    // Half a cell covered.
+    // Half of the window of cell (7, 4) that no neighbour can lean over (0.4–0.95 of the cell
+    // away from the nadir at the image's centre) covered.
     let mut img = scene().straight(12);
     for y in 48..60 {
-        for x in 84..90 {
+        for x in 88..93 {
             img.put_pixel(x, y, Rgb([40, 70, 170]));
         }
     }
