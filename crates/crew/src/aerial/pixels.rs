@@ -60,6 +60,12 @@ pub fn classify(
     let cells = w as usize * h as usize;
     let raw = img.as_raw();
     let mut classes = vec![OUTSIDE; raw.len() / 3];
+    // The counted window of every column and every row of cells.
+    let windows = |n: u32, at: Option<f64>| -> Vec<(f64, f64)> {
+        (0..n).map(|k| window(f64::from(k), at)).collect()
+    };
+    let (wu, wv) = (windows(w, nadir.map(|n| n.0)), windows(h, nadir.map(|n| n.1)));
+    let m = image_to_floor.0;
     let counts: Vec<Coverage> = classes
         .par_chunks_mut(width * BAND_ROWS)
         .enumerate()
@@ -68,30 +74,41 @@ pub fn classify(
                 obstacle: vec![0; cells],
                 floor: vec![0; cells],
             };
-            for (k, class) in out.iter_mut().enumerate() {
-                let i = band * width * BAND_ROWS + k;
-                let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
-                let Some((u, v)) = image_to_floor.apply((x, y)) else {
-                    continue;
-                };
-                if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
-                    continue;
-                }
-                let c = classifier.classify([raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]]);
-                *class = c as u8;
-                let (fu, fv) = (u.fract(), v.fract());
-                let (wu, wv) = (
-                    window(u.floor(), nadir.map(|n| n.0)),
-                    window(v.floor(), nadir.map(|n| n.1)),
+            for (row, line) in out.chunks_mut(width).enumerate() {
+                let y = (band * BAND_ROWS + row) as f64 + 0.5;
+                // The homography's numerators and denominator are linear along a row.
+                let (bu, bv, bd) = (
+                    m[1] * y + m[2],
+                    m[4] * y + m[5],
+                    m[7] * y + m[8],
                 );
-                if fu < wu.0 || fu > wu.1 || fv < wv.0 || fv > wv.1 {
-                    continue;
-                }
-                let cell = v as usize * w as usize + u as usize;
-                match c {
-                    Class::Obstacle => cov.obstacle[cell] += 1,
-                    Class::Unsure => {}
-                    _ => cov.floor[cell] += 1,
+                let start = (band * BAND_ROWS + row) * width;
+                for (k, class) in line.iter_mut().enumerate() {
+                    let x = k as f64 + 0.5;
+                    let d = m[6] * x + bd;
+                    if d.abs() < 1e-12 {
+                        continue;
+                    }
+                    let (u, v) = ((m[0] * x + bu) / d, (m[3] * x + bv) / d);
+                    if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
+                        continue;
+                    }
+                    let i = start + k;
+                    let c = classifier.classify([raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]]);
+                    *class = c as u8;
+                    // u and v are non-negative here: the casts truncate toward zero = floor.
+                    let (cu, cv) = (u as usize, v as usize);
+                    let (fu, fv) = (u - cu as f64, v - cv as f64);
+                    let (ou, ov) = (wu[cu], wv[cv]);
+                    if fu < ou.0 || fu > ou.1 || fv < ov.0 || fv > ov.1 {
+                        continue;
+                    }
+                    let cell = cv * w as usize + cu;
+                    match c {
+                        Class::Obstacle => cov.obstacle[cell] += 1,
+                        Class::Unsure => {}
+                        _ => cov.floor[cell] += 1,
+                    }
                 }
             }
             cov
