@@ -405,7 +405,8 @@ pub fn scen_text(map_name: &str, grid: &Grid, pairs: &[(Cell, Cell)]) -> String 
     for &(start, goal) in pairs {
         let ((sx, sy), (gx, gy)) = (grid.xy(start), grid.xy(goal));
         let (dx, dy) = (sx.abs_diff(gx), sy.abs_diff(gy));
-        let octile = f64::from(dx.max(dy) - dx.min(dy)) + std::f64::consts::SQRT_2 * f64::from(dx.min(dy));
+        let octile =
+            f64::from(dx.max(dy) - dx.min(dy)) + std::f64::consts::SQRT_2 * f64::from(dx.min(dy));
         s.push_str(&format!(
             "0\t{map_name}\t{}\t{}\t{sx}\t{sy}\t{gx}\t{gy}\t{octile:.8}\n",
             grid.width(),
@@ -426,7 +427,7 @@ mod writer_tests {
         assert_eq!(parse_map(&text, "m").unwrap(), grid);
         let pairs = [(Cell(0), Cell(5)), (Cell(3), Cell(2))];
         let scen = scen_text("m.map", &grid, &pairs);
-        let agents = parse_scen(&scen, "s", &grid, 10).unwrap();
+        let agents = parse_scen(&scen, "s", &grid, 2).unwrap();
         let back: Vec<(Cell, Cell)> = agents.iter().map(|a| (a.start, a.goal)).collect();
         assert_eq!(back, pairs);
     }

@@ -21,9 +21,10 @@ fn cells(v: &Value) -> Vec<(u32, u32)> {
 }
 
 fn scene(name: &str) -> (Vec<u8>, Value) {
-    let truth: Value =
-        serde_json::from_str(&std::fs::read_to_string(data().join(format!("{name}.json"))).unwrap())
-            .unwrap();
+    let truth: Value = serde_json::from_str(
+        &std::fs::read_to_string(data().join(format!("{name}.json"))).unwrap(),
+    )
+    .unwrap();
     let image = std::fs::read(data().join(truth["image"].as_str().unwrap())).unwrap();
     (image, truth)
 }
@@ -32,7 +33,12 @@ fn config(truth: &Value, with_grid: bool) -> AerialConfig {
     let g = &truth["grid"];
     let corners = (!truth["straight_down"].as_bool().unwrap()).then(|| {
         let c = |i: usize, k: usize| truth["corners"][i][k].as_f64().unwrap();
-        [(c(0, 0), c(0, 1)), (c(1, 0), c(1, 1)), (c(2, 0), c(2, 1)), (c(3, 0), c(3, 1))]
+        [
+            (c(0, 0), c(0, 1)),
+            (c(1, 0), c(1, 1)),
+            (c(2, 0), c(2, 1)),
+            (c(3, 0), c(3, 1)),
+        ]
     });
     AerialConfig {
         grid: with_grid.then(|| (g[0].as_u64().unwrap() as u32, g[1].as_u64().unwrap() as u32)),
@@ -45,7 +51,10 @@ fn assert_exact(name: &str, r: &AerialReading, truth: &Value) {
     let g = &r.grid;
     assert_eq!(
         [u64::from(g.width()), u64::from(g.height())],
-        [truth["grid"][0].as_u64().unwrap(), truth["grid"][1].as_u64().unwrap()],
+        [
+            truth["grid"][0].as_u64().unwrap(),
+            truth["grid"][1].as_u64().unwrap()
+        ],
         "{name}: grid"
     );
     let mut blocked: Vec<(u32, u32)> = (0..g.len() as u32)

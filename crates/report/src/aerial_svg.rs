@@ -21,12 +21,7 @@ pub fn aerial_svg(
 ) -> String {
     let (w, h) = reading.image_size;
     let grid = &reading.grid;
-    let to_image = |u: f64, v: f64| {
-        reading
-            .floor_to_image
-            .apply((u, v))
-            .unwrap_or((0.0, 0.0))
-    };
+    let to_image = |u: f64, v: f64| reading.floor_to_image.apply((u, v)).unwrap_or((0.0, 0.0));
     let centre = |c: Cell| {
         let (x, y) = grid.xy(c);
         to_image(f64::from(x) + 0.5, f64::from(y) + 0.5)
@@ -65,11 +60,19 @@ pub fn aerial_svg(
     ));
     for k in 0..=grid.width() {
         let (a, b) = (to_image(f64::from(k), 0.0), to_image(f64::from(k), gh));
-        let _ = write!(s, r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}"/>"#, a.0, a.1, b.0, b.1);
+        let _ = write!(
+            s,
+            r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}"/>"#,
+            a.0, a.1, b.0, b.1
+        );
     }
     for k in 0..=grid.height() {
         let (a, b) = (to_image(0.0, f64::from(k)), to_image(gw, f64::from(k)));
-        let _ = write!(s, r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}"/>"#, a.0, a.1, b.0, b.1);
+        let _ = write!(
+            s,
+            r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}"/>"#,
+            a.0, a.1, b.0, b.1
+        );
     }
     s.push_str("</g>");
     // Blocked cells.

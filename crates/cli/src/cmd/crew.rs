@@ -220,18 +220,15 @@ fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialCon
         .grid
         .as_deref()
         .map(|g| {
-            let parsed = g
-                .split_once(['x', 'X', '×'])
-                .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)));
-            parsed.ok_or_else(|| {
-                input_error(format!("--grid {g}: give W×H cells, e.g. 24x16"))
-            })
+            let parsed = g.split_once(['x', 'X', '×']).and_then(|(w, h)| {
+                Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?))
+            });
+            parsed.ok_or_else(|| input_error(format!("--grid {g}: give W×H cells, e.g. 24x16")))
         })
         .transpose()?;
     let corners = a.corners.as_deref().map(parse_corners).transpose()?;
-    let colour = |flag: &str, text: &str| {
-        Hue::parse(text).map_err(|e| input_error(format!("--{flag} {e}")))
-    };
+    let colour =
+        |flag: &str, text: &str| Hue::parse(text).map_err(|e| input_error(format!("--{flag} {e}")));
     Ok(Some(AerialConfig {
         grid,
         cell_px: a.cell_px,

@@ -44,7 +44,10 @@ impl Homography {
         if d.abs() < 1e-12 {
             return None;
         }
-        Some(((m[0] * x + m[1] * y + m[2]) / d, (m[3] * x + m[4] * y + m[5]) / d))
+        Some((
+            (m[0] * x + m[1] * y + m[2]) / d,
+            (m[3] * x + m[4] * y + m[5]) / d,
+        ))
     }
 
     /// The inverse map, `None` when singular.
@@ -131,12 +134,16 @@ impl Homography {
 fn collinear_three(p: &[Point; 4]) -> bool {
     let size = p
         .iter()
-        .flat_map(|a| p.iter().map(move |b| (a.0 - b.0).abs().max((a.1 - b.1).abs())))
+        .flat_map(|a| {
+            p.iter()
+                .map(move |b| (a.0 - b.0).abs().max((a.1 - b.1).abs()))
+        })
         .fold(0.0, f64::max);
     (0..4).any(|skip| {
         let q: Vec<Point> = (0..4).filter(|&i| i != skip).map(|i| p[i]).collect();
         let area = (q[1].0 - q[0].0) * (q[2].1 - q[0].1) - (q[1].1 - q[0].1) * (q[2].0 - q[0].0);
-        !(area.abs() > 1e-9 * size * size)
+        // NaN corners count as collinear.
+        area.abs().partial_cmp(&(1e-9 * size * size)) != Some(std::cmp::Ordering::Greater)
     })
 }
 
@@ -148,18 +155,19 @@ fn solve8(mut a: [[f64; 9]; 8]) -> Option<[f64; 8]> {
             return None;
         }
         a.swap(col, pivot);
-        for row in 0..8 {
+        let pivot_row = a[col];
+        for (row, r) in a.iter_mut().enumerate() {
             if row != col {
-                let f = a[row][col] / a[col][col];
-                for k in col..9 {
-                    a[row][k] -= f * a[col][k];
+                let f = r[col] / pivot_row[col];
+                for (x, p) in r.iter_mut().zip(pivot_row).skip(col) {
+                    *x -= f * p;
                 }
             }
         }
     }
     let mut x = [0.0; 8];
-    for i in 0..8 {
-        x[i] = a[i][8] / a[i][i];
+    for (i, (xi, row)) in x.iter_mut().zip(&a).enumerate() {
+        *xi = row[8] / row[i];
     }
     Some(x)
 }

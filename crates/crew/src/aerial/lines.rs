@@ -88,10 +88,12 @@ mod tests {
         let mut state = noise_seed;
         (0..n)
             .map(|i| {
-                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 let noise = ((state >> 33) as f64 / (1u64 << 31) as f64 - 0.5) * 6.0;
                 let off = (i as f64 / spacing).fract();
-                let line = off < 0.06 || off > 0.94;
+                let line = !(0.06..=0.94).contains(&off);
                 150.0 + 20.0 * (i as f64 / n as f64) + noise - if line { 60.0 } else { 0.0 }
             })
             .collect()

@@ -161,7 +161,9 @@ pub fn decode(bytes: &[u8], source: &str, max_pixels: u64) -> Result<RgbImage, C
     let too_large = |w: u32, h: u32| {
         whole(
             source,
-            format!("the image is {w}×{h}, more than the {max_pixels} pixels an aerial view may have"),
+            format!(
+                "the image is {w}×{h}, more than the {max_pixels} pixels an aerial view may have (mason_crew::aerial::MAX_PIXELS)"
+            ),
         )
     };
     let rgb = if bytes.starts_with(&[0x89, b'P', b'N', b'G']) {
@@ -173,10 +175,7 @@ pub fn decode(bytes: &[u8], source: &str, max_pixels: u64) -> Result<RgbImage, C
         })?
     } else if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
         let reader = || {
-            image::ImageReader::with_format(
-                std::io::Cursor::new(bytes),
-                image::ImageFormat::Jpeg,
-            )
+            image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Jpeg)
         };
         let (w, h) = reader()
             .into_dimensions()
@@ -196,7 +195,7 @@ pub fn decode(bytes: &[u8], source: &str, max_pixels: u64) -> Result<RgbImage, C
     } else {
         return Err(whole(
             source,
-            "not a PNG or a JPEG (the file does not start with either's signature)",
+            "cannot decode the image: not a PNG or a JPEG (the file starts with neither's signature)",
         ));
     };
     if rgb.width() == 0 || rgb.height() == 0 {
@@ -284,12 +283,11 @@ fn check_corners(corners: &[Point; 4], img: &RgbImage, source: &str) -> Result<(
     Ok(())
 }
 
+/// The floor: its grid, its corners in the image and where the grid came from.
+type Floor = ((u32, u32), [Point; 4], GridSource);
+
 /// The grid and the floor's corners from the configuration, or from painted lines.
-fn grid_and_floor(
-    img: &RgbImage,
-    config: &AerialConfig,
-    source: &str,
-) -> Result<((u32, u32), [Point; 4], GridSource), CrewError> {
+fn grid_and_floor(img: &RgbImage, config: &AerialConfig, source: &str) -> Result<Floor, CrewError> {
     let (iw, ih) = (f64::from(img.width()), f64::from(img.height()));
     let corners = match config.corners {
         Some(c) => {
@@ -450,8 +448,12 @@ pub fn read_aerial_image(
     }
     let ((gw, gh), corners, grid_source) = grid_and_floor(img, config, source)?;
     let (fw, fh) = (f64::from(gw), f64::from(gh));
-    let floor_to_image = Homography::floor_to_image(fw, fh, corners)
-        .ok_or_else(|| whole(source, "the corners do not define a floor (three on a line)"))?;
+    let floor_to_image = Homography::floor_to_image(fw, fh, corners).ok_or_else(|| {
+        whole(
+            source,
+            "the corners do not define a floor (three on a line)",
+        )
+    })?;
     let image_to_floor = floor_to_image
         .inverse()
         .ok_or_else(|| whole(source, "the corners do not define a floor (singular)"))?;
@@ -460,15 +462,15 @@ pub fn read_aerial_image(
         config.robot_colour,
         config.goal_colour,
     );
-    let nadir = floor_to_image.nadir((
-        f64::from(img.width()) / 2.0,
-        f64::from(img.height()) / 2.0,
-    ));
+    let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
     let (mut classes, coverage) =
         pixels::classify(img, &classifier, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
-            .apply(((i % gw as usize) as f64 + 0.5, (i / gw as usize) as f64 + 0.5))
+            .apply((
+                (i % gw as usize) as f64 + 0.5,
+                (i / gw as usize) as f64 + 0.5,
+            ))
             .unwrap_or((0.0, 0.0))
     };
     let mut blocked = vec![false; gw as usize * gh as usize];
@@ -549,7 +551,10 @@ pub fn read_aerial_image(
     if robots.is_empty() {
         return Err(whole(
             source,
-            format!("no robot found (robots are hue {:.0}° ± 25°)", config.robot_colour.0),
+            format!(
+                "no robot found (robots are hue {:.0}° ± 25°)",
+                config.robot_colour.0
+            ),
         ));
     }
     if robots.len() > crate::limits::MAX_AGENTS {

@@ -64,7 +64,10 @@ pub fn classify(
     let windows = |n: u32, at: Option<f64>| -> Vec<(f64, f64)> {
         (0..n).map(|k| window(f64::from(k), at)).collect()
     };
-    let (wu, wv) = (windows(w, nadir.map(|n| n.0)), windows(h, nadir.map(|n| n.1)));
+    let (wu, wv) = (
+        windows(w, nadir.map(|n| n.0)),
+        windows(h, nadir.map(|n| n.1)),
+    );
     let m = image_to_floor.0;
     let counts: Vec<Coverage> = classes
         .par_chunks_mut(width * BAND_ROWS)
@@ -77,11 +80,7 @@ pub fn classify(
             for (row, line) in out.chunks_mut(width).enumerate() {
                 let y = (band * BAND_ROWS + row) as f64 + 0.5;
                 // The homography's numerators and denominator are linear along a row.
-                let (bu, bv, bd) = (
-                    m[1] * y + m[2],
-                    m[4] * y + m[5],
-                    m[7] * y + m[8],
-                );
+                let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
                 let start = (band * BAND_ROWS + row) * width;
                 for (k, class) in line.iter_mut().enumerate() {
                     let x = k as f64 + 0.5;

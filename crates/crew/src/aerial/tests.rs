@@ -41,7 +41,11 @@ impl Paint {
                 return Rgb([90, 100, 120]);
             }
             let near = |c: &Point| (u - c.0).powi(2) + (v - c.1).powi(2) < self.radius.powi(2);
-            let shade = if (u - 2.0 * v).rem_euclid(7.0) < 1.5 { 0.45 } else { 1.0 };
+            let shade = if (u - 2.0 * v).rem_euclid(7.0) < 1.5 {
+                0.45
+            } else {
+                1.0
+            };
             let sh = |c: [f64; 3]| Rgb(c.map(|x| (x * shade) as u8));
             if self.robots.iter().any(near) {
                 return sh([200.0, 30.0, 25.0]);
@@ -52,8 +56,13 @@ impl Paint {
             if self.blocked.contains(&(u as u32, v as u32)) {
                 return sh([40.0, 70.0, 170.0]);
             }
-            let line = self.lines && (u.fract() < 0.05 || u.fract() > 0.95 || v.fract() < 0.05 || v.fract() > 0.95);
-            sh(if line { [40.0; 3] } else { [170.0, 165.0, 155.0] })
+            let line = self.lines
+                && (u.fract() < 0.05 || u.fract() > 0.95 || v.fract() < 0.05 || v.fract() > 0.95);
+            sh(if line {
+                [40.0; 3]
+            } else {
+                [170.0, 165.0, 155.0]
+            })
         })
     }
 
@@ -101,7 +110,10 @@ fn reads_a_straight_down_view_with_shadows() {
     assert_eq!(blocked, vec![(3, 1), (3, 2), (3, 3)]);
     assert_eq!(r.grid_source, GridSource::Given);
     assert!((r.cell_px - 12.0).abs() < 1e-9);
-    assert!(r.robots.iter().all(|m| m.confidence > 0.0 && m.confidence <= 1.0));
+    assert!(r
+        .robots
+        .iter()
+        .all(|m| m.confidence > 0.0 && m.confidence <= 1.0));
 }
 
 #[test]
@@ -171,7 +183,10 @@ fn refuses_what_it_cannot_read() {
     touching.robots.push((1.5, 2.5));
     touching.goals.push((6.5, 0.5));
     let e = refusal(&touching, &grid(8, 5));
-    assert!(e.contains("robots touching") && e.contains("pixel ("), "{e}");
+    assert!(
+        e.contains("robots touching") && e.contains("pixel ("),
+        "{e}"
+    );
 
     let mut border = scene();
     border.robots[1] = (6.03, 3.5);
@@ -222,7 +237,9 @@ fn refuses_what_it_cannot_read() {
 #[test]
 fn malformed_and_hostile_images_are_refused() {
     let cfg = grid(8, 5);
-    let e = read_aerial(b"GIF89a....", "x", &cfg).unwrap_err().to_string();
+    let e = read_aerial(b"GIF89a....", "x", &cfg)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("not a PNG or a JPEG"), "{e}");
     let bytes = png(&scene().straight(12));
     let e = read_aerial(&bytes[..bytes.len() / 2], "x", &cfg)
@@ -241,7 +258,9 @@ fn malformed_and_hostile_images_are_refused() {
     huge[29..33].copy_from_slice(&crc.to_be_bytes());
     let e = read_aerial(&huge, "x", &cfg).unwrap_err().to_string();
     assert!(e.contains("more than the"), "{e}");
-    let e = read_aerial(&bytes, "x", &grid(0, 5)).unwrap_err().to_string();
+    let e = read_aerial(&bytes, "x", &grid(0, 5))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("at least 1"), "{e}");
     let e = read_aerial(&bytes, "x", &grid(100_000, 100_000))
         .unwrap_err()
@@ -286,7 +305,11 @@ fn crc32(bytes: &[u8]) -> u32 {
     for &b in bytes {
         crc ^= u32::from(b);
         for _ in 0..8 {
-            crc = if crc & 1 == 1 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
         }
     }
     !crc
