@@ -2,7 +2,7 @@
 //! a sink the caller gives. No file access.
 //!
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
-//! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
+//! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]), crew paths ([`crew_svg`]) and an aerial view with what was read from it ([`aerial_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
 //! The JSON of a mission's events and metrics ([`event_json`], [`metrics_json`]) and plain-text
 //! clocks for tables ([`text`]).
