@@ -16,7 +16,7 @@ runs="${1:-10000000}"
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(layer_text cmcp wall_png movingai birdseye_png toml_files trace_file fault_layer agent_sample)
+    targets=(layer_text cmcp wall_png movingai birdseye_png aerial_view toml_files trace_file fault_layer agent_sample)
 fi
 if ! cargo fuzz --version >/dev/null 2>&1; then
     cargo install cargo-fuzz --locked

@@ -1137,3 +1137,89 @@ fn generate_scene_writes_a_birdseye_png_that_crew_reads_back_with_every_robot() 
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A rendered aerial view in, the reading, a checked plan, the overlay and MovingAI files out.
+#[test]
+fn crew_reads_an_aerial_view_and_writes_what_it_read() {
+    let dir = std::env::temp_dir().join(format!("mason-aerial-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (overlay, map, scen) = (
+        dir.join("read.svg"),
+        dir.join("read.map"),
+        dir.join("read.scen"),
+    );
+    let image = data("aerial/A0011.jpg");
+    let corners = "17.12,21.43 571.63,18.53 566.25,368.89 23.17,392.43";
+    let o = mason(&[
+        "crew",
+        "--image",
+        &image,
+        "--grid",
+        "17x11",
+        "--corners",
+        corners,
+        "--overlay",
+        &overlay.to_string_lossy(),
+        "--save-map",
+        &map.to_string_lossy(),
+        "--save-scen",
+        &scen.to_string_lossy(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let r = &v["reading"];
+    assert_eq!(r["grid"], serde_json::json!([17, 11]));
+    assert_eq!(r["grid_from"], "given");
+    assert_eq!(r["counts"]["robots"], 19);
+    assert_eq!(r["counts"]["blocked"], 6);
+    assert_eq!(v["agents"].as_array().unwrap().len(), 19);
+    let svg = std::fs::read_to_string(&overlay).unwrap();
+    assert!(svg.contains("data:image/jpeg;base64,") && svg.contains("<polyline"));
+    // The files read back as a map and a scenario, with the plan's pairing.
+    let o = mason(&[
+        "crew",
+        &map.to_string_lossy(),
+        "--scen",
+        &scen.to_string_lossy(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let back: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let goals = |v: &Value| -> Vec<Value> {
+        v["agents"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| a["goal"].clone())
+            .collect()
+    };
+    assert_eq!(goals(&back), goals(&v));
+    // Without grid information a photograph is refused, not read as a pixel grid.
+    let o = mason(&["crew", "--image", &image]);
+    assert_input_error(&o, &["A0011.jpg", "no grid"]);
+    let o = mason(&["crew", "--image", &image, "--corners", "1,2 3"]);
+    assert_input_error(&o, &["--corners", "four x,y"]);
+    let o = mason(&["crew", "--image", &image, "--grid", "17by11"]);
+    assert_input_error(&o, &["--grid 17by11"]);
+    let o = mason(&[
+        "crew",
+        "--image",
+        &image,
+        "--grid",
+        "17x11",
+        "--robot-colour",
+        "mauve",
+    ]);
+    assert_input_error(&o, &["--robot-colour", "mauve"]);
+    let o = mason(&[
+        "crew",
+        &data("crew-room.map"),
+        "--scen",
+        &data("crew-room.scen"),
+        "--grid",
+        "3x3",
+    ]);
+    assert_input_error(&o, &["apply to --image"]);
+    std::fs::remove_dir_all(&dir).ok();
+}

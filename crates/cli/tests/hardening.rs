@@ -255,10 +255,13 @@ fn map_and_image_limits_are_checked_from_the_header() {
     let scen = write(&dir, "big.scen", "version 1\n");
     let o = mason(&["crew", &map, "--scen", &scen]);
     assert_input_error(&o, &["big.map", "MAX_CELLS"]);
-    // A PNG header claiming 5000×5000 pixels, with no pixel data behind it.
-    let png = write(&dir, "big.png", png_header_only(5000, 5000));
+    // A PNG header claiming 10 000 × 10 000 pixels, with no pixel data behind it: more than a
+    // one-pixel-per-cell map may have (MAX_CELLS) and than a photograph (aerial::MAX_PIXELS).
+    let png = write(&dir, "big.png", png_header_only(10_000, 10_000));
     let o = mason(&["crew", "--image", &png]);
-    assert_input_error(&o, &["big.png", "MAX_CELLS"]);
+    assert_input_error(&o, &["big.png", "aerial::MAX_PIXELS"]);
+    let o = mason(&["crew", "--image", &png, "--grid", "10x10"]);
+    assert_input_error(&o, &["big.png", "aerial::MAX_PIXELS"]);
 }
 
 #[test]

@@ -10,7 +10,8 @@
 //!
 //! Modules, one concept each:
 //! - [`grid`]: cells, connectivity and legal moves; [`instance`]: robots and goals on a grid;
-//! - [`movingai`]: `.map` and `.scen` readers; [`image`]: occupancy and bird's-eye PNGs;
+//! - [`movingai`]: `.map` and `.scen` readers and writers; [`image`]: occupancy and bird's-eye
+//!   PNGs (one pixel per cell); [`aerial`]: photographs of the floor from above (PNG, JPEG);
 //! - [`distance`]: BFS step distances and Dijkstra path lengths; [`rra`]: distances on demand;
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
@@ -40,6 +41,7 @@
 
 #![deny(missing_docs)]
 
+pub mod aerial;
 pub mod assign;
 pub mod astar;
 pub mod cbs;

@@ -3,6 +3,7 @@
 
 use crate::error::{InputError, InputResult};
 use crate::files::{read_input, MAX_INPUT_BYTES};
+use mason_crew::aerial::{read_aerial, AerialConfig, AerialReading};
 use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
@@ -37,16 +38,13 @@ pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Inst
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     match (input.map, input.scen, input.image) {
         (None, None, Some(image)) => {
-            let name = image.display().to_string();
-            let seen = read_birdseye(&read(image)?, &name).map_err(bad)?;
             if input.agents.is_some() {
                 return Err(InputError::bad(
                     "--agents applies to --scen, not to --image",
                 ));
             }
-            let inst = Instance::new(seen.grid, conn, seen.robots, seen.goals, None, &name)
-                .map_err(bad)?;
-            Ok((inst, name))
+            let view = load_view(image, None, conn)?;
+            Ok((view.inst, view.name))
         }
         (Some(map), Some(scen), None) => {
             let grid = load_grid(map)?;
@@ -65,6 +63,51 @@ pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Inst
         )),
         (None, _, None) => Err(InputError::bad("give a MAP with --scen F, or --image PNG")),
     }
+}
+
+/// What an image gave: the instance and, for a photograph, what was read.
+pub struct View {
+    /// Robots, goals and the grid.
+    pub inst: Instance,
+    /// The image's name.
+    pub name: String,
+    /// The aerial reading (`None` for a one-pixel-per-cell map).
+    pub aerial: Option<AerialReading>,
+    /// The image file's bytes (for an overlay).
+    pub bytes: Vec<u8>,
+}
+
+/// Reads an image: with `aerial` (grid, cell size or corners given) as a photograph of the
+/// floor; without, a one-pixel-per-cell map of at most 16 colours reads as before
+/// ([`read_birdseye`]) and anything else as a photograph whose grid is painted on the floor,
+/// or is refused.
+pub fn load_view(
+    path: &Path,
+    aerial: Option<&AerialConfig>,
+    conn: Connectivity,
+) -> InputResult<View> {
+    let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
+    let name = path.display().to_string();
+    let bytes = read(path)?;
+    let pixel_map = aerial.is_none()
+        && bytes.starts_with(&[0x89, b'P', b'N', b'G'])
+        && mason_crew::aerial::decode(&bytes, &name, mason_crew::limits::MAX_CELLS)
+            .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img));
+    let (grid, robots, goals, reading) = if pixel_map {
+        let seen = read_birdseye(&bytes, &name).map_err(bad)?;
+        (seen.grid, seen.robots, seen.goals, None)
+    } else {
+        let config = aerial.cloned().unwrap_or_default();
+        let r = read_aerial(&bytes, &name, &config).map_err(bad)?;
+        (r.grid.clone(), r.robot_cells(), r.goal_cells(), Some(r))
+    };
+    let inst = Instance::new(grid, conn, robots, goals, None, &name).map_err(bad)?;
+    Ok(View {
+        inst,
+        name,
+        aerial: reading,
+        bytes,
+    })
 }
 
 /// The starts and goals of a MovingAI scenario's first `agents` agents (all when `None`), in

@@ -2,7 +2,7 @@
 //! a sink the caller gives. No file access.
 //!
 //! SVG figures: the wall with its build order ([`wall_svg`]), the mission Gantt chart
-//! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]) and crew paths ([`crew_svg`]).
+//! ([`gantt_svg`]), the team schedule Gantt chart ([`schedule_svg`]), reward over time ([`reward_svg`]), crew paths ([`crew_svg`]) and an aerial view with what was read from it ([`aerial_svg`]).
 //! Self-contained HTML replays: [`mission_replay_html`] and [`crew_replay_html`].
 //! The JSON of a mission's events and metrics ([`event_json`], [`metrics_json`]) and plain-text
 //! clocks for tables ([`text`]).
@@ -18,6 +18,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod aerial_svg;
 mod crew_svg;
 mod gantt;
 mod json;
@@ -36,6 +37,7 @@ pub use self::mcap::{
     brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError,
     PoseSampler, UavPose, POSE_RATE_HZ,
 };
+pub use aerial_svg::aerial_svg;
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
 pub use json::{

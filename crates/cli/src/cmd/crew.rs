@@ -21,9 +21,37 @@ pub struct CrewArgs {
     /// Take the first N agents of the scenario (default: all)
     #[arg(long, allow_negative_numbers = true)]
     pub agents: Option<usize>,
-    /// Bird's-eye PNG: robots red, goals green, obstacles dark (one pixel per cell)
+    /// The floor seen from above: a photograph (PNG or JPEG; give --grid, --cell-px or paint
+    /// grid lines on the floor) or a one-pixel-per-cell map of at most 16 colours (robots red,
+    /// goals green, obstacles dark)
     #[arg(long)]
     pub image: Option<PathBuf>,
+    /// --image: the floor grid, W×H cells (e.g. 24x16)
+    #[arg(long, value_name = "WxH")]
+    pub grid: Option<String>,
+    /// --image: the cell size in pixels (a straight-down view filling the image)
+    #[arg(long, value_name = "N")]
+    pub cell_px: Option<f64>,
+    /// --image: the floor's corners in the image, "x1,y1 x2,y2 x3,y3 x4,y4" (top-left,
+    /// top-right, bottom-right, bottom-left of the grid), for a tilted or perspective camera
+    #[arg(long)]
+    pub corners: Option<String>,
+    /// --image: the robots' colour (red, orange, yellow, green, cyan, blue, magenta, #rrggbb
+    /// or hue:DEGREES)
+    #[arg(long, default_value = "red")]
+    pub robot_colour: String,
+    /// --image: the goals' colour
+    #[arg(long, default_value = "green")]
+    pub goal_colour: String,
+    /// --image: draw the image with the grid, blocked cells, robots, goals and paths as read
+    #[arg(long, value_name = "FILE.svg")]
+    pub overlay: Option<PathBuf>,
+    /// --image: write the grid read as a MovingAI .map
+    #[arg(long, value_name = "F.map")]
+    pub save_map: Option<PathBuf>,
+    /// --image: write the robots and their assigned goals as a MovingAI .scen
+    #[arg(long, value_name = "F.scen")]
+    pub save_scen: Option<PathBuf>,
     /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
     /// path (Hungarian on path lengths) or joint (interchangeable robots: TSWAP solves the
     /// assignment and the paths together; default with --image)
@@ -75,7 +103,8 @@ pub struct CrewArgs {
 /// `mason crew`.
 pub fn run(a: CrewArgs) -> CliResult<()> {
     let started = std::time::Instant::now();
-    check_outputs(&[&a.svg, &a.html])?;
+    check_outputs(&[&a.svg, &a.html, &a.overlay, &a.save_map, &a.save_scen])?;
+    let aerial = aerial_config(&a)?;
     let limit = time_limit(a.time_limit)?;
     let prm = mason_crew::PrmConfig {
         samples: a.samples,
@@ -109,7 +138,19 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
         agents: a.agents,
         image: a.image.as_deref(),
     };
-    let (inst, source) = mason_io::load_crew(&input, choices.connectivity)?;
+    let (inst, source, view) = match (&a.image, &a.map, &a.scen) {
+        (Some(image), None, None) => {
+            if a.agents.is_some() {
+                return Err(input_error("--agents applies to --scen, not to --image"));
+            }
+            let v = mason_io::load_view(image, aerial.as_ref(), choices.connectivity)?;
+            (v.inst.clone(), v.name.clone(), Some(v))
+        }
+        _ => {
+            let (inst, source) = mason_io::load_crew(&input, choices.connectivity)?;
+            (inst, source, None)
+        }
+    };
     check_size(&inst, &source)?;
     let result = run_solve(&inst, &choices.config, limit)?;
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
@@ -139,15 +180,166 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
         let page = mason_report::crew_replay_html(&title, &inst.grid, &result.outcome.goals, paths);
         files.push((path.clone(), page.into_bytes()));
     }
+    if let Some(view) = &view {
+        files.extend(view_files(&a, view, &result)?);
+    }
     write_all(&files)?;
     if a.json {
-        let v = crew_json(&inst, &source, &choices.config, a.seed, &result);
+        let mut v = crew_json(&inst, &source, &choices.config, a.seed, &result);
+        if let Some(r) = view.as_ref().and_then(|v| v.aerial.as_ref()) {
+            v["reading"] = reading_json(r);
+        }
         println!("{}", pretty(&v));
     } else {
         print!("{}", crew_table(&inst, &source, &choices.config, &result));
     }
     report_overrun(limit, started, result.outcome.stats.elapsed.as_secs_f64());
     exit_for(&result)
+}
+
+/// The aerial reader's settings, when any of its flags is given.
+fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialConfig>> {
+    use mason_crew::aerial::{colour::Hue, AerialConfig};
+    let given = a.grid.is_some()
+        || a.cell_px.is_some()
+        || a.corners.is_some()
+        || a.robot_colour != "red"
+        || a.goal_colour != "green";
+    if a.image.is_none() {
+        if given || a.overlay.is_some() || a.save_map.is_some() || a.save_scen.is_some() {
+            return Err(input_error(
+                "--grid, --cell-px, --corners, --robot-colour, --goal-colour, --overlay, --save-map and --save-scen apply to --image",
+            ));
+        }
+        return Ok(None);
+    }
+    if !given {
+        return Ok(None);
+    }
+    let grid = a
+        .grid
+        .as_deref()
+        .map(|g| {
+            let parsed = g.split_once(['x', 'X', '×']).and_then(|(w, h)| {
+                Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?))
+            });
+            parsed.ok_or_else(|| input_error(format!("--grid {g}: give W×H cells, e.g. 24x16")))
+        })
+        .transpose()?;
+    let corners = a.corners.as_deref().map(parse_corners).transpose()?;
+    let colour =
+        |flag: &str, text: &str| Hue::parse(text).map_err(|e| input_error(format!("--{flag} {e}")));
+    Ok(Some(AerialConfig {
+        grid,
+        cell_px: a.cell_px,
+        corners,
+        robot_colour: colour("robot-colour", &a.robot_colour)?,
+        goal_colour: colour("goal-colour", &a.goal_colour)?,
+    }))
+}
+
+/// `"x1,y1 x2,y2 x3,y3 x4,y4"`.
+fn parse_corners(text: &str) -> CliResult<[(f64, f64); 4]> {
+    let bad = || {
+        input_error(format!(
+            "--corners {text}: give four x,y pixel positions, \"x1,y1 x2,y2 x3,y3 x4,y4\" (top-left, top-right, bottom-right, bottom-left)"
+        ))
+    };
+    let points: Vec<(f64, f64)> = text
+        .split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',')?;
+            let (x, y) = (x.parse::<f64>().ok()?, y.parse::<f64>().ok()?);
+            (x.is_finite() && y.is_finite()).then_some((x, y))
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(bad)?;
+    points.try_into().map_err(|_| bad())
+}
+
+/// The overlay, the map and the scenario of an image, as asked.
+fn view_files(
+    a: &CrewArgs,
+    view: &mason_io::View,
+    result: &CrewResult,
+) -> CliResult<Vec<(PathBuf, Vec<u8>)>> {
+    let inst = &view.inst;
+    let mut files = Vec::new();
+    if let Some(path) = &a.overlay {
+        let reading = view.aerial.as_ref().ok_or_else(|| {
+            input_error("--overlay draws a photograph's reading; this image is a one-pixel-per-cell map (use --svg)")
+        })?;
+        let title = format!(
+            "{} — read {}×{} cells, {} robots, {} goals; {}",
+            view.name,
+            inst.grid.width(),
+            inst.grid.height(),
+            reading.robots.len(),
+            reading.goals.len(),
+            result.outcome.status
+        );
+        let paths = result.outcome.paths.clone().unwrap_or_default();
+        let svg = mason_report::aerial_svg(
+            &title,
+            &view.bytes,
+            reading,
+            &inst.robots,
+            &result.outcome.goals,
+            &paths,
+        );
+        files.push((path.clone(), svg.into_bytes()));
+    }
+    if let Some(path) = &a.save_map {
+        files.push((
+            path.clone(),
+            mason_crew::movingai::map_text(&inst.grid).into_bytes(),
+        ));
+    }
+    if let Some(path) = &a.save_scen {
+        let map_name = a
+            .save_map
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or("map.map".to_string(), |n| n.to_string_lossy().into_owned());
+        let pairs: Vec<(Cell, Cell)> = inst
+            .robots
+            .iter()
+            .copied()
+            .zip(result.outcome.goals.iter().copied())
+            .collect();
+        files.push((
+            path.clone(),
+            mason_crew::movingai::scen_text(&map_name, &inst.grid, &pairs).into_bytes(),
+        ));
+    }
+    Ok(files)
+}
+
+/// The `reading` object of the JSON: grid, cell size, counts, every robot and goal.
+pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
+    let mark = |m: &mason_crew::aerial::Mark| {
+        json!({
+            "cell": xy(&r.grid, m.cell),
+            "floor": [m.floor.0, m.floor.1],
+            "pixel": [m.pixel.0, m.pixel.1],
+            "area_px": m.area,
+            "confidence": m.confidence,
+        })
+    };
+    json!({
+        "grid": [r.grid.width(), r.grid.height()],
+        "grid_from": r.grid_source,
+        "cell_px": r.cell_px,
+        "image": [r.image_size.0, r.image_size.1],
+        "corners": r.corners.iter().map(|c| [c.0, c.1]).collect::<Vec<_>>(),
+        "counts": {
+            "robots": r.robots.len(),
+            "goals": r.goals.len(),
+            "blocked": r.grid.len() - r.grid.free_count(),
+        },
+        "robots": r.robots.iter().map(mark).collect::<Vec<_>>(),
+        "goals": r.goals.iter().map(mark).collect::<Vec<_>>(),
+    })
 }
 
 /// "assign joint", "resolve lacam", … for titles.

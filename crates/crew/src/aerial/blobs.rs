@@ -1,0 +1,308 @@
+//! Robots and goals as blobs of their colour, and where each stands on the floor.
+//!
+//! A blob is an 8-connected set of pixels of one class. Within one view the robots are alike
+//! and so are the goals, so blob sizes are judged against the median blob of their kind: a
+//! small piece next to a blob (a highlight or a shaded side cut it off) joins it, a speck is
+//! noise, a blob far larger than the median is several robots touching, and a mid-sized blob
+//! alone is refused.
+//!
+//! Where a robot stands: under a perspective camera a robot's top appears farther from the
+//! nadir (the point under the camera) than its base, so its blob, mapped to the floor, is
+//! stretched away from the nadir. The end of the blob nearest the nadir is its base's near
+//! edge, and the blob's width across that direction is its footprint's width (its top's, a
+//! little wider for a tall robot close to the camera). The centre is then half that width
+//! beyond the near edge. Goals are flat: their centre is the blob's centroid on the floor.
+
+use super::homography::{Homography, Point};
+
+/// One blob, in image pixels.
+#[derive(Clone, Debug, Default)]
+pub struct Blob {
+    /// Its pixels (x, y).
+    pub pixels: Vec<(u32, u32)>,
+    /// Bounding box: min x, min y, max x, max y.
+    pub bbox: (u32, u32, u32, u32),
+}
+
+impl Blob {
+    /// Pixel count.
+    pub fn area(&self) -> usize {
+        self.pixels.len()
+    }
+
+    /// Mean pixel centre.
+    pub fn centroid(&self) -> Point {
+        let n = self.pixels.len().max(1) as f64;
+        let (sx, sy) = self.pixels.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+            (a + f64::from(x) + 0.5, b + f64::from(y) + 0.5)
+        });
+        (sx / n, sy / n)
+    }
+
+    fn gap(&self, other: &Blob) -> u32 {
+        let dx = if other.bbox.0 > self.bbox.2 {
+            other.bbox.0 - self.bbox.2
+        } else {
+            self.bbox.0.saturating_sub(other.bbox.2)
+        };
+        let dy = if other.bbox.1 > self.bbox.3 {
+            other.bbox.1 - self.bbox.3
+        } else {
+            self.bbox.1.saturating_sub(other.bbox.3)
+        };
+        dx.max(dy)
+    }
+}
+
+/// The 8-connected blobs of pixels whose class is `class`, in row-major order of their first
+/// pixel. Visited pixels get their high bit set in `classes` (cleared again at the end).
+pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
+    const SEEN: u8 = 0x80;
+    let height = classes.len() / width.max(1);
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..classes.len() {
+        if classes[start] != class {
+            continue;
+        }
+        classes[start] |= SEEN;
+        stack.push(start);
+        let mut blob = Blob {
+            pixels: Vec::new(),
+            bbox: (u32::MAX, u32::MAX, 0, 0),
+        };
+        while let Some(i) = stack.pop() {
+            let (x, y) = (i % width, i / width);
+            let (px, py) = (x as u32, y as u32);
+            blob.pixels.push((px, py));
+            blob.bbox = (
+                blob.bbox.0.min(px),
+                blob.bbox.1.min(py),
+                blob.bbox.2.max(px),
+                blob.bbox.3.max(py),
+            );
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    let j = ny * width + nx;
+                    if classes[j] == class {
+                        classes[j] |= SEEN;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        out.push(blob);
+    }
+    for c in classes.iter_mut() {
+        *c &= !SEEN;
+    }
+    out
+}
+
+/// Blobs sorted out by size against the median of their kind.
+#[derive(Debug, Default)]
+pub struct Sorted {
+    /// The robots (or goals), each one blob.
+    pub kept: Vec<Blob>,
+    /// Blobs far larger than the median: several touching.
+    pub merged: Vec<Blob>,
+    /// Blobs too large for noise and too small for one whole robot (or goal).
+    pub doubtful: Vec<Blob>,
+    /// The median area of the kept blobs.
+    pub median_area: usize,
+}
+
+/// The smallest blob that can be a robot or a goal, in pixels.
+pub const MIN_AREA: usize = 6;
+/// A blob larger than this many medians is several touching.
+const MERGED: f64 = 1.7;
+/// A blob smaller than this share of the median is a piece (joined to a blob next to it) or
+/// noise.
+const PIECE: f64 = 0.4;
+/// A lone piece smaller than this share of the median is noise; larger, it is doubtful.
+const NOISE: f64 = 0.2;
+/// A piece this close (pixels, bounding boxes) to a blob joins it.
+const JOIN_GAP: u32 = 2;
+
+/// Sorts blobs by size: see the module's comment.
+pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
+    blobs.retain(|b| b.area() >= MIN_AREA / 2);
+    let mut areas: Vec<usize> = blobs
+        .iter()
+        .map(Blob::area)
+        .filter(|&a| a >= MIN_AREA)
+        .collect();
+    if areas.is_empty() {
+        return Sorted::default();
+    }
+    areas.sort_unstable();
+    // The median of the blobs at least a quarter of the largest: pieces and specks do not
+    // pull it down.
+    let largest = areas[areas.len() - 1];
+    let big: Vec<usize> = areas.into_iter().filter(|&a| 4 * a >= largest).collect();
+    let median = big[big.len() / 2];
+    let piece = |b: &Blob| (b.area() as f64) < PIECE * median as f64;
+    let (mut whole, pieces): (Vec<Blob>, Vec<Blob>) = blobs.into_iter().partition(|b| !piece(b));
+    let mut doubtful = Vec::new();
+    for p in pieces {
+        let near = whole
+            .iter_mut()
+            .filter(|b| b.gap(&p) <= JOIN_GAP)
+            .min_by_key(|b| b.gap(&p));
+        match near {
+            Some(b) => {
+                b.bbox = (
+                    b.bbox.0.min(p.bbox.0),
+                    b.bbox.1.min(p.bbox.1),
+                    b.bbox.2.max(p.bbox.2),
+                    b.bbox.3.max(p.bbox.3),
+                );
+                b.pixels.extend(p.pixels);
+            }
+            None if p.area() >= MIN_AREA && p.area() as f64 >= NOISE * median as f64 => {
+                doubtful.push(p)
+            }
+            None => {}
+        }
+    }
+    let (merged, kept): (Vec<Blob>, Vec<Blob>) = whole
+        .into_iter()
+        .partition(|b| b.area() as f64 > MERGED * median as f64);
+    Sorted {
+        kept,
+        merged,
+        doubtful,
+        median_area: median,
+    }
+}
+
+/// Where a standing object's footprint centre is on the floor, from its blob and the nadir
+/// (see the module's comment). `px` is one pixel's size on the floor, in cells.
+pub fn standing_centre(floor_points: &[Point], nadir: Option<Point>, px: f64) -> Point {
+    let n = floor_points.len().max(1) as f64;
+    let centroid = floor_points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let Some(nadir) = nadir else {
+        return centroid;
+    };
+    let (dx, dy) = (centroid.0 - nadir.0, centroid.1 - nadir.1);
+    let dist = (dx * dx + dy * dy).sqrt();
+    let (ux, uy) = (dx / dist.max(1e-12), dy / dist.max(1e-12));
+    let (vx, vy) = (-uy, ux);
+    let (mut near, mut lo, mut hi) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for p in floor_points {
+        let (qx, qy) = (p.0 - nadir.0, p.1 - nadir.1);
+        near = near.min(qx * ux + qy * uy);
+        let across = qx * vx + qy * vy;
+        lo = lo.min(across);
+        hi = hi.max(across);
+    }
+    let width = hi - lo + px;
+    // Under the camera (the nadir inside the footprint) nothing leans: the centroid it is.
+    if dist < width {
+        return centroid;
+    }
+    let along = near - px / 2.0 + width / 2.0;
+    let across = (lo + hi) / 2.0;
+    (
+        nadir.0 + along * ux + across * vx,
+        nadir.1 + along * uy + across * vy,
+    )
+}
+
+/// The blob's pixel centres on the floor.
+pub fn on_floor(blob: &Blob, image_to_floor: &Homography) -> Vec<Point> {
+    blob.pixels
+        .iter()
+        .filter_map(|&(x, y)| image_to_floor.apply((f64::from(x) + 0.5, f64::from(y) + 0.5)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn disc(cx: f64, cy: f64, r: f64) -> Vec<Point> {
+        let mut out = Vec::new();
+        let mut y = cy - r;
+        while y <= cy + r {
+            let mut x = cx - r;
+            while x <= cx + r {
+                if (x - cx).powi(2) + (y - cy).powi(2) <= r * r {
+                    out.push((x, y));
+                }
+                x += 0.01;
+            }
+            y += 0.01;
+        }
+        out
+    }
+
+    /// A cylinder of radius 0.3 at (10.5, 4.5), its top 1.15 times as far from the nadir
+    /// at (2, 2) as its base: the blob is the base, the top and the band between them.
+    #[test]
+    fn a_leaning_robot_stands_on_its_base() {
+        let (nadir, centre, r, k) = ((2.0, 2.0), (10.5, 4.5), 0.3, 1.15);
+        let mut pts = Vec::new();
+        for step in 0..=20 {
+            let s = 1.0 + (k - 1.0) * f64::from(step) / 20.0;
+            let c = (
+                nadir.0 + (centre.0 - nadir.0) * s,
+                nadir.1 + (centre.1 - nadir.1) * s,
+            );
+            pts.extend(disc(c.0, c.1, r * s));
+        }
+        let got = standing_centre(&pts, Some(nadir), 0.01);
+        let err = ((got.0 - centre.0).powi(2) + (got.1 - centre.1).powi(2)).sqrt();
+        // The top is 15 % wider: the centre is off by at most 0.15 r.
+        assert!(err < 0.15 * r + 0.02, "{got:?}");
+        let naive = standing_centre(&pts, None, 0.01);
+        let naive_err = ((naive.0 - centre.0).powi(2) + (naive.1 - centre.1).powi(2)).sqrt();
+        assert!(naive_err > 3.0 * err, "{naive:?} vs {got:?}");
+    }
+
+    fn blob_at(x: u32, y: u32, side: u32) -> Blob {
+        let pixels: Vec<(u32, u32)> = (0..side * side)
+            .map(|i| (x + i % side, y + i / side))
+            .collect();
+        Blob {
+            pixels,
+            bbox: (x, y, x + side - 1, y + side - 1),
+        }
+    }
+
+    #[test]
+    fn sizes_sort_pieces_noise_and_touching_robots() {
+        let blobs = vec![
+            blob_at(0, 0, 6),
+            blob_at(20, 0, 6),
+            blob_at(40, 0, 6),
+            blob_at(26, 0, 2), // a piece beside the second: joins it
+            blob_at(60, 0, 9), // 81 px: more than 1.7 × 36
+            blob_at(80, 0, 1), // noise
+            blob_at(90, 0, 3), // 9 px alone: doubtful
+        ];
+        let s = sort(blobs);
+        assert_eq!(s.median_area, 36);
+        assert_eq!(s.kept.len(), 3);
+        assert_eq!(s.kept[1].area(), 40);
+        assert_eq!(s.merged.len(), 1);
+        assert_eq!(s.doubtful.len(), 1);
+    }
+
+    #[test]
+    fn finds_eight_connected_blobs() {
+        #[rustfmt::skip]
+        let mut classes = vec![
+            1, 0, 0, 1,
+            0, 1, 0, 1,
+            0, 0, 0, 0,
+            2, 2, 0, 1,
+        ];
+        let blobs = find(&mut classes, 4, 1);
+        assert_eq!(blobs.len(), 3);
+        assert_eq!(blobs[0].area(), 2);
+        assert_eq!(classes[0], 1, "marks are cleared");
+    }
+}

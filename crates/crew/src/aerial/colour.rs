@@ -1,0 +1,200 @@
+//! What a pixel shows: floor, robot, goal, obstacle, or a colour that cannot be told.
+//!
+//! Colours are judged after white balance on the floor (the floor's median colour becomes
+//! grey), by hue, saturation s = (max − min) / max and chroma c = (max − min) relative to the
+//! floor's brightness. Robots and goals need less colour than obstacles (see the constants). A shadow darkens the floor but keeps its hue-less grey (s stays low),
+//! so a shadow stays floor; a robot in a shadow keeps its hue. The floor's lit brightness is
+//! its median, so chroma does not depend on exposure.
+
+/// A colour as a hue in degrees (0 red, 120 green, 240 blue).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hue(pub f64);
+
+impl Hue {
+    /// Red, the default colour of robots.
+    pub const RED: Hue = Hue(0.0);
+    /// Green, the default colour of goals.
+    pub const GREEN: Hue = Hue(120.0);
+
+    /// Parses `red`, `green`, `blue`, `yellow`, `cyan`, `magenta`, `orange`, `#rrggbb` or a hue
+    /// in degrees (`hue:200`).
+    pub fn parse(text: &str) -> Result<Hue, String> {
+        let t = text.trim().to_ascii_lowercase();
+        let named = match t.as_str() {
+            "red" => Some(0.0),
+            "orange" => Some(30.0),
+            "yellow" => Some(60.0),
+            "green" => Some(120.0),
+            "cyan" => Some(180.0),
+            "blue" => Some(240.0),
+            "magenta" | "purple" => Some(300.0),
+            _ => None,
+        };
+        if let Some(h) = named {
+            return Ok(Hue(h));
+        }
+        if let Some(deg) = t.strip_prefix("hue:") {
+            return match deg.parse::<f64>() {
+                Ok(d) if (0.0..360.0).contains(&d) => Ok(Hue(d)),
+                _ => Err(format!("`{text}`: a hue is 0 to 359.9 degrees")),
+            };
+        }
+        if let Some(hex) = t.strip_prefix('#') {
+            if hex.len() == 6 && hex.chars().all(|c| c.is_ascii_hexdigit()) {
+                let v = u32::from_str_radix(hex, 16).unwrap_or(0);
+                let rgb = [(v >> 16) as f64, ((v >> 8) & 255) as f64, (v & 255) as f64];
+                let (hue, s) = hue_saturation(rgb);
+                if s < 0.4 {
+                    return Err(format!(
+                        "`{text}` is too grey to mark robots or goals (saturation {s:.2}, at least 0.40)"
+                    ));
+                }
+                return Ok(Hue(hue));
+            }
+        }
+        Err(format!(
+            "`{text}`: give red, orange, yellow, green, cyan, blue, magenta, #rrggbb or hue:DEGREES"
+        ))
+    }
+
+    /// The angle between two hues, 0 to 180 degrees.
+    pub fn distance(self, other: f64) -> f64 {
+        let d = (self.0 - other).rem_euclid(360.0);
+        d.min(360.0 - d)
+    }
+}
+
+/// Hue in degrees and saturation of an RGB colour.
+pub fn hue_saturation([r, g, b]: [f64; 3]) -> (f64, f64) {
+    let max = r.max(g).max(b);
+    let min = r.min(g).min(b);
+    let c = max - min;
+    if max <= 0.0 || c <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let h = if max == r {
+        60.0 * ((g - b) / c).rem_euclid(6.0)
+    } else if max == g {
+        60.0 * ((b - r) / c + 2.0)
+    } else {
+        60.0 * ((r - g) / c + 4.0)
+    };
+    (h, c / max)
+}
+
+/// What one pixel shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Class {
+    /// Floor, lit or in shadow, with its lines and texture.
+    Floor = 0,
+    /// The robots' colour.
+    Robot = 1,
+    /// The goals' colour.
+    Goal = 2,
+    /// A coloured obstacle (any clear colour far from the robots' and the goals').
+    Obstacle = 3,
+    /// A clear colour near but not at the robots' or goals' (a colour that cannot be told), or
+    /// too dark to judge.
+    Unsure = 4,
+}
+
+/// Pixels classified by colour after white balance on the floor.
+#[derive(Clone, Copy, Debug)]
+pub struct Classifier {
+    gain: [f64; 3],
+    robot: Hue,
+    goal: Hue,
+}
+
+/// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
+/// small marks are blurred and their colour washed out by JPEG.
+const MARK_COLOUR: (f64, f64) = (0.25, 0.05);
+/// Saturation and chroma of an obstacle's pixel: higher, since shadows under a blue sky are
+/// bluish after white balance on the sunlit floor.
+const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
+/// Half-width of the robots' and the goals' hue bands, in degrees (robots are a clear colour;
+/// goals are paint or tape on the floor, whose green varies more).
+const HUE_BAND: (f64, f64) = (25.0, 35.0);
+/// Hues this much beyond a band cannot be told apart from it.
+const HUE_DOUBT: f64 = 10.0;
+
+impl Classifier {
+    /// A classifier for a floor whose median colour (0–255 per channel) is `floor`.
+    pub fn new(floor: [f64; 3], robot: Hue, goal: Hue) -> Classifier {
+        let bright = floor.iter().copied().fold(0.0, f64::max).max(1.0);
+        let gain = floor.map(|c| 1.0 / c.max(bright * 0.05));
+        Classifier { gain, robot, goal }
+    }
+
+    /// The class of one pixel.
+    pub fn classify(&self, p: [u8; 3]) -> Class {
+        let rgb = [
+            f64::from(p[0]) * self.gain[0],
+            f64::from(p[1]) * self.gain[1],
+            f64::from(p[2]) * self.gain[2],
+        ];
+        let max = rgb[0].max(rgb[1]).max(rgb[2]);
+        let min = rgb[0].min(rgb[1]).min(rgb[2]);
+        let chroma = max - min;
+        let clear = |(s, c): (f64, f64)| chroma >= c && chroma >= s * max;
+        if max <= 0.0 || !clear(MARK_COLOUR) {
+            return Class::Floor;
+        }
+        let (hue, _) = hue_saturation(rgb);
+        let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
+        if dr <= HUE_BAND.0 && dr < dg {
+            Class::Robot
+        } else if dg <= HUE_BAND.1 {
+            Class::Goal
+        } else if !clear(OBSTACLE_COLOUR) {
+            Class::Floor
+        } else if dr <= HUE_BAND.0 + HUE_DOUBT || dg <= HUE_BAND.1 + HUE_DOUBT {
+            Class::Unsure
+        } else {
+            Class::Obstacle
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn classifier() -> Classifier {
+        Classifier::new([160.0, 150.0, 130.0], Hue::RED, Hue::GREEN)
+    }
+
+    #[test]
+    fn shadows_stay_floor_and_shaded_robots_stay_robots() {
+        let c = classifier();
+        assert_eq!(c.classify([160, 150, 130]), Class::Floor);
+        assert_eq!(c.classify([40, 37, 33]), Class::Floor);
+        assert_eq!(c.classify([5, 4, 3]), Class::Floor);
+        assert_eq!(c.classify([170, 25, 20]), Class::Robot);
+        assert_eq!(c.classify([45, 8, 6]), Class::Robot);
+        assert_eq!(c.classify([20, 120, 30]), Class::Goal);
+        assert_eq!(c.classify([30, 60, 150]), Class::Obstacle);
+        // Amber, between red and yellow: neither a robot's colour nor clearly another.
+        assert_eq!(c.classify([220, 120, 20]), Class::Unsure);
+    }
+
+    #[test]
+    fn a_tinted_light_is_balanced_away() {
+        // Warm light: the floor reads orange-ish, and a grey shadow of it too.
+        let c = Classifier::new([200.0, 150.0, 100.0], Hue::RED, Hue::GREEN);
+        assert_eq!(c.classify([100, 75, 50]), Class::Floor);
+        assert_eq!(c.classify([200, 40, 20]), Class::Robot);
+    }
+
+    #[test]
+    fn colours_parse() {
+        assert_eq!(Hue::parse("red").unwrap(), Hue(0.0));
+        assert_eq!(Hue::parse("hue:200").unwrap(), Hue(200.0));
+        assert!((Hue::parse("#0000ff").unwrap().0 - 240.0).abs() < 1e-9);
+        assert!(Hue::parse("#808080").unwrap_err().contains("too grey"));
+        assert!(Hue::parse("hue:400").is_err());
+        assert!(Hue::parse("mauve").is_err());
+        assert!((Hue(350.0).distance(10.0) - 20.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,700 @@
+//! Aerial views: a photograph of the floor from above (PNG or JPEG) read into a grid, robots
+//! and goals (DESIGN §6, "Aerial views").
+//!
+//! The steps, one file each:
+//! 1. the floor's place in the image: the whole image for a straight-down view, or four
+//!    corners through a [`homography`], and the grid: given (W × H cells or the cell size in
+//!    pixels) or found from painted [`lines`];
+//! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
+//!    and each cell's obstacle coverage, in one pass over the [`pixels`];
+//! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
+//!    the floor (a robot's top leans away from the camera; its base is found).
+//!
+//! Whatever cannot be read with confidence is refused with the reason and the pixel, never
+//! guessed: two robots touching, a robot or goal on a cell border, a colour between the
+//! robots' or goals' and another, a cell half covered, a grid that does not fit the image.
+//! Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells) and O(blob pixels).
+//!
+//! ```
+//! use mason_crew::aerial::{read_aerial, AerialConfig};
+//! // A 4 × 2-cell floor, 10 px per cell: a robot in cell (0, 0), a goal in cell (3, 1).
+//! let mut img = image::RgbImage::from_pixel(40, 20, image::Rgb([150, 150, 150]));
+//! for (cx, cy, colour) in [(5, 5, [200, 30, 30]), (35, 15, [30, 160, 40])] {
+//!     for y in cy - 3..cy + 3 {
+//!         for x in cx - 3..cx + 3 {
+//!             img.put_pixel(x, y, image::Rgb(colour));
+//!         }
+//!     }
+//! }
+//! let mut png = Vec::new();
+//! img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+//! let config = AerialConfig { grid: Some((4, 2)), ..AerialConfig::default() };
+//! let seen = read_aerial(&png, "floor.png", &config).unwrap();
+//! assert_eq!(seen.grid.xy(seen.robots[0].cell), (0, 0));
+//! assert_eq!(seen.grid.xy(seen.goals[0].cell), (3, 1));
+//! ```
+
+pub mod blobs;
+pub mod colour;
+pub mod homography;
+pub mod lines;
+pub mod pixels;
+
+use crate::error::{CrewError, Location};
+use crate::grid::{Cell, Grid};
+use colour::{Class, Classifier, Hue};
+use homography::{Homography, Point};
+use image::RgbImage;
+
+/// The most pixels an aerial image may have (checked from its header before decoding).
+pub const MAX_PIXELS: u64 = 40_000_000;
+/// The most cells an aerial grid may have.
+pub const MAX_GRID_CELLS: u64 = 1 << 20;
+/// The fewest pixels a cell may be wide.
+pub const MIN_CELL_PX: f64 = 3.0;
+/// A robot's or goal's centre closer than this (in cells) to a cell border is refused.
+pub const BORDER_MARGIN: f64 = 0.1;
+/// A cell whose middle is covered by an obstacle at a share in this range is refused.
+pub const HALF_COVERED: (f64, f64) = (0.3, 0.7);
+
+/// How to read an aerial view.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AerialConfig {
+    /// The floor grid, W × H cells.
+    pub grid: Option<(u32, u32)>,
+    /// Or the cell size in pixels (straight-down views without corners).
+    pub cell_px: Option<f64>,
+    /// The floor's corners in the image: top-left, top-right, bottom-right, bottom-left.
+    /// Without them the floor is the whole image.
+    pub corners: Option<[Point; 4]>,
+    /// The robots' colour.
+    pub robot_colour: Hue,
+    /// The goals' colour.
+    pub goal_colour: Hue,
+}
+
+impl Default for AerialConfig {
+    fn default() -> Self {
+        AerialConfig {
+            grid: None,
+            cell_px: None,
+            corners: None,
+            robot_colour: Hue::RED,
+            goal_colour: Hue::GREEN,
+        }
+    }
+}
+
+/// Where the grid came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GridSource {
+    /// `--grid W×H`.
+    Given,
+    /// `--cell-px N`.
+    CellPx,
+    /// Lines painted on the floor.
+    Lines,
+}
+
+/// A robot or goal as read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mark {
+    /// The cell under its centre.
+    pub cell: Cell,
+    /// Its centre on the floor, in cells.
+    pub floor: Point,
+    /// Its blob's centroid in the image, in pixels.
+    pub pixel: Point,
+    /// Its blob's size in pixels.
+    pub area: usize,
+    /// 0–1: how far its centre is from the cell's border (1: at least a quarter cell) times
+    /// how close its size is to the median of its kind.
+    pub confidence: f64,
+}
+
+/// What an aerial view shows.
+#[derive(Clone, Debug)]
+pub struct AerialReading {
+    /// The floor grid, with its blocked cells.
+    pub grid: Grid,
+    /// The robots, in row-major order of their blobs.
+    pub robots: Vec<Mark>,
+    /// The goals, likewise.
+    pub goals: Vec<Mark>,
+    /// Mean cell size in the image, in pixels.
+    pub cell_px: f64,
+    /// Where the grid came from.
+    pub grid_source: GridSource,
+    /// The floor's corners in the image (TL, TR, BR, BL).
+    pub corners: [Point; 4],
+    /// Floor (cells) → image (pixels).
+    pub floor_to_image: Homography,
+    /// The image's size in pixels.
+    pub image_size: (u32, u32),
+}
+
+impl AerialReading {
+    /// The robots' cells.
+    pub fn robot_cells(&self) -> Vec<Cell> {
+        self.robots.iter().map(|m| m.cell).collect()
+    }
+
+    /// The goals' cells.
+    pub fn goal_cells(&self) -> Vec<Cell> {
+        self.goals.iter().map(|m| m.cell).collect()
+    }
+}
+
+/// A failure at a pixel.
+fn at_pixel(source: &str, (x, y): Point, reason: impl Into<String>) -> CrewError {
+    let clamp = |v: f64| v.max(0.0).min(f64::from(u32::MAX)) as u32;
+    CrewError::new(source, Location::Pixel(clamp(x), clamp(y)), reason)
+}
+
+fn whole(source: &str, reason: impl Into<String>) -> CrewError {
+    CrewError::new(source, Location::Whole, reason)
+}
+
+/// Decodes a PNG or a JPEG to 8-bit RGB, the size checked from the header first.
+pub fn decode(bytes: &[u8], source: &str, max_pixels: u64) -> Result<RgbImage, CrewError> {
+    let too_large = |w: u32, h: u32| {
+        whole(
+            source,
+            format!(
+                "the image is {w}×{h}, more than the {max_pixels} pixels an aerial view may have (mason_crew::aerial::MAX_PIXELS)"
+            ),
+        )
+    };
+    let rgb = if bytes.starts_with(&[0x89, b'P', b'N', b'G']) {
+        mason_wall::decode_png_rgb(bytes, max_pixels).map_err(|e| match e {
+            mason_wall::PngDecodeError::TooLarge { width, height } => too_large(width, height),
+            mason_wall::PngDecodeError::Malformed(r) => {
+                whole(source, format!("cannot decode the PNG: {r}"))
+            }
+        })?
+    } else if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+        let reader = || {
+            image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Jpeg)
+        };
+        let (w, h) = reader()
+            .into_dimensions()
+            .map_err(|e| whole(source, format!("cannot decode the JPEG: {e}")))?;
+        if u64::from(w) * u64::from(h) > max_pixels {
+            return Err(too_large(w, h));
+        }
+        let mut r = reader();
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(w);
+        limits.max_image_height = Some(h);
+        limits.max_alloc = Some(max_pixels * 8);
+        r.limits(limits);
+        r.decode()
+            .map_err(|e| whole(source, format!("cannot decode the JPEG: {e}")))?
+            .into_rgb8()
+    } else {
+        return Err(whole(
+            source,
+            "cannot decode the image: not a PNG or a JPEG (the file starts with neither's signature)",
+        ));
+    };
+    if rgb.width() == 0 || rgb.height() == 0 {
+        return Err(whole(source, "the image is empty"));
+    }
+    Ok(rgb)
+}
+
+/// Whether the image is a digitised map (one pixel per cell) rather than a photograph: at most
+/// 16 distinct colours.
+pub fn is_pixel_map(img: &RgbImage) -> bool {
+    let mut seen: Vec<[u8; 3]> = Vec::with_capacity(17);
+    for p in img.pixels() {
+        if !seen.contains(&p.0) {
+            if seen.len() == 16 {
+                return false;
+            }
+            seen.push(p.0);
+        }
+    }
+    true
+}
+
+/// The floor's median colour, from every 4th pixel of every 4th row inside the floor.
+fn floor_colour(img: &RgbImage, image_to_floor: &Homography, (w, h): (f64, f64)) -> [f64; 3] {
+    let mut chans: [Vec<u8>; 3] = Default::default();
+    for y in (0..img.height()).step_by(4) {
+        for x in (0..img.width()).step_by(4) {
+            let inside = image_to_floor
+                .apply((f64::from(x) + 0.5, f64::from(y) + 0.5))
+                .is_some_and(|(u, v)| u >= 0.0 && v >= 0.0 && u < w && v < h);
+            if inside {
+                let p = img.get_pixel(x, y).0;
+                for c in 0..3 {
+                    chans[c].push(p[c]);
+                }
+            }
+        }
+    }
+    chans.map(|mut v| {
+        if v.is_empty() {
+            return 128.0;
+        }
+        let mid = v.len() / 2;
+        f64::from(*v.select_nth_unstable(mid).1)
+    })
+}
+
+/// The image's corners as the floor's.
+fn image_corners(img: &RgbImage) -> [Point; 4] {
+    let (w, h) = (f64::from(img.width()), f64::from(img.height()));
+    [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)]
+}
+
+fn check_corners(corners: &[Point; 4], img: &RgbImage, source: &str) -> Result<(), CrewError> {
+    let (w, h) = (f64::from(img.width()), f64::from(img.height()));
+    let names = ["top-left", "top-right", "bottom-right", "bottom-left"];
+    for (i, &(x, y)) in corners.iter().enumerate() {
+        if !(x.is_finite() && y.is_finite()) || x < -1.0 || y < -1.0 || x > w + 1.0 || y > h + 1.0 {
+            return Err(whole(
+                source,
+                format!(
+                    "the {} corner ({x}, {y}) is outside the {}×{} image",
+                    names[i],
+                    img.width(),
+                    img.height()
+                ),
+            ));
+        }
+    }
+    // Convex, and clockwise on screen (y down): every turn has the same positive sign.
+    for i in 0..4 {
+        let (a, b, c) = (corners[i], corners[(i + 1) % 4], corners[(i + 2) % 4]);
+        let cross = (b.0 - a.0) * (c.1 - b.1) - (b.1 - a.1) * (c.0 - b.0);
+        if cross <= 0.0 {
+            return Err(whole(
+                source,
+                format!(
+                    "the corners do not make a convex floor in the order top-left, top-right, bottom-right, bottom-left (turn at the {} corner)",
+                    names[(i + 1) % 4]
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The floor: its grid, its corners in the image and where the grid came from.
+type Floor = ((u32, u32), [Point; 4], GridSource);
+
+/// The grid and the floor's corners from the configuration, or from painted lines.
+fn grid_and_floor(img: &RgbImage, config: &AerialConfig, source: &str) -> Result<Floor, CrewError> {
+    let (iw, ih) = (f64::from(img.width()), f64::from(img.height()));
+    let corners = match config.corners {
+        Some(c) => {
+            check_corners(&c, img, source)?;
+            c
+        }
+        None => image_corners(img),
+    };
+    let (grid, from) = match (config.grid, config.cell_px) {
+        (Some(_), Some(_)) => {
+            return Err(whole(source, "give --grid or --cell-px, not both"));
+        }
+        (Some(g), None) => (g, GridSource::Given),
+        (None, Some(px)) => {
+            if config.corners.is_some() {
+                return Err(whole(
+                    source,
+                    "--cell-px is for straight-down views filling the image; with --corners give --grid W×H",
+                ));
+            }
+            if !(px.is_finite() && px >= MIN_CELL_PX) {
+                return Err(whole(
+                    source,
+                    format!("--cell-px {px}: a cell is at least {MIN_CELL_PX} pixels"),
+                ));
+            }
+            let fit = |side: f64, name: &str| -> Result<u32, CrewError> {
+                let n = (side / px).round();
+                if n < 1.0 || (side - n * px).abs() > 0.25 * px {
+                    return Err(whole(
+                        source,
+                        format!(
+                            "the grid does not fit the image: its {name} of {side} px is {:.2} cells of {px} px, not a whole number (within a quarter cell)",
+                            side / px
+                        ),
+                    ));
+                }
+                Ok(n as u32)
+            };
+            ((fit(iw, "width")?, fit(ih, "height")?), GridSource::CellPx)
+        }
+        (None, None) => {
+            let found = find_grid_lines(img, &corners).ok_or_else(|| {
+                whole(
+                    source,
+                    "no grid: give --grid W×H or --cell-px N (no lines painted on the floor were found)",
+                )
+            })?;
+            (found, GridSource::Lines)
+        }
+    };
+    let (gw, gh) = grid;
+    if gw == 0 || gh == 0 || u64::from(gw) * u64::from(gh) > MAX_GRID_CELLS {
+        return Err(whole(
+            source,
+            format!("a grid of {gw}×{gh} cells: each side at least 1 and at most {MAX_GRID_CELLS} cells in all"),
+        ));
+    }
+    if config.corners.is_none() {
+        let (cw, ch) = (iw / f64::from(gw), ih / f64::from(gh));
+        if cw < MIN_CELL_PX || ch < MIN_CELL_PX || (cw / ch - 1.0).abs() > 0.1 {
+            return Err(whole(
+                source,
+                format!(
+                    "the grid {gw}×{gh} does not fit the {}×{} image: its cells would be {cw:.1}×{ch:.1} px (square cells of at least {MIN_CELL_PX} px, within 10 %; for a tilted camera give --corners)",
+                    img.width(),
+                    img.height()
+                ),
+            ));
+        }
+    } else {
+        let side = |a: Point, b: Point| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+        let shortest = [
+            side(corners[0], corners[1]) / f64::from(gw),
+            side(corners[3], corners[2]) / f64::from(gw),
+            side(corners[0], corners[3]) / f64::from(gh),
+            side(corners[1], corners[2]) / f64::from(gh),
+        ]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+        if shortest < MIN_CELL_PX {
+            return Err(whole(
+                source,
+                format!("the grid {gw}×{gh} does not fit between the corners: some cells would be {shortest:.1} px wide, fewer than {MIN_CELL_PX}"),
+            ));
+        }
+    }
+    Ok(((gw, gh), corners, from))
+}
+
+/// The grid from painted lines, both ways, or `None`.
+fn find_grid_lines(img: &RgbImage, corners: &[Point; 4]) -> Option<(u32, u32)> {
+    // The floor as a unit square.
+    let unit = Homography::floor_to_image(1.0, 1.0, *corners)?;
+    let side = |a: Point, b: Point| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+    let across = side(corners[0], corners[1]).max(side(corners[3], corners[2]));
+    let down = side(corners[0], corners[3]).max(side(corners[1], corners[2]));
+    let luma = |p: Point| -> Option<f64> {
+        let (x, y) = unit.apply(p)?;
+        if x < 0.0 || y < 0.0 {
+            return None;
+        }
+        let (xi, yi) = (x as u32, y as u32);
+        (xi < img.width() && yi < img.height()).then(|| {
+            let [r, g, b] = img.get_pixel(xi, yi).0.map(f64::from);
+            0.299 * r + 0.587 * g + 0.114 * b
+        })
+    };
+    let profile = |n: usize, slices: usize, along_u: bool| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let t = (i as f64 + 0.5) / n as f64;
+                let mut vals: Vec<f64> = (0..slices)
+                    .filter_map(|j| {
+                        let s = (j as f64 + 0.5) / slices as f64;
+                        luma(if along_u { (t, s) } else { (s, t) })
+                    })
+                    .collect();
+                if vals.is_empty() {
+                    return 0.0;
+                }
+                let mid = vals.len() / 2;
+                *vals.select_nth_unstable_by(mid, f64::total_cmp).1
+            })
+            .collect()
+    };
+    let nu = (across.round() as usize).clamp(1, 4096);
+    let nv = (down.round() as usize).clamp(1, 4096);
+    let w = lines::cells_along(&profile(nu, nv.min(301), true))?.0;
+    let h = lines::cells_along(&profile(nv, nu.min(301), false))?.0;
+    Some((w, h))
+}
+
+/// Reads an aerial view.
+pub fn read_aerial(
+    bytes: &[u8],
+    source: &str,
+    config: &AerialConfig,
+) -> Result<AerialReading, CrewError> {
+    let img = decode(bytes, source, MAX_PIXELS)?;
+    read_aerial_image(&img, source, config)
+}
+
+/// Reads an aerial view already decoded.
+pub fn read_aerial_image(
+    img: &RgbImage,
+    source: &str,
+    config: &AerialConfig,
+) -> Result<AerialReading, CrewError> {
+    if config.robot_colour.distance(config.goal_colour.0) < 60.0 {
+        return Err(whole(
+            source,
+            format!(
+                "the robots' colour (hue {:.0}°) and the goals' (hue {:.0}°) are too close to tell apart (at least 60° apart)",
+                config.robot_colour.0, config.goal_colour.0
+            ),
+        ));
+    }
+    let ((gw, gh), corners, grid_source) = grid_and_floor(img, config, source)?;
+    let (fw, fh) = (f64::from(gw), f64::from(gh));
+    let floor_to_image = Homography::floor_to_image(fw, fh, corners).ok_or_else(|| {
+        whole(
+            source,
+            "the corners do not define a floor (three on a line)",
+        )
+    })?;
+    let image_to_floor = floor_to_image
+        .inverse()
+        .ok_or_else(|| whole(source, "the corners do not define a floor (singular)"))?;
+    let classifier = Classifier::new(
+        floor_colour(img, &image_to_floor, (fw, fh)),
+        config.robot_colour,
+        config.goal_colour,
+    );
+    let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
+    let (mut classes, coverage) =
+        pixels::classify(img, &classifier, &image_to_floor, (gw, gh), nadir);
+    let cell_centre_px = |i: usize| {
+        floor_to_image
+            .apply((
+                (i % gw as usize) as f64 + 0.5,
+                (i / gw as usize) as f64 + 0.5,
+            ))
+            .unwrap_or((0.0, 0.0))
+    };
+    let mut blocked = vec![false; gw as usize * gh as usize];
+    for (i, b) in blocked.iter_mut().enumerate() {
+        let Some(share) = coverage.share(i) else {
+            return Err(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!(
+                    "cell ({}, {}) shows no pixel of floor that can be judged",
+                    i % gw as usize,
+                    i / gw as usize
+                ),
+            ));
+        };
+        if share > HALF_COVERED.0 && share < HALF_COVERED.1 {
+            return Err(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!(
+                    "cell ({}, {}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over): cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
+                    i % gw as usize,
+                    i / gw as usize,
+                    share * 100.0,
+                    HALF_COVERED.0 * 100.0,
+                    HALF_COVERED.1 * 100.0
+                ),
+            ));
+        }
+        *b = share >= HALF_COVERED.1;
+    }
+    let grid = Grid::new(gw, gh, blocked);
+    let width = img.width() as usize;
+    let px = cell_size_px(&floor_to_image, (fw, fh));
+    let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
+    let robots = marks(
+        blobs::find(&mut classes, width, Class::Robot as u8),
+        "robot",
+        &grid,
+        &image_to_floor,
+        nadir,
+        1.0 / px,
+        source,
+    )?;
+    let goals = marks(
+        blobs::find(&mut classes, width, Class::Goal as u8),
+        "goal",
+        &grid,
+        &image_to_floor,
+        None,
+        1.0 / px,
+        source,
+    )?;
+    // A blob of a colour between the robots' (or goals') and another's, as large as a robot.
+    let smallest = robots
+        .iter()
+        .chain(&goals)
+        .map(|m| m.area)
+        .min()
+        .unwrap_or(blobs::MIN_AREA);
+    if let Some(b) = unsure
+        .kept
+        .iter()
+        .chain(&unsure.merged)
+        .find(|b| 2 * b.area() >= smallest)
+    {
+        return Err(at_pixel(
+            source,
+            b.centroid(),
+            format!(
+                "a blob of {} px whose colour is neither the robots' (hue {:.0}°) nor the goals' (hue {:.0}°) nor clearly another",
+                b.area(),
+                config.robot_colour.0,
+                config.goal_colour.0
+            ),
+        ));
+    }
+    if robots.is_empty() {
+        return Err(whole(
+            source,
+            format!(
+                "no robot found (robots are hue {:.0}° ± 25°)",
+                config.robot_colour.0
+            ),
+        ));
+    }
+    if robots.len() > crate::limits::MAX_AGENTS {
+        return Err(whole(
+            source,
+            format!(
+                "{} robots, more than the {} an instance may have (mason_crew::limits::MAX_AGENTS)",
+                robots.len(),
+                crate::limits::MAX_AGENTS
+            ),
+        ));
+    }
+    if goals.len() < robots.len() {
+        return Err(whole(
+            source,
+            format!(
+                "{} robots but only {} goals; every robot needs a goal",
+                robots.len(),
+                goals.len()
+            ),
+        ));
+    }
+    for (kind, list) in [("robots", &robots), ("goals", &goals)] {
+        let mut cells: Vec<(Cell, Point)> = list.iter().map(|m| (m.cell, m.pixel)).collect();
+        cells.sort_by_key(|c| c.0);
+        if let Some(w) = cells.windows(2).find(|w| w[0].0 == w[1].0) {
+            let (x, y) = grid.xy(w[0].0);
+            return Err(at_pixel(
+                source,
+                w[1].1,
+                format!("two {kind} on cell ({x}, {y})"),
+            ));
+        }
+    }
+    Ok(AerialReading {
+        grid,
+        robots,
+        goals,
+        cell_px: px,
+        grid_source,
+        corners,
+        floor_to_image,
+        image_size: (img.width(), img.height()),
+    })
+}
+
+/// Mean cell side in pixels over the floor.
+fn cell_size_px(floor_to_image: &Homography, (w, h): (f64, f64)) -> f64 {
+    let c = [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)].map(|p| floor_to_image.apply(p).unwrap_or(p));
+    let side = |a: Point, b: Point| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+    let across = (side(c[0], c[1]) + side(c[3], c[2])) / (2.0 * w);
+    let down = (side(c[0], c[3]) + side(c[1], c[2])) / (2.0 * h);
+    (across + down) / 2.0
+}
+
+/// Robots (with the nadir: standing) or goals (flat) from their blobs.
+fn marks(
+    found: Vec<blobs::Blob>,
+    kind: &str,
+    grid: &Grid,
+    image_to_floor: &Homography,
+    nadir: Option<Point>,
+    px_on_floor: f64,
+    source: &str,
+) -> Result<Vec<Mark>, CrewError> {
+    let sorted = blobs::sort(found);
+    if let Some(b) = sorted.merged.first() {
+        return Err(at_pixel(
+            source,
+            b.centroid(),
+            format!(
+                "{kind}s touching: a blob of {} px, {:.1} times the median {kind} ({} px)",
+                b.area(),
+                b.area() as f64 / sorted.median_area as f64,
+                sorted.median_area
+            ),
+        ));
+    }
+    if let Some(b) = sorted.doubtful.first() {
+        return Err(at_pixel(
+            source,
+            b.centroid(),
+            format!(
+                "a {kind}-coloured blob of {} px, too large for noise and too small for a {kind} (median {} px)",
+                b.area(),
+                sorted.median_area
+            ),
+        ));
+    }
+    let mut out = Vec::with_capacity(sorted.kept.len());
+    for b in sorted.kept {
+        let on_floor = blobs::on_floor(&b, image_to_floor);
+        let centre = match nadir {
+            Some(_) => blobs::standing_centre(&on_floor, nadir, px_on_floor),
+            None => blobs::standing_centre(&on_floor, None, px_on_floor),
+        };
+        let pixel = b.centroid();
+        let (u, v) = centre;
+        let cell = (u >= 0.0 && v >= 0.0)
+            .then(|| grid.cell(u.floor() as i64, v.floor() as i64))
+            .flatten()
+            .ok_or_else(|| {
+                at_pixel(
+                    source,
+                    pixel,
+                    format!("a {kind} whose centre ({u:.2}, {v:.2}) is outside the floor"),
+                )
+            })?;
+        let margin = [u.fract(), 1.0 - u.fract(), v.fract(), 1.0 - v.fract()]
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        let (x, y) = grid.xy(cell);
+        if margin < BORDER_MARGIN {
+            return Err(at_pixel(
+                source,
+                pixel,
+                format!(
+                    "a {kind} on the border of cell ({x}, {y}): its centre ({u:.2}, {v:.2}) is {margin:.2} cells from the border (at least {BORDER_MARGIN} to settle)"
+                ),
+            ));
+        }
+        if !grid.is_free(cell) {
+            return Err(at_pixel(
+                source,
+                pixel,
+                format!("a {kind} on cell ({x}, {y}), which an obstacle covers"),
+            ));
+        }
+        let size = b.area() as f64 / sorted.median_area.max(1) as f64;
+        let confidence = (margin / 0.25).min(1.0) * size.min(1.0 / size).min(1.0);
+        out.push(Mark {
+            cell,
+            floor: centre,
+            pixel,
+            area: b.area(),
+            confidence,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests;

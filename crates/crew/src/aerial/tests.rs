@@ -1,0 +1,316 @@
+//! The reader on small painted floors (the rendered ones are in the repository's tests).
+
+use super::*;
+use image::{ImageFormat, Rgb};
+use std::io::Cursor;
+
+/// A floor painted through a homography: grey with a shadow band, optional dark grid lines,
+/// blue obstacles on whole cells, red discs (robots) and green discs (goals) at floor points.
+struct Paint {
+    cells: (u32, u32),
+    blocked: Vec<(u32, u32)>,
+    robots: Vec<Point>,
+    goals: Vec<Point>,
+    radius: f64,
+    lines: bool,
+}
+
+impl Paint {
+    fn new(cells: (u32, u32)) -> Paint {
+        Paint {
+            cells,
+            blocked: vec![],
+            robots: vec![],
+            goals: vec![],
+            radius: 0.3,
+            lines: false,
+        }
+    }
+
+    fn draw(&self, size: (u32, u32), corners: [Point; 4]) -> RgbImage {
+        let (w, h) = (f64::from(self.cells.0), f64::from(self.cells.1));
+        let to_floor = Homography::floor_to_image(w, h, corners)
+            .unwrap()
+            .inverse()
+            .unwrap();
+        RgbImage::from_fn(size.0, size.1, |x, y| {
+            let (u, v) = to_floor
+                .apply((f64::from(x) + 0.5, f64::from(y) + 0.5))
+                .unwrap();
+            if u < 0.0 || v < 0.0 || u >= w || v >= h {
+                return Rgb([90, 100, 120]);
+            }
+            let near = |c: &Point| (u - c.0).powi(2) + (v - c.1).powi(2) < self.radius.powi(2);
+            let shade = if (u - 2.0 * v).rem_euclid(7.0) < 1.5 {
+                0.45
+            } else {
+                1.0
+            };
+            let sh = |c: [f64; 3]| Rgb(c.map(|x| (x * shade) as u8));
+            if self.robots.iter().any(near) {
+                return sh([200.0, 30.0, 25.0]);
+            }
+            if self.goals.iter().any(near) {
+                return sh([30.0, 170.0, 50.0]);
+            }
+            if self.blocked.contains(&(u as u32, v as u32)) {
+                return sh([40.0, 70.0, 170.0]);
+            }
+            let line = self.lines
+                && (u.fract() < 0.05 || u.fract() > 0.95 || v.fract() < 0.05 || v.fract() > 0.95);
+            sh(if line {
+                [40.0; 3]
+            } else {
+                [170.0, 165.0, 155.0]
+            })
+        })
+    }
+
+    fn straight(&self, cell_px: u32) -> RgbImage {
+        let (w, h) = (self.cells.0 * cell_px, self.cells.1 * cell_px);
+        let (fw, fh) = (f64::from(w), f64::from(h));
+        self.draw((w, h), [(0.0, 0.0), (fw, 0.0), (fw, fh), (0.0, fh)])
+    }
+}
+
+fn png(img: &RgbImage) -> Vec<u8> {
+    let mut out = Cursor::new(Vec::new());
+    img.write_to(&mut out, ImageFormat::Png).unwrap();
+    out.into_inner()
+}
+
+fn grid(w: u32, h: u32) -> AerialConfig {
+    AerialConfig {
+        grid: Some((w, h)),
+        ..AerialConfig::default()
+    }
+}
+
+fn xy(r: &AerialReading, marks: &[Mark]) -> Vec<(u32, u32)> {
+    marks.iter().map(|m| r.grid.xy(m.cell)).collect()
+}
+
+fn scene() -> Paint {
+    let mut p = Paint::new((8, 5));
+    p.blocked = vec![(3, 1), (3, 2), (3, 3)];
+    p.robots = vec![(0.6, 0.45), (6.5, 3.5)];
+    p.goals = vec![(7.4, 0.6), (1.5, 4.5), (5.5, 1.5)];
+    p
+}
+
+#[test]
+fn reads_a_straight_down_view_with_shadows() {
+    let r = read_aerial(&png(&scene().straight(12)), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    assert_eq!(xy(&r, &r.goals), vec![(7, 0), (5, 1), (1, 4)]);
+    let blocked: Vec<(u32, u32)> = (0..40)
+        .filter(|&i| !r.grid.is_free(Cell(i)))
+        .map(|i| r.grid.xy(Cell(i)))
+        .collect();
+    assert_eq!(blocked, vec![(3, 1), (3, 2), (3, 3)]);
+    assert_eq!(r.grid_source, GridSource::Given);
+    assert!((r.cell_px - 12.0).abs() < 1e-9);
+    assert!(r
+        .robots
+        .iter()
+        .all(|m| m.confidence > 0.0 && m.confidence <= 1.0));
+}
+
+#[test]
+fn cell_px_and_painted_lines_give_the_grid() {
+    let mut p = scene();
+    let cfg = AerialConfig {
+        cell_px: Some(12.0),
+        ..AerialConfig::default()
+    };
+    let r = read_aerial(&png(&p.straight(12)), "v.png", &cfg).unwrap();
+    assert_eq!((r.grid.width(), r.grid.height()), (8, 5));
+    assert_eq!(r.grid_source, GridSource::CellPx);
+    // Without grid information a photograph is refused...
+    let e = read_aerial(&png(&p.straight(12)), "v.png", &AerialConfig::default()).unwrap_err();
+    assert!(e.to_string().contains("no grid"), "{e}");
+    // ... unless lines are painted on its floor.
+    p.lines = true;
+    let r = read_aerial(&png(&p.straight(14)), "v.png", &AerialConfig::default()).unwrap();
+    assert_eq!((r.grid.width(), r.grid.height()), (8, 5));
+    assert_eq!(r.grid_source, GridSource::Lines);
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+}
+
+#[test]
+fn reads_a_tilted_view_through_its_corners() {
+    let p = scene();
+    let corners = [(40.0, 30.0), (300.0, 12.0), (330.0, 200.0), (10.0, 215.0)];
+    let img = p.draw((340, 230), corners);
+    let cfg = AerialConfig {
+        grid: Some((8, 5)),
+        corners: Some(corners),
+        ..AerialConfig::default()
+    };
+    let r = read_aerial(&png(&img), "t.png", &cfg).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    assert_eq!(xy(&r, &r.goals), vec![(7, 0), (5, 1), (1, 4)]);
+    assert_eq!(r.grid.free_count(), 37);
+    // The same corners in another order are not a floor.
+    let mut bad = cfg.clone();
+    bad.corners = Some([corners[1], corners[0], corners[2], corners[3]]);
+    let e = read_aerial(&png(&img), "t.png", &bad).unwrap_err();
+    assert!(e.to_string().contains("convex"), "{e}");
+}
+
+#[test]
+fn reads_jpeg() {
+    let img = scene().straight(16);
+    let mut out = Cursor::new(Vec::new());
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 70)
+        .encode_image(&img)
+        .unwrap();
+    let r = read_aerial(&out.into_inner(), "v.jpg", &grid(8, 5)).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+}
+
+fn refusal(p: &Paint, cfg: &AerialConfig) -> String {
+    read_aerial(&png(&p.straight(12)), "v.png", cfg)
+        .unwrap_err()
+        .to_string()
+}
+
+#[test]
+fn refuses_what_it_cannot_read() {
+    let mut touching = scene();
+    touching.robots.push((7.1, 3.5));
+    touching.goals.push((4.5, 4.5));
+    touching.robots.push((1.5, 2.5));
+    touching.goals.push((6.5, 0.5));
+    let e = refusal(&touching, &grid(8, 5));
+    assert!(
+        e.contains("robots touching") && e.contains("pixel ("),
+        "{e}"
+    );
+
+    let mut border = scene();
+    border.robots[1] = (6.03, 3.5);
+    let e = refusal(&border, &grid(8, 5));
+    assert!(e.contains("border of cell"), "{e}");
+
+    let mut few = scene();
+    few.goals.truncate(1);
+    assert!(refusal(&few, &grid(8, 5)).contains("2 robots but only 1 goals"));
+
+    let mut none = scene();
+    none.robots.clear();
+    assert!(refusal(&none, &grid(8, 5)).contains("no robot found"));
+
+    assert!(refusal(&scene(), &grid(8, 9)).contains("does not fit"));
+    let cfg = AerialConfig {
+        cell_px: Some(11.0),
+        ..AerialConfig::default()
+    };
+    assert!(refusal(&scene(), &cfg).contains("does not fit"));
+
+    // An amber blob: neither the robots' red nor clearly another colour.
+    let mut img = scene().straight(12);
+    for y in 40..48 {
+        for x in 70..78 {
+            img.put_pixel(x, y, Rgb([220, 120, 20]));
+        }
+    }
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("neither the robots'"), "{e}");
+
+    // Half of the window of cell (7, 4) that no neighbour can lean over (0.4–0.95 of the cell
+    // away from the nadir at the image's centre) covered.
+    let mut img = scene().straight(12);
+    for y in 48..60 {
+        for x in 88..93 {
+            img.put_pixel(x, y, Rgb([40, 70, 170]));
+        }
+    }
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cell (7, 4)") && e.contains("covered"), "{e}");
+}
+
+#[test]
+fn malformed_and_hostile_images_are_refused() {
+    let cfg = grid(8, 5);
+    let e = read_aerial(b"GIF89a....", "x", &cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not a PNG or a JPEG"), "{e}");
+    let bytes = png(&scene().straight(12));
+    let e = read_aerial(&bytes[..bytes.len() / 2], "x", &cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cannot decode the PNG"), "{e}");
+    let e = read_aerial(&[0xFF, 0xD8, 0xFF, 0xE0, 0, 16], "x", &cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cannot decode the JPEG"), "{e}");
+    // A header that claims 100 000 × 100 000 pixels is refused before decoding.
+    let mut huge = bytes.clone();
+    huge[16..20].copy_from_slice(&100_000u32.to_be_bytes());
+    huge[20..24].copy_from_slice(&100_000u32.to_be_bytes());
+    let crc = crc32(&huge[12..29]);
+    huge[29..33].copy_from_slice(&crc.to_be_bytes());
+    let e = read_aerial(&huge, "x", &cfg).unwrap_err().to_string();
+    assert!(e.contains("more than the"), "{e}");
+    let e = read_aerial(&bytes, "x", &grid(0, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("at least 1"), "{e}");
+    let e = read_aerial(&bytes, "x", &grid(100_000, 100_000))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("at most"), "{e}");
+    let same = AerialConfig {
+        goal_colour: Hue(10.0),
+        ..grid(8, 5)
+    };
+    assert!(read_aerial(&bytes, "x", &same)
+        .unwrap_err()
+        .to_string()
+        .contains("too close"));
+}
+
+#[test]
+fn a_pixel_map_is_told_from_a_photograph() {
+    let map = crate::image::birdseye_png(&Grid::open(6, 4), &[Cell(0)], &[Cell(5)]);
+    let img = decode(&map, "m", MAX_PIXELS).unwrap();
+    assert!(is_pixel_map(&img));
+    // Sensor noise: a photograph has far more than 16 colours.
+    let mut photo = scene().straight(12);
+    for (i, p) in photo.pixels_mut().enumerate() {
+        p.0[0] = p.0[0].saturating_add((i * 7919 % 5) as u8);
+    }
+    assert!(!is_pixel_map(&photo));
+}
+
+#[test]
+fn same_input_same_reading() {
+    let bytes = png(&scene().straight(12));
+    let a = read_aerial(&bytes, "v", &grid(8, 5)).unwrap();
+    let b = read_aerial(&bytes, "v", &grid(8, 5)).unwrap();
+    assert_eq!(a.robots, b.robots);
+    assert_eq!(a.goals, b.goals);
+    assert_eq!(a.grid, b.grid);
+}
+
+/// The PNG chunk checksum (CRC-32, ISO 3309), to forge a valid header.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}

@@ -1,0 +1,105 @@
+//! Aerial views rendered by scripts/render-aerial/render.py (Mitsuba 3, a path tracer), read
+//! and compared with their ground truth: the grid, every blocked cell, robot and goal.
+
+use mason_crew::aerial::{read_aerial, AerialConfig, AerialReading, GridSource};
+use serde_json::Value;
+use std::path::PathBuf;
+
+fn data() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/aerial")
+}
+
+fn cells(v: &Value) -> Vec<(u32, u32)> {
+    let mut out: Vec<(u32, u32)> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| (c[0].as_u64().unwrap() as u32, c[1].as_u64().unwrap() as u32))
+        .collect();
+    out.sort_unstable();
+    out
+}
+
+fn scene(name: &str) -> (Vec<u8>, Value) {
+    let truth: Value = serde_json::from_str(
+        &std::fs::read_to_string(data().join(format!("{name}.json"))).unwrap(),
+    )
+    .unwrap();
+    let image = std::fs::read(data().join(truth["image"].as_str().unwrap())).unwrap();
+    (image, truth)
+}
+
+fn config(truth: &Value, with_grid: bool) -> AerialConfig {
+    let g = &truth["grid"];
+    let corners = (!truth["straight_down"].as_bool().unwrap()).then(|| {
+        let c = |i: usize, k: usize| truth["corners"][i][k].as_f64().unwrap();
+        [
+            (c(0, 0), c(0, 1)),
+            (c(1, 0), c(1, 1)),
+            (c(2, 0), c(2, 1)),
+            (c(3, 0), c(3, 1)),
+        ]
+    });
+    AerialConfig {
+        grid: with_grid.then(|| (g[0].as_u64().unwrap() as u32, g[1].as_u64().unwrap() as u32)),
+        corners,
+        ..AerialConfig::default()
+    }
+}
+
+fn assert_exact(name: &str, r: &AerialReading, truth: &Value) {
+    let g = &r.grid;
+    assert_eq!(
+        [u64::from(g.width()), u64::from(g.height())],
+        [
+            truth["grid"][0].as_u64().unwrap(),
+            truth["grid"][1].as_u64().unwrap()
+        ],
+        "{name}: grid"
+    );
+    let mut blocked: Vec<(u32, u32)> = (0..g.len() as u32)
+        .map(mason_crew::Cell)
+        .filter(|&c| !g.is_free(c))
+        .map(|c| g.xy(c))
+        .collect();
+    blocked.sort_unstable();
+    assert_eq!(blocked, cells(&truth["blocked"]), "{name}: blocked cells");
+    let mut robots: Vec<(u32, u32)> = r.robots.iter().map(|m| g.xy(m.cell)).collect();
+    robots.sort_unstable();
+    assert_eq!(robots, cells(&truth["robots"]), "{name}: robots");
+    let mut goals: Vec<(u32, u32)> = r.goals.iter().map(|m| g.xy(m.cell)).collect();
+    goals.sort_unstable();
+    assert_eq!(goals, cells(&truth["goals"]), "{name}: goals");
+}
+
+#[test]
+fn rendered_views_read_exactly() {
+    for name in ["A0011", "A0901", "A0902", "A0904", "A0906", "A0908"] {
+        let (image, truth) = scene(name);
+        let r = read_aerial(&image, name, &config(&truth, true))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_exact(name, &r, &truth);
+        assert!(r.robots.iter().all(|m| m.confidence > 0.0), "{name}");
+    }
+}
+
+/// A straight-down view with lines painted on its floor gives its grid without --grid.
+#[test]
+fn painted_lines_give_the_grid_of_a_rendered_view() {
+    let (image, truth) = scene("A0901");
+    assert!(truth["straight_down"].as_bool().unwrap() && truth["params"]["lines"].is_object());
+    let r = read_aerial(&image, "A0901", &config(&truth, false)).unwrap();
+    assert_eq!(r.grid_source, GridSource::Lines);
+    assert_exact("A0901", &r, &truth);
+}
+
+/// Small goals washed out by JPEG at 10 px per cell: fewer goals than robots are seen, and
+/// the view is refused rather than read wrongly.
+#[test]
+fn a_view_with_goals_too_faint_is_refused() {
+    let (image, truth) = scene("A0905");
+    let e = read_aerial(&image, "A0905", &config(&truth, true))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("robots but only") && e.contains("goals"), "{e}");
+}
