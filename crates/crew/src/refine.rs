@@ -173,15 +173,14 @@ struct Candidate {
 
 impl Candidate {
     /// Plans the group again, one robot after another, around everyone else as `occ` and
-    /// `paths` hold them (read only).
+    /// `paths` hold them (read only); `cost` are the robots' current costs.
     fn plan(
         &mut self,
         search: &mut Search<OpenEntry>,
         graph: &MoveGraph,
         dist: &[Vec<u32>],
         goals: &[u32],
-        (occ, paths): (&Occupancy, &[Vec<u32>]),
-        cost: &[u64],
+        (occ, paths, cost): (&Occupancy, &[Vec<u32>], &[u64]),
         node_limit: u64,
     ) {
         self.fresh.clear();
@@ -353,8 +352,7 @@ pub fn refine(
                 graph,
                 dist,
                 goals,
-                shared,
-                &cost,
+                (shared.0, shared.1, &cost),
                 config.node_limit,
             );
             if let Ok(mut s) = scratch.lock() {
