@@ -401,16 +401,7 @@ fn dense_warehouses_are_solved_and_stay_valid() {
     for seed in 0..3 {
         let grid = aisles(47, 22);
         let n = 60 + 12 * seed as usize;
-        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
-        let inst = Instance::new(
-            grid,
-            Connectivity::Four,
-            robots,
-            goals,
-            Some((0..n).collect()),
-            "dense",
-        )
-        .unwrap();
+        let inst = random_tasks_on(grid, n, seed, "dense");
         let out = solve(&inst, &lacam_config(0, seed), &capped()).unwrap();
         let Some(paths) = out.paths else {
             panic!("seed {seed}: {:?} {:?}", out.status, out.reason)
@@ -449,16 +440,7 @@ fn dense_aisles_need_few_configurations() {
     for seed in 0..3 {
         let grid = aisles(47, 22);
         let n = 140;
-        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
-        let inst = Instance::new(
-            grid,
-            Connectivity::Four,
-            robots,
-            goals,
-            Some((0..n).collect()),
-            "aisles",
-        )
-        .unwrap();
+        let inst = random_tasks_on(grid, n, seed, "aisles");
         let budget = Budget {
             node_limit: Some(5_000),
             ..Budget::default()
@@ -476,6 +458,20 @@ fn dense_aisles_need_few_configurations() {
         )
         .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
     }
+}
+
+/// `n` robots with random starts and goals on `grid`, 4-connected, the given pairing.
+fn random_tasks_on(grid: Grid, n: usize, seed: u64, name: &str) -> Instance {
+    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
+    Instance::new(
+        grid,
+        Connectivity::Four,
+        robots,
+        goals,
+        Some((0..n).collect()),
+        name,
+    )
+    .unwrap()
 }
 
 /// Square rooms of `room` free cells a side, separated by one-cell walls with one door, at a
@@ -518,16 +514,7 @@ fn dense_rooms_get_no_pathological_first_plan() {
     for seed in 0..8 {
         let grid = rooms(6, 3, seed);
         let n = 180;
-        let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, seed);
-        let inst = Instance::new(
-            grid,
-            Connectivity::Four,
-            robots,
-            goals,
-            Some((0..n).collect()),
-            "rooms",
-        )
-        .unwrap();
+        let inst = random_tasks_on(grid, n, seed, "rooms");
         let out = solve(&inst, &lacam_config(0, seed), &capped()).unwrap();
         let paths = out.paths.expect("a plan");
         let m = validate(
