@@ -139,10 +139,130 @@ pub fn mapf(
          first plan; final: the whole solve (refinement runs until the limit or 1000 rounds \
          without improvement). Command: mason bench mapf [--data DIR] [--long].\n",
     );
+    if long {
+        text.push_str(&against_lacam3(exe, &dir, progress)?);
+    }
     Ok(text)
 }
 
-fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String> {
+/// lacam3's figures, measured once with `scripts/mapf-vs-lacam3.sh` (see the file's header).
+const LACAM3: &str = include_str!("../data/lacam3-mapf.tsv");
+
+/// One measured lacam3 run: map, agents, limit (s), seed, then its sum of costs (`None`: no
+/// plan), the lower bound and the time to its first plan (ms).
+type Anchor = (String, usize, f64, u64, Option<u64>, u64, Option<u64>);
+
+/// The rows of a lacam3 results file (tab-separated, `#` comments, one header line).
+fn anchors(text: &str) -> BenchResult<Vec<Anchor>> {
+    let mut rows = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        if line.starts_with('#') || line.starts_with("map\t") || line.trim().is_empty() {
+            continue;
+        }
+        let f: Vec<&str> = line.split('\t').collect();
+        let bad = || {
+            input_error(format!("lacam3-mapf.tsv:{}: expected 9 tab-separated fields `map agents limit_s seed solved soc soc_lb makespan first_ms`", k + 1))
+        };
+        if f.len() != 9 {
+            return Err(bad());
+        }
+        let opt = |s: &str| s.parse::<u64>().ok();
+        rows.push((
+            f[0].to_string(),
+            f[1].parse().map_err(|_| bad())?,
+            f[2].parse().map_err(|_| bad())?,
+            f[3].parse().map_err(|_| bad())?,
+            (f[4] == "1").then(|| opt(f[5])).flatten(),
+            f[6].parse().map_err(|_| bad())?,
+            (f[4] == "1").then(|| opt(f[8])).flatten(),
+        ));
+    }
+    Ok(rows)
+}
+
+/// Mason at every point of the lacam3 results file, beside lacam3's figures.
+fn against_lacam3(exe: &Path, dir: &Path, progress: &mut dyn FnMut(&str)) -> BenchResult<String> {
+    let mut text = String::from(
+        "\nAgainst lacam3 (Kei18/lacam3, its figures measured once and read from \
+         crates/bench/data/lacam3-mapf.tsv; Mason measured now, so the two saw different loads):\n",
+    );
+    text.push_str(&format!(
+        "{:<24} {:>6} {:>6} {:>4} {:>10} {:>10} {:>9} {:>9} {:>8}\n",
+        "map",
+        "agents",
+        "limit",
+        "seed",
+        "lacam3 SOC",
+        "Mason SOC",
+        "Mason/l3",
+        "l3 first",
+        "M first"
+    ));
+    let (mut points, mut at_or_below) = (0, 0);
+    for (map_name, agents, limit, seed, l_soc, _lb, l_first) in anchors(LACAM3)? {
+        let map = dir.join("maps").join(format!("{map_name}.map"));
+        let scen = dir.join("scen").join(format!("{map_name}-random-1.scen"));
+        let head = format!(
+            "{map_name:<24} {agents:>6} {:>6} {seed:>4}",
+            format!("{limit}s")
+        );
+        if !map.is_file() || !scen.is_file() {
+            text.push_str(&format!("{head} data missing; skipped\n"));
+            continue;
+        }
+        progress(&format!(
+            "bench mapf: {map_name} {agents} agents against lacam3"
+        ));
+        let c = Case {
+            map: "",
+            agents,
+            method: "lacam",
+            limit,
+        };
+        let v = run_child(exe, (&map, &scen), &c, seed)?.ok();
+        let m_soc = v.as_ref().and_then(|v| v["sum_of_costs"].as_u64());
+        let m_first = v
+            .as_ref()
+            .and_then(|v| v["stats"]["first_solution_ms"].as_f64());
+        let show = |x: Option<u64>| x.map_or("no plan".to_string(), |s| s.to_string());
+        let ratio = match (m_soc, l_soc) {
+            (Some(m), Some(l)) => {
+                points += 1;
+                if m <= l {
+                    at_or_below += 1;
+                }
+                format!("{:.3}", m as f64 / l as f64)
+            }
+            (Some(_), None) => {
+                points += 1;
+                at_or_below += 1;
+                "l3 none".into()
+            }
+            _ => "-".into(),
+        };
+        text.push_str(&format!(
+            "{head} {:>10} {:>10} {:>9} {:>9} {:>8}\n",
+            show(l_soc),
+            show(m_soc),
+            ratio,
+            l_first.map_or("-".into(), |f| format!("{:.3}", f as f64 / 1e3)),
+            m_first.map_or("-".into(), |f| format!("{:.3}", f / 1e3)),
+        ));
+    }
+    text.push_str(&format!(
+        "Mason at or below lacam3 at {at_or_below} of {points} points (a point where only Mason has a plan counts as below).\n"
+    ));
+    Ok(text)
+}
+
+/// Runs one child `mason crew … --json` (seed `seed`); its JSON answer, or the last line it
+/// wrote to stderr.
+fn run_child(
+    exe: &Path,
+    (map, scen): (&Path, &Path),
+    c: &Case,
+    seed: u64,
+) -> BenchResult<Result<Value, String>> {
     let mut cmd = Command::new(exe);
     cmd.arg("crew")
         .arg(map)
@@ -151,6 +271,7 @@ fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String
         .args(["--agents", &c.agents.to_string()])
         .args(["--connectivity", "4"])
         .args(["--time-limit", &c.limit.to_string()])
+        .args(["--seed", &seed.to_string()])
         .arg("--json");
     if c.method == "joint" {
         cmd.args(["--assign", "joint"]);
@@ -160,6 +281,13 @@ fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String
     let out = cmd
         .output()
         .map_err(|e| input_error(format!("running {}: {e}", exe.display())))?;
+    Ok(serde_json::from_slice(&out.stdout).map_err(|_| {
+        let err = String::from_utf8_lossy(&out.stderr);
+        err.lines().last().unwrap_or("no output").to_string()
+    }))
+}
+
+fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String> {
     let head = format!(
         "{:<24} {:>6} {:<6} {:>6}",
         c.map,
@@ -167,15 +295,9 @@ fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String
         c.method,
         format!("{}s", c.limit)
     );
-    let v: Value = match serde_json::from_slice(&out.stdout) {
+    let v = match run_child(exe, (map, scen), c, 0)? {
         Ok(v) => v,
-        Err(_) => {
-            let err = String::from_utf8_lossy(&out.stderr);
-            return Ok(format!(
-                "{head} error: {}\n",
-                err.lines().last().unwrap_or("no output")
-            ));
-        }
+        Err(e) => return Ok(format!("{head} error: {e}\n")),
     };
     let num = |p: &[&str]| -> Option<f64> {
         let mut x = &v;
@@ -202,4 +324,28 @@ fn run_case(exe: &Path, map: &Path, scen: &Path, c: &Case) -> BenchResult<String
         num(&["makespan"]).map_or("-".into(), |m| format!("{m:.0}")),
         num(&["stats", "peak_memory_mb"]).map_or("-".into(), |m| format!("{m:.0}")),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_committed_lacam3_figures_parse() {
+        let rows = anchors(LACAM3).unwrap();
+        assert!(rows.len() >= 20);
+        assert!(rows.iter().all(|r| r.5 > 0 && r.4.is_none_or(|s| s >= r.5)));
+    }
+
+    #[test]
+    fn a_malformed_lacam3_line_is_one_clear_error() {
+        let e = anchors("map\tagents\nroom\t3\t1\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("lacam3-mapf.tsv:2") && e.contains("9 tab-separated"),
+            "{e}"
+        );
+        assert!(anchors("room\tx\t1\t0\t1\t5\t3\t4\t10\n").is_err());
+    }
 }

@@ -65,6 +65,7 @@ pub mod pibt;
 pub mod prm;
 pub mod refine;
 pub mod reservation;
+pub mod restart;
 pub mod rra;
 pub mod scatter;
 pub mod solve;

@@ -173,20 +173,34 @@ struct Candidate {
 
 impl Candidate {
     /// Plans the group again, one robot after another, around everyone else as `occ` and
-    /// `paths` hold them (read only).
+    /// `paths` hold them (read only); `cost` are the robots' current costs.
     fn plan(
         &mut self,
         search: &mut Search<OpenEntry>,
         graph: &MoveGraph,
         dist: &[Vec<u32>],
         goals: &[u32],
-        (occ, paths): (&Occupancy, &[Vec<u32>]),
+        (occ, paths, cost): (&Occupancy, &[Vec<u32>], &[u64]),
         node_limit: u64,
     ) {
         self.fresh.clear();
         self.expanded = 0;
+        // The new paths must arrive, in all, at least one step sooner than the old ones: each
+        // search gets what is left of the old cost after the paths planned before it and the
+        // shortest paths of the robots after it, and prunes every state that would overrun it.
+        let old: u64 = self.group.iter().map(|&r| cost[r]).sum();
+        let mut shortest_after: u64 = self
+            .group
+            .iter()
+            .map(|&r| u64::from(dist[r][pos(&paths[r], 0) as usize]))
+            .sum();
+        let mut spent = 0u64;
         for i in 0..self.group.len() {
             let r = self.group[i];
+            shortest_after -= u64::from(dist[r][pos(&paths[r], 0) as usize]);
+            let Some(left) = old.checked_sub(1 + spent + shortest_after) else {
+                return;
+            };
             let view = View {
                 occ,
                 paths,
@@ -198,11 +212,14 @@ impl Candidate {
                 (graph, &view),
                 &dist[r],
                 (pos(&paths[r], 0), goals[r]),
-                node_limit,
+                (node_limit, u32::try_from(left).unwrap_or(u32::MAX)),
                 &mut self.expanded,
             );
             match found {
-                Some(p) => self.fresh.push(p),
+                Some(p) => {
+                    spent += arrival(&p);
+                    self.fresh.push(p);
+                }
                 None => return,
             }
         }
@@ -330,7 +347,14 @@ pub fn refine(
         batch.par_iter_mut().for_each(|cand| {
             let taken = scratch.lock().map(|mut s| s.pop()).unwrap_or(None);
             let mut search = taken.unwrap_or_default();
-            cand.plan(&mut search, graph, dist, goals, shared, config.node_limit);
+            cand.plan(
+                &mut search,
+                graph,
+                dist,
+                goals,
+                (shared.0, shared.1, &cost),
+                config.node_limit,
+            );
             if let Ok(mut s) = scratch.lock() {
                 s.push(search);
             }
@@ -630,7 +654,7 @@ fn replan(
     (graph, view): (&MoveGraph, &View),
     dist: &[u32],
     (start, goal): (u32, u32),
-    node_limit: u64,
+    (node_limit, arrive_by): (u64, u32),
     expanded: &mut u64,
 ) -> Option<Vec<u32>> {
     let rest_from = view.free_from(goal)?;
@@ -641,6 +665,7 @@ fn replan(
         limits: Limits {
             still_from: view.horizon().max(rest_from).max(1),
             node_limit,
+            arrive_by,
             ..Limits::default()
         },
     };

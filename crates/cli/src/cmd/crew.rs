@@ -68,7 +68,7 @@ pub struct CrewArgs {
     #[arg(long, default_value = "8")]
     pub connectivity: String,
     /// Seed of the roadmap sampler and of lacam (same seed, same plan, unless --time-limit
-    /// stops the refinement)
+    /// stops the restarts or the refinement)
     #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub seed: u64,
     /// lacam: refinement rounds at most (0: the first plan as it is; default: until

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Runs lacam3 and `mason crew --resolve lacam` side by side (at the same time, so that both see
+# the same machine load) on a representative subset of the MovingAI benchmark, at time limits
+# of 1, 10 and 30 s, and writes one tab-separated line per run and solver.
+#
+# usage: scripts/mapf-vs-lacam3.sh LACAM3_BINARY MASON_BINARY DATA_DIR OUT_PREFIX
+#   DATA_DIR holds maps/NAME.map and scen/NAME-random-1.scen (MovingAI layout).
+#   Writes OUT_PREFIX-lacam3.tsv and OUT_PREFIX-mason.tsv with the columns
+#   map agents limit_s seed solved soc soc_lb makespan first_ms
+# lacam3 (Kei18/lacam3) is built outside this repository; its `soc` is the same measure as
+# Mason's sum of costs (steps until each agent last arrives at its goal).
+set -euo pipefail
+L=$1; M=$2; D=$3; OUT=$4
+header=$'map\tagents\tlimit_s\tseed\tsolved\tsoc\tsoc_lb\tmakespan\tfirst_ms'
+echo "$header" > "$OUT-lacam3.tsv"
+echo "$header" > "$OUT-mason.tsv"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+point() { # map agents limit seed
+  local map=$1 n=$2 t=$3 s=$4
+  "$L" -m "$D/maps/$map.map" -i "$D/scen/$map-random-1.scen" -N "$n" -s "$s" -t "$t" \
+    -v 0 -l -o "$tmp/l.txt" >/dev/null 2>&1 &
+  local lp=$!
+  "$M" crew "$D/maps/$map.map" --scen "$D/scen/$map-random-1.scen" --agents "$n" \
+    --resolve lacam --connectivity 4 --seed "$s" --time-limit "$t" --json --quiet \
+    >"$tmp/m.json" 2>/dev/null || true
+  wait "$lp" || true
+  python3 - "$tmp/l.txt" "$tmp/m.json" "$map" "$n" "$t" "$s" >>"$OUT-lacam3.tsv" 2>>"$OUT-mason.tsv" <<'PY'
+import json, sys
+l, m, map_, n, t, s = sys.argv[1:]
+kv = dict(line.strip().split("=", 1) for line in open(l) if "=" in line)
+solved = kv.get("solved") == "1"
+print("\t".join([map_, n, t, s, "1" if solved else "0", kv["soc"] if solved else "-",
+                 kv["soc_lb"], kv["makespan"] if solved else "-",
+                 kv["comp_time_initial_solution"] if solved else "-"]))
+try:
+    d = json.load(open(m))
+except Exception:
+    d = {}
+ok = d.get("status") in ("feasible", "optimal")
+st = d.get("stats", {})
+print("\t".join([map_, n, t, s, "1" if ok else "0", str(d["sum_of_costs"]) if ok else "-",
+                 str(d.get("lower_bound_sum_of_costs", "-")), str(d["makespan"]) if ok else "-",
+                 str(round(st["first_solution_ms"])) if ok else "-"]), file=sys.stderr)
+PY
+  echo "$map $n ${t}s seed $s done" >&2
+}
+for t in 1 10; do
+  for spec in empty-32-32:100,300,512 random-32-32-20:100,200,409 maze-32-32-2:50,100,333 \
+      room-32-32-4:100,200,341 room-64-64-8:300,1000 random-64-64-20:300,1000 \
+      den520d:500,1000 Boston_0_256:500,1000 warehouse-10-20-10-2-1:500,800,1000; do
+    map=${spec%%:*}
+    for n in ${spec#*:}; do n=${n//,/ }; for k in $n; do point "$map" "$k" "$t" 0; done; done
+  done
+done
+for spec in room-32-32-4:341 warehouse-10-20-10-2-1:800 warehouse-10-20-10-2-1:1000 \
+    den520d:1000 random-64-64-20:1000; do
+  point "${spec%%:*}" "${spec#*:}" 30 0
+done
+for s in 1 2 3; do point room-32-32-4 341 10 "$s"; done
