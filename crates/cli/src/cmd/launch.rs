@@ -39,6 +39,14 @@ pub struct LaunchArgs {
     /// Wall seconds between the launch and mission time 0 (the agents open their sessions)
     #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub lead: f64,
+    /// Plain TCP without authentication, for a trusted bench (by default the launch makes a
+    /// mission authority in OUT/authority and one TLS set per UAV in OUT/uav-<i>, and the
+    /// agents talk over mutual TLS with access control)
+    #[arg(long)]
+    pub insecure: bool,
+    /// Ground stations to make TLS files for, in OUT/station-<s>
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    pub stations: usize,
 }
 
 /// Parses `U@T` values of `flag` for a team of `uavs`.
@@ -73,6 +81,8 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
         lead: a.lead,
         kills: at_times("--kill", &a.kill, n)?,
         restarts: at_times("--restart", &a.restart, n)?,
+        insecure: a.insecure,
+        stations: a.stations,
     };
     let interrupted = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     #[cfg(feature = "zenoh")]
@@ -128,6 +138,10 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             .as_deref()
             .unwrap_or("passed (zone, precedence, every brick accounted for)")
     );
+    match &done.authority {
+        Some(dir) => println!("security: mutual TLS, mission authority {}", dir.display()),
+        None => println!("security: INSECURE (plain TCP, no authentication)"),
+    }
     println!(
         "wall time: {:.1} s; merged trace: {}",
         done.wall_s,
