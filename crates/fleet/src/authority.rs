@@ -68,7 +68,7 @@ impl Member {
 
     /// The member a common name names, if any.
     pub fn parse(name: &str) -> Option<Member> {
-        let index = |s: &str| {
+        let index = |s: &str| -> Option<usize> {
             (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
                 .then(|| s.parse().ok())
                 .flatten()
@@ -289,20 +289,14 @@ pub fn check_member(flag: &str, files: &TlsFiles, mission: &str, member: Member)
     if !cert.validity().is_valid() {
         return Err(bad(&files.cert, "expired or not yet valid".into()));
     }
-    let first = |it: &mut dyn Iterator<Item = &x509_parser::x509::AttributeTypeAndValue>| {
-        it.next()
-            .and_then(|a| a.as_str().ok())
-            .unwrap_or("")
-            .to_string()
-    };
-    let cn = first(&mut cert.subject().iter_common_name());
+    let cn = first_str(cert.subject().iter_common_name());
     if cn != member.name() {
         return Err(bad(
             &files.cert,
             format!("made for `{cn}`, not `{}`", member.name()),
         ));
     }
-    let org = first(&mut cert.subject().iter_organization());
+    let org = first_str(cert.subject().iter_organization());
     if org != mission {
         return Err(bad(
             &files.cert,
@@ -318,6 +312,16 @@ pub fn check_member(flag: &str, files: &TlsFiles, mission: &str, member: Member)
         ));
     }
     Ok(())
+}
+
+/// The first attribute's text ("" if none, or not text).
+fn first_str<'a>(
+    mut it: impl Iterator<Item = &'a x509_parser::x509::AttributeTypeAndValue<'a>>,
+) -> String {
+    it.next()
+        .and_then(|a| a.as_str().ok())
+        .unwrap_or("")
+        .to_string()
 }
 
 #[cfg(test)]

@@ -28,9 +28,11 @@
 //! the first of its cause, for a log that names each cause once. Nothing here fails, panics or
 //! allocates in proportion to the sample beyond its bounded size: no message can end an agent.
 //!
-//! What the checks cannot do: without authentication (Zenoh TLS and access control, issue #27
-//! items 1 and 2), a peer on the network can still speak as a teammate with a plausible
-//! status. The checks bound what such a message can claim; they do not tell who sent it.
+//! What the checks cannot do: tell who sent a sample. That is the transport's part: over
+//! Zenoh, mutual TLS with the mission authority and access control on the sender's key
+//! (`mason_fleet::zenoh_link`) let only UAV *i* put on UAV *i*'s keys. Without them
+//! (`--insecure`), a peer on the network can speak as a teammate with a plausible status: the
+//! checks bound what such a message can claim, not who sent it.
 
 use super::wire::{Command, Message, Order, COMMAND_KIND, SCHEMA_VERSION, STATION_CHUNK};
 use super::Agent;
