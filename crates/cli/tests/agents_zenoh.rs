@@ -387,14 +387,29 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
     ]);
     assert_eq!(keys.status.code(), Some(0), "{}", stderr(&keys));
     std::thread::sleep(std::time::Duration::from_millis(1500));
-    let (uav1, station, stranger) = (dir.join("uav-1"), dir.join("station-0"), other.join("uav-1"));
+    let (uav1, station, stranger) = (
+        dir.join("uav-1"),
+        dir.join("station-0"),
+        other.join("uav-1"),
+    );
     let ca = uav1.join("ca.pem");
     let none = Path::new("-");
     let rogues = vec![
-        ("plain tcp", rogue(&python, "tcp", port, &mission, "as-uav-2", &[]), false),
+        (
+            "plain tcp",
+            rogue(&python, "tcp", port, &mission, "as-uav-2", &[]),
+            false,
+        ),
         (
             "tls without a client certificate",
-            rogue(&python, "tls", port, &mission, "as-uav-2", &[&ca, none, none]),
+            rogue(
+                &python,
+                "tls",
+                port,
+                &mission,
+                "as-uav-2",
+                &[&ca, none, none],
+            ),
             false,
         ),
         (
@@ -491,7 +506,10 @@ fn over_insecure_links_strangers_only_move_the_drop_counters() {
         .values()
         .map(|v| v.as_u64().unwrap())
         .sum();
-    assert!(total >= flood, "{dropped}: the flood was not heard ({flood} sent)");
+    assert!(
+        total >= flood,
+        "{dropped}: the flood was not heard ({flood} sent)"
+    );
     for uav in 0..3 {
         let log = std::fs::read_to_string(dir.join(format!("uav-{uav}-1.log"))).unwrap();
         assert!(log.contains("is insecure (--insecure)"), "{log}");
@@ -506,7 +524,12 @@ fn an_agent_refuses_keys_that_are_not_its_own() {
     let o = mason(&["keys", mission_dir.to_str().unwrap(), "--uavs", "2"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("mission m1"), "{}", stdout(&o));
-    for f in ["authority/ca.pem", "authority/ca.key", "uav-1/cert.pem", "station-0/key.pem"] {
+    for f in [
+        "authority/ca.pem",
+        "authority/ca.key",
+        "uav-1/cert.pem",
+        "station-0/key.pem",
+    ] {
         assert!(mission_dir.join(f).is_file(), "{f}");
     }
     let tls_agent = |uav: &str, folder: &str, mission: &str| {
@@ -524,21 +547,41 @@ fn an_agent_refuses_keys_that_are_not_its_own() {
             "tls/127.0.0.1:0",
         ])
     };
-    assert_input_error(&tls_agent("0", "uav-1", "m1"), &["uav-1/cert.pem", "not `uav-0`"]);
+    assert_input_error(
+        &tls_agent("0", "uav-1", "m1"),
+        &["uav-1/cert.pem", "not `uav-0`"],
+    );
     assert_input_error(&tls_agent("0", "uav-0", "m2"), &["mission `m1`, not `m2`"]);
-    assert_input_error(&tls_agent("2", "uav-2", "m1"), &["--tls-dir", "not a folder"]);
+    assert_input_error(
+        &tls_agent("2", "uav-2", "m1"),
+        &["--tls-dir", "not a folder"],
+    );
     std::fs::remove_file(mission_dir.join("uav-0/key.pem")).unwrap();
-    assert_input_error(&tls_agent("0", "uav-0", "m1"), &["uav-0/key.pem", "cannot read"]);
+    assert_input_error(
+        &tls_agent("0", "uav-0", "m1"),
+        &["uav-0/key.pem", "cannot read"],
+    );
     // Neither keys nor --insecure; plain endpoints with keys.
     let o = mason(&["agent", "builtin:mbzirc", "--mission", "m1", "--uav", "0"]);
     assert_input_error(&o, &["--tls-dir", "--insecure"]);
     let d = mission_dir.join("uav-1");
     let o = mason(&[
-        "agent", "builtin:mbzirc", "--mission", "m1", "--uav", "1",
-        "--tls-dir", d.to_str().unwrap(), "--connect", "tcp/127.0.0.1:7447",
+        "agent",
+        "builtin:mbzirc",
+        "--mission",
+        "m1",
+        "--uav",
+        "1",
+        "--tls-dir",
+        d.to_str().unwrap(),
+        "--connect",
+        "tcp/127.0.0.1:7447",
     ]);
     assert_input_error(&o, &["--connect", "need --insecure"]);
-    assert_input_error(&mason(&["keys", dir.join("x").to_str().unwrap(), "--uavs", "0"]), &["--uavs 0"]);
+    assert_input_error(
+        &mason(&["keys", dir.join("x").to_str().unwrap(), "--uavs", "0"]),
+        &["--uavs 0"],
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -69,9 +69,11 @@ impl Member {
     /// The member a common name names, if any.
     pub fn parse(name: &str) -> Option<Member> {
         let index = |s: &str| -> Option<usize> {
-            (!s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) && (s == "0" || !s.starts_with('0')))
-                .then(|| s.parse().ok())
-                .flatten()
+            (!s.is_empty()
+                && s.bytes().all(|b| b.is_ascii_digit())
+                && (s == "0" || !s.starts_with('0')))
+            .then(|| s.parse().ok())
+            .flatten()
         };
         if let Some(i) = name.strip_prefix("uav-").and_then(index) {
             return Some(Member::Uav(i));
@@ -186,9 +188,10 @@ pub fn make_keys(dir: &Path, mission: &str, uavs: usize, stations: usize) -> Fle
     std::fs::create_dir_all(&auth_dir).map_err(io(&auth_dir))?;
     let mut params = CertificateParams::new(Vec::new()).map_err(rc("authority"))?;
     params.is_ca = IsCa::Ca(BasicConstraints::Constrained(0));
-    params
-        .distinguished_name
-        .push(DnType::CommonName, format!("mason mission authority {mission}"));
+    params.distinguished_name.push(
+        DnType::CommonName,
+        format!("mason mission authority {mission}"),
+    );
     params
         .distinguished_name
         .push(DnType::OrganizationName, mission);
@@ -209,8 +212,7 @@ pub fn make_keys(dir: &Path, mission: &str, uavs: usize, stations: usize) -> Fle
         std::fs::create_dir_all(&mdir).map_err(io(&mdir))?;
         let mut p = CertificateParams::new(vec![format!("{name}.mason")]).map_err(rc(&name))?;
         p.distinguished_name.push(DnType::CommonName, name.as_str());
-        p.distinguished_name
-            .push(DnType::OrganizationName, mission);
+        p.distinguished_name.push(DnType::OrganizationName, mission);
         p.use_authority_key_identifier_extension = true;
         p.key_usages = vec![KeyUsagePurpose::DigitalSignature];
         // A member both listens and connects.
@@ -253,7 +255,12 @@ fn read_pem(flag: &str, path: &Path) -> FleetResult<String> {
 /// Checks a member's files before its session opens (errors name the flag and the file):
 /// the three files are there and readable, `cert.pem` is signed by `ca.pem` and is in force,
 /// it names `member` and `mission`, and `key.pem` is its key.
-pub fn check_member(flag: &str, files: &TlsFiles, mission: &str, member: Member) -> FleetResult<()> {
+pub fn check_member(
+    flag: &str,
+    files: &TlsFiles,
+    mission: &str,
+    member: Member,
+) -> FleetResult<()> {
     if !files.dir.is_dir() {
         return Err(FleetError::bad(format!(
             "{flag} {}: not a folder (make one with `mason keys`)",
@@ -303,8 +310,8 @@ pub fn check_member(flag: &str, files: &TlsFiles, mission: &str, member: Member)
             format!("made for mission `{org}`, not `{mission}` (--mission)"),
         ));
     }
-    let key = KeyPair::from_pem(&key_pem)
-        .map_err(|_| bad(&files.key, "not a PEM private key".into()))?;
+    let key =
+        KeyPair::from_pem(&key_pem).map_err(|_| bad(&files.key, "not a PEM private key".into()))?;
     if key.der_bytes() != cert.public_key().subject_public_key.data.as_ref() {
         return Err(bad(
             &files.key,
@@ -339,7 +346,14 @@ mod tests {
         for m in [Member::Uav(0), Member::Uav(12), Member::Station(3)] {
             assert_eq!(Member::parse(&m.name()), Some(m));
         }
-        for bad in ["uav-", "uav-01", "uav--1", "station-x", "uav-1 ", "ground-1"] {
+        for bad in [
+            "uav-",
+            "uav-01",
+            "uav--1",
+            "station-x",
+            "uav-1 ",
+            "ground-1",
+        ] {
             assert_eq!(Member::parse(bad), None, "{bad}");
         }
     }
@@ -359,17 +373,35 @@ mod tests {
             assert_eq!(mode(dir.join("uav-1/key.pem")), 0o600);
         }
         // Another member's set, another mission, a missing file: refused, naming the file.
-        let e = check_member("--tls-dir", &keys.member(Member::Uav(1)), "m-1", Member::Uav(0))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("uav-1/cert.pem") && e.contains("not `uav-0`"), "{e}");
-        let e = check_member("--tls-dir", &keys.member(Member::Uav(0)), "m-2", Member::Uav(0))
-            .unwrap_err()
-            .to_string();
+        let e = check_member(
+            "--tls-dir",
+            &keys.member(Member::Uav(1)),
+            "m-1",
+            Member::Uav(0),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("uav-1/cert.pem") && e.contains("not `uav-0`"),
+            "{e}"
+        );
+        let e = check_member(
+            "--tls-dir",
+            &keys.member(Member::Uav(0)),
+            "m-2",
+            Member::Uav(0),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("mission `m-1`, not `m-2`"), "{e}");
-        let e = check_member("--tls-dir", &keys.member(Member::Uav(5)), "m-1", Member::Uav(5))
-            .unwrap_err()
-            .to_string();
+        let e = check_member(
+            "--tls-dir",
+            &keys.member(Member::Uav(5)),
+            "m-1",
+            Member::Uav(5),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("not a folder"), "{e}");
         // A key of another member, a certificate of another authority.
         let other = make_keys(&scratch("other"), "m-1", 1, 0).unwrap();
@@ -407,7 +439,10 @@ mod tests {
     fn bad_counts_and_missions_are_refused() {
         let dir = scratch("bad");
         assert!(make_keys(&dir, "a/b", 1, 0).is_err());
-        assert!(make_keys(&dir, "m", 0, 0).unwrap_err().to_string().contains("--uavs 0"));
+        assert!(make_keys(&dir, "m", 0, 0)
+            .unwrap_err()
+            .to_string()
+            .contains("--uavs 0"));
         assert!(make_keys(&dir, "m", 1, 17)
             .unwrap_err()
             .to_string()

@@ -113,10 +113,7 @@ impl Network {
             Some(parent) if d.is_relative() => parent.join(d),
             _ => d,
         };
-        let tls_dir = flags
-            .tls_dir
-            .clone()
-            .or(from_file.tls_dir.map(beside_file));
+        let tls_dir = flags.tls_dir.clone().or(from_file.tls_dir.map(beside_file));
         let security = match (tls_dir, flags.insecure || from_file.insecure) {
             (Some(d), false) => Security::Tls(d),
             (None, true) => Security::Insecure,
@@ -137,7 +134,10 @@ impl Network {
         all_listen.extend(flags.listen.iter().cloned());
         let mut all_connect = from_file.connect;
         all_connect.extend(flags.connect.iter().cloned());
-        for (flag, list, listen) in [("--listen", &all_listen, true), ("--connect", &all_connect, false)] {
+        for (flag, list, listen) in [
+            ("--listen", &all_listen, true),
+            ("--connect", &all_connect, false),
+        ] {
             for e in list {
                 let flag = shown(flag);
                 check_endpoint(&flag, e, listen)?;
@@ -296,7 +296,10 @@ mod tests {
             ..NetworkFlags::default()
         };
         let e = Network::resolve(None, &base).unwrap_err().to_string();
-        assert!(e.starts_with("--tls-dir") && e.contains("--insecure"), "{e}");
+        assert!(
+            e.starts_with("--tls-dir") && e.contains("--insecure"),
+            "{e}"
+        );
         let tls = NetworkFlags {
             tls_dir: Some("keys/uav-0".into()),
             connect: vec!["tls/127.0.0.1:7447".into()],

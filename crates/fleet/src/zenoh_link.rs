@@ -17,8 +17,8 @@
 //! its bytes and its key's last two chunks ([`Arrival`]), for the agent's check on arrival
 //! ([`mason_mission::agent::Agent::admit`]): nothing is decoded here.
 
-use crate::error::{FleetError, FleetResult};
 use crate::authority::{check_member, Member, TlsFiles, MAX_STATIONS};
+use crate::error::{FleetError, FleetResult};
 use crate::network::{Network, Security};
 use crate::transport::Transport;
 use mason_mission::agent::{Arrival, Message, MessageKind, SampleKey};
@@ -86,8 +86,10 @@ pub fn access_control(base: &str, uavs: usize, me: &str) -> serde_json::Value {
             Member::Uav(i) => format!("{base}/{i}/**"),
             Member::Station(_) => format!("{base}/{name}/command"),
         };
-        rules.push(json!({"id": format!("puts-{name}"), "messages": ["put"], "flows": ["ingress"],
-                          "permission": "allow", "key_exprs": [key]}));
+        rules.push(
+            json!({"id": format!("puts-{name}"), "messages": ["put"], "flows": ["ingress"],
+                          "permission": "allow", "key_exprs": [key]}),
+        );
         subjects.push(json!({"id": name, "cert_common_names": [name]}));
         policies.push(json!({"rules": [format!("puts-{name}")], "subjects": [name]}));
     }
@@ -116,9 +118,8 @@ pub fn config(net: &Network, me: usize, uavs: usize) -> FleetResult<zenoh::Confi
     )?;
     if let Security::Tls(dir) = &net.security {
         let files = TlsFiles::in_dir(dir);
-        let path = |p: &std::path::Path| {
-            serde_json::to_string(&p.to_string_lossy()).expect("a string")
-        };
+        let path =
+            |p: &std::path::Path| serde_json::to_string(&p.to_string_lossy()).expect("a string");
         let tls = "transport/link/tls";
         set(&format!("{tls}/root_ca_certificate"), path(&files.ca))?;
         for side in ["listen", "connect"] {
@@ -146,7 +147,12 @@ impl ZenohLink {
     /// [`RECEIVE_QUEUE`] × (`max_sample` + 1) bytes.
     pub fn open(net: &Network, me: usize, uavs: usize, max_sample: usize) -> FleetResult<Self> {
         if let Security::Tls(dir) = &net.security {
-            check_member("--tls-dir", &TlsFiles::in_dir(dir), &net.mission, Member::Uav(me))?;
+            check_member(
+                "--tls-dir",
+                &TlsFiles::in_dir(dir),
+                &net.mission,
+                Member::Uav(me),
+            )?;
         }
         let session = zenoh::open(config(net, me, uavs)?).wait().map_err(|e| {
             FleetError::Network(format!(

@@ -41,11 +41,17 @@ pub fn run(a: KeysArgs) -> CliResult<()> {
     println!(
         "mission {}: authority {} (keep ca.key off the vehicles)",
         keys.mission,
-        keys.dir.join(mason_fleet::authority::AUTHORITY_DIR).display()
+        keys.dir
+            .join(mason_fleet::authority::AUTHORITY_DIR)
+            .display()
     );
     for u in 0..keys.uavs {
         let m = mason_fleet::authority::Member::Uav(u);
-        println!("  UAV {u}: mason agent --uav {u} --mission {} --tls-dir {}", keys.mission, keys.member(m).dir.display());
+        println!(
+            "  UAV {u}: mason agent --uav {u} --mission {} --tls-dir {}",
+            keys.mission,
+            keys.member(m).dir.display()
+        );
     }
     for s in 0..keys.stations {
         let m = mason_fleet::authority::Member::Station(s);
