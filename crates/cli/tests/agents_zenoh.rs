@@ -367,7 +367,8 @@ fn team_result(team: std::process::Child, dir: &Path) -> Launch {
 /// authority it hears nothing; with UAV 1's certificate it hears the team but cannot speak as
 /// UAV 2, nor with a ground station's as UAV 0. Each forged status claims every brick placed,
 /// and each rogue also puts `{}`: had one sample reached an agent, it would be counted as
-/// dropped (or would end the mission early), so the drop counters must stay empty.
+/// dropped (`malformed`, `time`, `jump`, …) or would end the mission early, so the drop
+/// counters must hold nothing but an honest team's duplicates (`replay`).
 #[test]
 fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
     let Some(python) = python_with("zenoh", "scripts/install-python-zenoh.sh") else {
@@ -456,10 +457,12 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
     let l = team_result(team, &dir);
     assert_finished(&l);
     assert_eq!(l.doc["security"], "mutual-tls");
-    assert_eq!(
-        l.doc["summary"]["dropped"],
-        serde_json::json!({}),
-        "a rogue's sample reached an agent: {summaries:?}"
+    // An honest team drops only duplicates (an agent's last words are repeated): any other
+    // cause is a rogue's sample that got in.
+    let dropped = l.doc["summary"]["dropped"].as_object().unwrap();
+    assert!(
+        dropped.keys().all(|c| c == "replay"),
+        "a rogue's sample reached an agent: {dropped:?} {summaries:?}"
     );
     for (what, s, joins) in &summaries {
         assert!(s["sent"].as_u64() > Some(50), "{what}: {s}");
