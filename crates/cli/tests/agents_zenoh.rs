@@ -62,9 +62,8 @@ impl Launch {
     }
 }
 
-fn launch(name: &str, extra: &[&str]) -> Launch {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let dir = out_dir(name);
+/// `mason launch` of MBZIRC with three agents at `--speed 100`, seed 1, into `dir`.
+fn launch_args<'a>(dir: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
     let mut args = vec![
         "launch",
         "builtin:mbzirc",
@@ -78,6 +77,13 @@ fn launch(name: &str, extra: &[&str]) -> Launch {
         dir.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
+    args
+}
+
+fn launch(name: &str, extra: &[&str]) -> Launch {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = out_dir(name);
+    let args = launch_args(&dir, extra);
     let out = mason(&args);
     let text = std::fs::read_to_string(dir.join("trace.json"))
         .unwrap_or_else(|e| panic!("{name}: no trace.json ({e}): {}", stderr(&out)));
@@ -290,26 +296,10 @@ fn start_team(name: &str, extra: &[&str]) -> (std::process::Child, PathBuf, u16,
     let port = free_base_port();
     let mission = format!("{name}-{}", std::process::id());
     let port_s = port.to_string();
-    let mut args = vec![
-        "--quiet",
-        "launch",
-        "builtin:mbzirc",
-        "--uavs",
-        "3",
-        "--speed",
-        "100",
-        "--seed",
-        "1",
-        "--base-port",
-        &port_s,
-        "--mission",
-        &mission,
-        "--lead",
-        "3",
-        "--out",
-        dir.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
+    let mut all = vec!["--base-port", &port_s, "--mission", &mission, "--lead", "3"];
+    all.extend_from_slice(extra);
+    let mut args = vec!["--quiet"];
+    args.extend(launch_args(&dir, &all));
     let team = Command::new(env!("CARGO_BIN_EXE_mason"))
         .args(&args)
         .stdout(Stdio::piped())
