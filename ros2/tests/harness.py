@@ -1,6 +1,8 @@
 """What the bridge's end-to-end test and its latency benchmark share: a launched team, a
 running bridge, and an rclpy subscriber that records what ROS 2 sees."""
 
+from __future__ import annotations
+
 import json
 import os
 import signal
@@ -42,10 +44,15 @@ def launch(mason: str, out: Path, port: int, mission: str, *extra: str) -> subpr
     return subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
-def bridge(port: int, mission: str, log: Path, stats: Path) -> subprocess.Popen:
-    """The installed `mason-ros2-bridge`, connected to agent 0."""
+def bridge(port: int, mission: str, log: Path, stats: Path, tls_dir: Path | None = None) -> subprocess.Popen:
+    """The installed `mason-ros2-bridge`, connected to agent 0: over mutual TLS with the
+    station files in `tls_dir` (a launch's OUT/station-0), or over plain TCP to an
+    `--insecure` team."""
     exe = Path(sys.executable).parent / "mason-ros2-bridge"
-    args = [str(exe), "--connect", f"tcp/127.0.0.1:{port}", "--mission", mission, "--stats", str(stats)]
+    link = f"tls/127.0.0.1:{port}" if tls_dir else f"tcp/127.0.0.1:{port}"
+    args = [str(exe), "--connect", link, "--mission", mission, "--stats", str(stats)]
+    if tls_dir:
+        args += ["--tls-dir", str(tls_dir)]
     return subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=open(log, "w"))
 
 

@@ -25,7 +25,9 @@ def test_a_bridge_started_before_its_team_shows_the_whole_mission(mason_zenoh, t
     b = bridge(port, mission, tmp_path / "bridge.log", tmp_path / "stats.json")
     time.sleep(2.0)
     assert b.poll() is None, (tmp_path / "bridge.log").read_text()
-    team = launch(mason_zenoh, tmp_path / "out", port, mission, "--rosbag", str(tmp_path / "bag"))
+    # The launch makes its mission authority when it starts, after this bridge: a trusted bench
+    # (--insecure). The TLS team is the abort test's below.
+    team = launch(mason_zenoh, tmp_path / "out", port, mission, "--rosbag", str(tmp_path / "bag"), "--insecure")
     out, err = team.communicate(timeout=180)
     assert team.returncode == 0, err
     assert sub.wait_for(lambda s: s.missions and s.missions[-1]["placed"] == BRICKS, 10), sub.missions[-3:]
@@ -55,7 +57,8 @@ def test_an_abort_from_ros_lands_every_agent_and_junk_is_counted(mason_zenoh, tm
     import zenoh
 
     port, mission = free_base_port(), f"abort-{int(time.time())}"
-    team = launch(mason_zenoh, tmp_path / "out", port, mission)
+    # Junk on the team's keys needs a plain link: an --insecure team.
+    team = launch(mason_zenoh, tmp_path / "out", port, mission, "--insecure")
     time.sleep(1.0)
     b = bridge(port, mission, tmp_path / "bridge.log", tmp_path / "stats.json")
     # Junk from ROS 2 before and after the team is heard: counted, never forwarded.
@@ -89,3 +92,29 @@ def test_an_abort_from_ros_lands_every_agent_and_junk_is_counted(mason_zenoh, tm
     assert stop(b) == 0, (tmp_path / "bridge.log").read_text()
     stats = json.loads((tmp_path / "stats.json").read_text())
     assert stats["forwarded"] == 1, stats
+
+
+def test_over_mutual_tls_the_bridge_sees_the_team_and_its_abort_lands_every_agent(mason_zenoh, tmp_path, sub):
+    # The default team: a mission authority made by the launch; the bridge joins with the
+    # station's certificate, sees the team and forwards an authenticated abort.
+    port, mission = free_base_port(), f"tls-{int(time.time())}"
+    team = launch(mason_zenoh, tmp_path / "out", port, mission)
+    station = tmp_path / "out" / "station-0"
+    deadline = time.monotonic() + 30
+    while not (station / "key.pem").is_file() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert (station / "key.pem").is_file(), "the launch made no station keys"
+    b = bridge(port, mission, tmp_path / "bridge.log", tmp_path / "stats.json", tls_dir=station)
+    assert sub.wait_for(lambda s: all(s.poses[i] for i in range(UAVS)), 60), (tmp_path / "bridge.log").read_text()
+    assert sub.wait_for(lambda s: s.walls and len(s.walls[-1]) == BRICKS, 30)
+    assert sub.wait_for(lambda s: s.missions and s.missions[-1]["placed"] >= 1, 60)
+    sub.send('{"abort": true}')
+    out, err = team.communicate(timeout=180)
+    doc = json.loads((tmp_path / "out" / "trace.json").read_text())
+    assert doc["security"] == "mutual-tls", doc.get("security")
+    assert doc["summary"]["check_trace"] == "passed"
+    for u in range(UAVS):
+        assert any(e["uav"] == u and e["kind"] == "state" and e["outcome"] == "aborted" for e in doc["events"]), \
+            f"UAV {u} did not land on the abort"
+    assert stop(b) == 0, (tmp_path / "bridge.log").read_text()
+    assert json.loads((tmp_path / "stats.json").read_text())["forwarded"] == 1

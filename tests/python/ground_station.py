@@ -1,8 +1,9 @@
 """A ground station that Mason did not write: PyPI's `eclipse-zenoh` listens to a running team.
 
-Usage: ground_station.py ENDPOINT[,ENDPOINT...] PREFIX MISSION SECONDS [client|peer]
+Usage: ground_station.py ENDPOINT[,ENDPOINT...] PREFIX MISSION SECONDS [client|peer] [TLS_DIR]
 
-Opens a Zenoh session (peer mode by default, multicast scouting off) connected to ENDPOINT,
+Opens a Zenoh session (peer mode by default, multicast scouting off) connected to ENDPOINT
+(over mutual TLS with the station's ca.pem, cert.pem and key.pem of TLS_DIR, if given),
 subscribes to PREFIX/MISSION/**, and for SECONDS decodes every sample as JSON and checks it
 against the message schema of the README (version 1): the key PREFIX/MISSION/UAV/KIND, the
 fields and their types, the status inside. Prints one line of JSON: messages per UAV and kind,
@@ -85,14 +86,22 @@ def check(key, encoding, m, prefix, mission):
 
 
 def main():
-    if len(sys.argv) not in (5, 6):
+    if len(sys.argv) not in (5, 6, 7):
         sys.exit(__doc__)
     endpoints, prefix, mission, seconds = sys.argv[1].split(","), sys.argv[2], sys.argv[3], float(sys.argv[4])
-    mode = sys.argv[5] if len(sys.argv) == 6 else "peer"
+    mode = sys.argv[5] if len(sys.argv) >= 6 else "peer"
     conf = zenoh.Config()
     conf.insert_json5("mode", json.dumps(mode))
     conf.insert_json5("connect/endpoints", json.dumps(endpoints))
     conf.insert_json5("scouting/multicast/enabled", "false")
+    if len(sys.argv) == 7:
+        tls, folder = "transport/link/tls", sys.argv[6]
+        conf.insert_json5(f"{tls}/root_ca_certificate", json.dumps(f"{folder}/ca.pem"))
+        conf.insert_json5(f"{tls}/enable_mtls", "true")
+        conf.insert_json5(f"{tls}/verify_name_on_connect", "false")
+        for side in ("listen", "connect"):
+            conf.insert_json5(f"{tls}/{side}_certificate", json.dumps(f"{folder}/cert.pem"))
+            conf.insert_json5(f"{tls}/{side}_private_key", json.dumps(f"{folder}/key.pem"))
     lock = threading.Lock()
     per_uav, states, modes, latest, errors = {}, {}, {}, {}, []
     count = [0]

@@ -47,6 +47,9 @@ enum Command {
     /// Start one agent process per UAV on this machine, kill or restart some, merge their
     /// traces and check the result (feature `zenoh`)
     Launch(cmd::launch::LaunchArgs),
+    /// Make a mission authority and TLS files for each UAV and ground station of a real
+    /// deployment (feature `zenoh`)
+    Keys(cmd::keys::KeysArgs),
     /// Assign ground robots to goals and plan collision-free paths (seen from a UAV)
     Crew(cmd::crew::CrewArgs),
     /// Check a build order, team schedule, mission trace or crew plan, Mason's or another
@@ -70,6 +73,7 @@ fn run(cli: Cli) -> fail::CliResult<()> {
         Command::Simulate(a) => cmd::simulate::run(a, quiet),
         Command::Agent(a) => cmd::agent::run(a, quiet),
         Command::Launch(a) => cmd::launch::run(a, quiet),
+        Command::Keys(a) => cmd::keys::run(a),
         Command::Crew(a) => cmd::crew::run(a),
         Command::Check(a) => cmd::check::run(a),
         Command::Bench { suite } => cmd::bench::run(suite, quiet),

@@ -62,9 +62,8 @@ impl Launch {
     }
 }
 
-fn launch(name: &str, extra: &[&str]) -> Launch {
-    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let dir = out_dir(name);
+/// `mason launch` of MBZIRC with three agents at `--speed 100`, seed 1, into `dir`.
+fn launch_args<'a>(dir: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
     let mut args = vec![
         "launch",
         "builtin:mbzirc",
@@ -78,6 +77,13 @@ fn launch(name: &str, extra: &[&str]) -> Launch {
         dir.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
+    args
+}
+
+fn launch(name: &str, extra: &[&str]) -> Launch {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = out_dir(name);
+    let args = launch_args(&dir, extra);
     let out = mason(&args);
     let text = std::fs::read_to_string(dir.join("trace.json"))
         .unwrap_or_else(|e| panic!("{name}: no trace.json ({e}): {}", stderr(&out)));
@@ -253,10 +259,12 @@ fn a_python_ground_station_decodes_every_uav_s_heartbeats_and_states() {
         .expect("mason launch starts");
     // The agents listen within a second or so; the station listens for 8 s of the flight.
     std::thread::sleep(std::time::Duration::from_millis(1500));
+    // Over mutual TLS, with the station's files the launch made.
     let station = Command::new(&python)
         .arg(root().join("tests/python/ground_station.py"))
-        .arg(format!("tcp/127.0.0.1:{port}"))
-        .args(["mason", &mission, "8"])
+        .arg(format!("tls/127.0.0.1:{port}"))
+        .args(["mason", &mission, "8", "peer"])
+        .arg(dir.join("station-0"))
         .output()
         .expect("python runs");
     let team = team.wait_with_output().expect("launch ends");
@@ -280,10 +288,300 @@ fn a_python_ground_station_decodes_every_uav_s_heartbeats_and_states() {
     }
 }
 
+// ----- strangers on the network (issue #27) ---------------------------------------------------
+
+/// A team of three on `--base-port`, started in the background with a fixed mission id.
+fn start_team(name: &str, extra: &[&str]) -> (std::process::Child, PathBuf, u16, String) {
+    let dir = out_dir(name);
+    let port = free_base_port();
+    let mission = format!("{name}-{}", std::process::id());
+    let port_s = port.to_string();
+    let mut all = vec!["--base-port", &port_s, "--mission", &mission, "--lead", "3"];
+    all.extend_from_slice(extra);
+    let mut args = vec!["--quiet"];
+    args.extend(launch_args(&dir, &all));
+    let team = Command::new(env!("CARGO_BIN_EXE_mason"))
+        .args(&args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("mason launch starts");
+    (team, dir, port, mission)
+}
+
+/// Starts tests/python/rogue.py against the team's three endpoints (`scheme`, `port`..).
+fn rogue(
+    python: &Path,
+    scheme: &str,
+    port: u16,
+    mission: &str,
+    attack: &str,
+    tls: &[&Path],
+) -> std::process::Child {
+    let endpoints: Vec<String> = (0..3)
+        .map(|u| format!("{scheme}/127.0.0.1:{}", port + u))
+        .collect();
+    Command::new(python)
+        .arg(root().join("tests/python/rogue.py"))
+        .arg(endpoints.join(","))
+        .args(["mason", mission, "6", attack])
+        .args(tls)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("python runs")
+}
+
+/// A rogue's summary line: `{"attack", "heard", "sent"}`.
+fn rogue_summary(child: std::process::Child) -> Value {
+    let out = child.wait_with_output().expect("rogue ends");
+    assert!(out.status.success(), "rogue: {}", stderr(&out));
+    serde_json::from_str(stdout(&out).trim())
+        .unwrap_or_else(|e| panic!("rogue printed no summary ({e}): {}", stdout(&out)))
+}
+
+/// The team's output and merged trace, once it has ended.
+fn team_result(team: std::process::Child, dir: &Path) -> Launch {
+    let out = team.wait_with_output().expect("launch ends");
+    let text = std::fs::read_to_string(dir.join("trace.json"))
+        .unwrap_or_else(|e| panic!("no trace.json ({e}): {}", stderr(&out)));
+    Launch {
+        out,
+        doc: serde_json::from_str(&text).unwrap(),
+        dir: dir.to_path_buf(),
+    }
+}
+
+/// Against a team over mutual TLS (the default), each stranger fails: without a certificate
+/// (plain TCP, TLS without a client certificate) and with a certificate of another mission's
+/// authority it hears nothing; with UAV 1's certificate it hears the team but cannot speak as
+/// UAV 2, nor with a ground station's as UAV 0. Each forged status claims every brick placed,
+/// and each rogue also puts `{}`: had one sample reached an agent, it would be counted as
+/// dropped (`malformed`, `time`, `jump`, …) or would end the mission early, so the drop
+/// counters must hold nothing but an honest team's duplicates (`replay`).
+#[test]
+fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
+    let Some(python) = python_with("zenoh", "scripts/install-python-zenoh.sh") else {
+        return;
+    };
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let other = out_dir("other-authority");
+    let (team, dir, port, mission) = start_team("tls-rogues", &[]);
+    // Another authority for the same mission id: certificates that name UAV 1 all the same.
+    let keys = mason(&[
+        "keys",
+        other.to_str().unwrap(),
+        "--uavs",
+        "3",
+        "--mission",
+        &mission,
+    ]);
+    assert_eq!(keys.status.code(), Some(0), "{}", stderr(&keys));
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let (uav1, station, stranger) = (
+        dir.join("uav-1"),
+        dir.join("station-0"),
+        other.join("uav-1"),
+    );
+    let ca = uav1.join("ca.pem");
+    let none = Path::new("-");
+    let rogues = vec![
+        (
+            "plain tcp",
+            rogue(&python, "tcp", port, &mission, "as-uav-2", &[]),
+            false,
+        ),
+        (
+            "tls without a client certificate",
+            rogue(
+                &python,
+                "tls",
+                port,
+                &mission,
+                "as-uav-2",
+                &[&ca, none, none],
+            ),
+            false,
+        ),
+        (
+            "another mission's authority",
+            rogue(
+                &python,
+                "tls",
+                port,
+                &mission,
+                "as-uav-2",
+                &[&ca, &stranger.join("cert.pem"), &stranger.join("key.pem")],
+            ),
+            false,
+        ),
+        (
+            "UAV 1's certificate as UAV 2",
+            rogue(
+                &python,
+                "tls",
+                port,
+                &mission,
+                "as-uav-2",
+                &[&ca, &uav1.join("cert.pem"), &uav1.join("key.pem")],
+            ),
+            true,
+        ),
+        (
+            "a ground station's certificate as UAV 0",
+            rogue(
+                &python,
+                "tls",
+                port,
+                &mission,
+                "as-uav-0",
+                &[&ca, &station.join("cert.pem"), &station.join("key.pem")],
+            ),
+            true,
+        ),
+    ];
+    let summaries: Vec<(&str, Value, bool)> = rogues
+        .into_iter()
+        .map(|(what, child, joins)| (what, rogue_summary(child), joins))
+        .collect();
+    let l = team_result(team, &dir);
+    assert_finished(&l);
+    assert_eq!(l.doc["security"], "mutual-tls");
+    // An honest team drops only duplicates (an agent's last words are repeated): any other
+    // cause is a rogue's sample that got in.
+    let dropped = l.doc["summary"]["dropped"].as_object().unwrap();
+    assert!(
+        dropped.keys().all(|c| c == "replay"),
+        "a rogue's sample reached an agent: {dropped:?} {summaries:?}"
+    );
+    for (what, s, joins) in &summaries {
+        assert!(s["sent"].as_u64() > Some(50), "{what}: {s}");
+        let heard = s["heard"].as_u64().unwrap();
+        if *joins {
+            assert!(heard > 100, "{what} should join and hear the team: {s}");
+        } else {
+            assert_eq!(heard, 0, "{what} joined the team: {s}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&other);
+}
+
+/// Over `--insecure` anyone can join: strangers with unknown UAV indices, malformed samples,
+/// replays and a flood of 10 000 samples a second change only the drop counters; the team
+/// finishes and its merged trace passes `check_trace`.
+#[test]
+fn over_insecure_links_strangers_only_move_the_drop_counters() {
+    let Some(python) = python_with("zenoh", "scripts/install-python-zenoh.sh") else {
+        return;
+    };
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let (team, dir, port, mission) = start_team("insecure-rogues", &["--insecure"]);
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let attacks = ["unknown-uav", "malformed", "replay", "flood"];
+    let rogues: Vec<_> = attacks
+        .iter()
+        .map(|a| rogue(&python, "tcp", port, &mission, a, &[]))
+        .collect();
+    let summaries: Vec<Value> = rogues.into_iter().map(rogue_summary).collect();
+    let l = team_result(team, &dir);
+    assert_finished(&l);
+    assert_eq!(l.doc["security"], "insecure");
+    let dropped = &l.doc["summary"]["dropped"];
+    let count = |cause: &str| dropped[cause].as_u64().unwrap_or(0);
+    assert!(count("unknown_uav") > 0, "{dropped} {summaries:?}");
+    assert!(count("malformed") > 0, "{dropped} {summaries:?}");
+    assert!(count("replay") > 0, "{dropped} {summaries:?}");
+    let flood = summaries[3]["sent"].as_u64().unwrap();
+    assert!(flood >= 30_000, "the flood sent {flood}");
+    let total: u64 = dropped
+        .as_object()
+        .unwrap()
+        .values()
+        .map(|v| v.as_u64().unwrap())
+        .sum();
+    assert!(
+        total >= flood,
+        "{dropped}: the flood was not heard ({flood} sent)"
+    );
+    for uav in 0..3 {
+        let log = std::fs::read_to_string(dir.join(format!("uav-{uav}-1.log"))).unwrap();
+        assert!(log.contains("is insecure (--insecure)"), "{log}");
+    }
+}
+
+/// `mason keys` makes a deployment's files, and an agent refuses files that are not its own.
+#[test]
+fn an_agent_refuses_keys_that_are_not_its_own() {
+    let dir = out_dir("keys");
+    let mission_dir = dir.join("m1");
+    let o = mason(&["keys", mission_dir.to_str().unwrap(), "--uavs", "2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("mission m1"), "{}", stdout(&o));
+    for f in [
+        "authority/ca.pem",
+        "authority/ca.key",
+        "uav-1/cert.pem",
+        "station-0/key.pem",
+    ] {
+        assert!(mission_dir.join(f).is_file(), "{f}");
+    }
+    let tls_agent = |uav: &str, folder: &str, mission: &str| {
+        let d = mission_dir.join(folder);
+        mason(&[
+            "agent",
+            "builtin:mbzirc",
+            "--mission",
+            mission,
+            "--uav",
+            uav,
+            "--tls-dir",
+            d.to_str().unwrap(),
+            "--listen",
+            "tls/127.0.0.1:0",
+        ])
+    };
+    assert_input_error(
+        &tls_agent("0", "uav-1", "m1"),
+        &["uav-1/cert.pem", "not `uav-0`"],
+    );
+    assert_input_error(&tls_agent("0", "uav-0", "m2"), &["mission `m1`, not `m2`"]);
+    assert_input_error(
+        &tls_agent("2", "uav-2", "m1"),
+        &["--tls-dir", "not a folder"],
+    );
+    std::fs::remove_file(mission_dir.join("uav-0/key.pem")).unwrap();
+    assert_input_error(
+        &tls_agent("0", "uav-0", "m1"),
+        &["uav-0/key.pem", "cannot read"],
+    );
+    // Neither keys nor --insecure; plain endpoints with keys.
+    let o = mason(&["agent", "builtin:mbzirc", "--mission", "m1", "--uav", "0"]);
+    assert_input_error(&o, &["--tls-dir", "--insecure"]);
+    let d = mission_dir.join("uav-1");
+    let o = mason(&[
+        "agent",
+        "builtin:mbzirc",
+        "--mission",
+        "m1",
+        "--uav",
+        "1",
+        "--tls-dir",
+        d.to_str().unwrap(),
+        "--connect",
+        "tcp/127.0.0.1:7447",
+    ]);
+    assert_input_error(&o, &["--connect", "need --insecure"]);
+    assert_input_error(
+        &mason(&["keys", dir.join("x").to_str().unwrap(), "--uavs", "0"]),
+        &["--uavs 0"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 // ----- bad input: exit 2, one line, no panic --------------------------------------------------
 
 fn agent(extra: &[&str]) -> Output {
-    let mut args = vec!["agent", "builtin:mbzirc", "--mission", "m1"];
+    let mut args = vec!["agent", "builtin:mbzirc", "--mission", "m1", "--insecure"];
     args.extend_from_slice(extra);
     mason(&args)
 }

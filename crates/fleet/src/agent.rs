@@ -183,6 +183,9 @@ impl<T: Transport + ?Sized> Transport for &mut T {
     fn recv(&mut self, deadline: Instant) -> Vec<mason_mission::agent::Arrival> {
         (**self).recv(deadline)
     }
+    fn overflowed(&mut self) -> u64 {
+        (**self).overflowed()
+    }
 }
 
 #[cfg(test)]
@@ -206,7 +209,12 @@ mod tests {
             mcap: Some(dir.join("uav-0-1.mcap")),
             ..AgentOptions::default()
         };
-        let net = Network::resolve(None, Some("m".into()), None, &[], &[]).unwrap();
+        let flags = crate::NetworkFlags {
+            mission: Some("m".into()),
+            insecure: true,
+            ..crate::NetworkFlags::default()
+        };
+        let net = Network::resolve(None, &flags).unwrap();
         let mut link = Hub::new(1).links().pop().unwrap();
         let r = fly_agent(&s, &net, &opts, &mut link, &AtomicBool::new(false)).unwrap();
         assert_eq!(r.ending, Ending::Finished);

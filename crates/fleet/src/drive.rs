@@ -90,6 +90,9 @@ pub fn drive(
             deadline = deadline.max(Instant::now() + Duration::from_millis(1));
         }
         let heard = transport.recv(deadline);
+        if let Some(d) = agent.overflowed(transport.overflowed()) {
+            log.dropped(clock.now(), d.cause)?;
+        }
         if !heard.is_empty() {
             let now = clock.now();
             for sample in heard {

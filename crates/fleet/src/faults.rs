@@ -123,6 +123,9 @@ impl<T: Transport, C: Clock> Transport for FaultLayer<T, C> {
             }
         }
     }
+    fn overflowed(&mut self) -> u64 {
+        self.inner.overflowed()
+    }
 }
 
 #[cfg(test)]

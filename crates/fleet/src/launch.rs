@@ -1,4 +1,5 @@
-//! Launching a team on one machine: one agent process per UAV over Zenoh on 127.0.0.1, kills
+//! Launching a team on one machine: one agent process per UAV over Zenoh on 127.0.0.1 (mutual
+//! TLS with a mission authority made in the output folder, or plain TCP with `insecure`), kills
 //! (`SIGKILL`) and restarts at given mission times, then the agents' trace files merged into
 //! one trace (with the events of the agents it killed) and checked by
 //! [`mason_mission::check_trace`].
@@ -44,6 +45,10 @@ pub struct LaunchOptions {
     pub kills: Vec<(usize, f64)>,
     /// `(uav, t)`: start the killed agent again at mission time t.
     pub restarts: Vec<(usize, f64)>,
+    /// Plain TCP without authentication instead of mutual TLS.
+    pub insecure: bool,
+    /// Ground stations to make keys for (TLS only), in `out/station-<s>`.
+    pub stations: usize,
 }
 
 /// One agent process and how it ended.
@@ -73,6 +78,10 @@ pub struct Launch {
     pub start_at: f64,
     /// Each agent's endpoint.
     pub endpoints: Vec<String>,
+    /// `mutual-tls` or `insecure` ([`crate::Security::name`]).
+    pub security: &'static str,
+    /// The mission authority's folder, with TLS.
+    pub authority: Option<PathBuf>,
     /// Every agent process, in start order.
     pub runs: Vec<AgentRun>,
     /// The merged trace.
@@ -148,11 +157,13 @@ impl Launch {
             "check_trace": violation.unwrap_or_else(|| "passed".into()),
             "to_windows": self.switches(CommMode::Windows), "to_comm": self.switches(CommMode::Comm),
             "wall_time_s": self.wall_s, "timed_out": self.timed_out, "dropped": dropped,
+            "security": self.security,
         });
         serde_json::json!({
             "wall": s.wall.name(), "uavs": s.config.uavs, "coord": s.coord,
             "mission": self.mission, "speed": s.speed, "seed": s.seed, "start_at": self.start_at,
-            "endpoints": self.endpoints,
+            "endpoints": self.endpoints, "security": self.security,
+            "authority": self.authority.as_ref().map(|p| p.to_string_lossy().into_owned()),
             "order": s.order.iter().map(|b| s.wall.brick(*b).label).collect::<Vec<_>>(),
             "agents": agents, "summary": summary,
             "events": self.events.iter().map(|e| mason_report::event_json(&s.wall, e)).collect::<Vec<_>>(),
@@ -281,6 +292,11 @@ impl Spawner<'_> {
         cmd.args(["--uav", &uav.to_string(), "--mission", &self.mission]);
         cmd.args(["--start-at", &format!("{:.6}", self.start_at)]);
         cmd.args(["--incarnation", &incarnation.to_string()]);
+        if self.opts.insecure {
+            cmd.arg("--insecure");
+        } else {
+            cmd.arg("--tls-dir").arg(out.join(format!("uav-{uav}")));
+        }
         cmd.args(["--listen", &self.endpoints[uav]]);
         for (v, e) in self.endpoints.iter().enumerate() {
             if v != uav {
@@ -339,18 +355,31 @@ pub fn launch(
         .unwrap_or_else(|| format!("launch-{}-{}", unix_now() as u64, std::process::id()));
     crate::network::check_chunks("--mission", &mission, true)?;
     clear(&opts.out)?;
+    let authority = if opts.insecure {
+        None
+    } else {
+        Some(make_authority(&opts.out, &mission, n, opts.stations)?)
+    };
+    let scheme = if opts.insecure { "tcp" } else { "tls" };
     let start_at = unix_now() + opts.lead;
     let spawner = Spawner {
         opts,
         mission,
         start_at,
-        endpoints: ports.iter().map(|p| format!("tcp/127.0.0.1:{p}")).collect(),
+        endpoints: ports
+            .iter()
+            .map(|p| format!("{scheme}/127.0.0.1:{p}"))
+            .collect(),
     };
     let mut runs: Vec<AgentRun> = (0..n)
         .map(|u| spawner.spawn(u, 1, &[]))
         .collect::<FleetResult<_>>()?;
+    let security = match &authority {
+        Some(dir) => format!("mutual TLS, mission authority in {}", dir.display()),
+        None => "INSECURE: plain TCP, no authentication".into(),
+    };
     started(format!(
-        "mission {}, {n} agents on {}, key {}/{}/UAV/KIND, speed {}",
+        "mission {}, {n} agents on {} ({security}), key {}/{}/UAV/KIND, speed {}",
         spawner.mission,
         spawner.endpoints.join(" "),
         opts.prefix.as_deref().unwrap_or(DEFAULT_PREFIX),
@@ -421,6 +450,12 @@ pub fn launch(
         mission: spawner.mission,
         start_at,
         endpoints: spawner.endpoints,
+        security: if opts.insecure {
+            "insecure"
+        } else {
+            "mutual-tls"
+        },
+        authority,
         runs,
         events,
         verdict,
@@ -428,6 +463,22 @@ pub fn launch(
         timed_out,
         interrupted: interrupted.load(Ordering::Relaxed),
     })
+}
+
+/// Makes the mission authority and every member's files in `out` (see [`crate::authority`]);
+/// returns the authority's folder.
+#[cfg(feature = "zenoh")]
+fn make_authority(out: &Path, mission: &str, uavs: usize, stations: usize) -> FleetResult<PathBuf> {
+    let keys = crate::authority::make_keys(out, mission, uavs, stations)?;
+    Ok(keys.dir.join(crate::authority::AUTHORITY_DIR))
+}
+
+/// Without the `zenoh` feature there is no TLS.
+#[cfg(not(feature = "zenoh"))]
+fn make_authority(_: &Path, _: &str, _: usize, _: usize) -> FleetResult<PathBuf> {
+    Err(FleetError::bad(
+        "a launch over TLS needs the zenoh feature (or --insecure)",
+    ))
 }
 
 /// Kills UAV `u`'s running agent and writes the events of its death into its trace.

@@ -10,12 +10,14 @@
 //! - [`log`]: where an agent writes what it does ([`AgentLog`], [`JsonLines`],
 //!   [`McapAgentLog`]); [`trace`]: the one strict reader of those trace files;
 //! - [`world`]: the simulated camera's view of the wall across processes ([`TraceWorld`]);
-//! - [`network`]: mission id, key prefix and endpoints, checked ([`Network`]);
+//! - [`network`]: mission id, key prefix, endpoints and security, checked ([`Network`]);
+//! - `authority` (feature `zenoh`): the mission authority, its certificates and keys, and the
+//!   check of a member's files (`make_keys`, `check_member`);
 //! - [`setting`]: what a team shares ([`FleetSetting`]); [`agent`]: one agent process
 //!   ([`fly_agent`]); [`launch`]: a team of processes, merged and checked ([`launch()`]).
 //!
 //! ```
-//! use mason_fleet::{fly_agent, AgentOptions, FleetSetting, Hub, Network};
+//! use mason_fleet::{fly_agent, AgentOptions, FleetSetting, Hub, Network, NetworkFlags};
 //! use mason_mission::{Coord, LinkFaults, MissionConfig};
 //! # let wall = mason_wall::builtin("thesis-2x5").unwrap().wall();
 //! # let model = mason_order::CostModel::default();
@@ -26,7 +28,9 @@
 //!     wall, model, order, config, coord: Coord::Comm, slot, speed: 1000.0, seed: 7,
 //!     dead_after: 30.0, link: LinkFaults::default(),
 //! };
-//! let net = Network::resolve(None, Some("demo".into()), None, &[], &[]).unwrap();
+//! // In-process: no network, so nothing to secure.
+//! let flags = NetworkFlags { mission: Some("demo".into()), insecure: true, ..NetworkFlags::default() };
+//! let net = Network::resolve(None, &flags).unwrap();
 //! let opts = AgentOptions { uav: 0, incarnation: 1, ..AgentOptions::default() };
 //! let mut link = Hub::new(1).links().pop().unwrap();
 //! let stop = std::sync::atomic::AtomicBool::new(false);
@@ -37,6 +41,8 @@
 #![deny(missing_docs)]
 
 pub mod agent;
+#[cfg(feature = "zenoh")]
+pub mod authority;
 pub mod clock;
 pub mod drive;
 pub mod error;
@@ -62,8 +68,8 @@ pub use launch::{
 pub use log::{AgentLog, Capped, JsonLines, McapAgentLog, MAX_LOG_BYTES};
 pub use mason_mission::agent::agent_seed;
 pub use network::{
-    check_chunks, check_endpoint, Network, NetworkFile, DEFAULT_PREFIX, MAX_KEY_CHUNK,
-    MAX_PREFIX_CHUNKS,
+    check_chunks, check_endpoint, Network, NetworkFile, NetworkFlags, Security, DEFAULT_PREFIX,
+    MAX_KEY_CHUNK, MAX_PREFIX_CHUNKS,
 };
 pub use setting::{default_dead_after, least_dead_after, FleetSetting, DEAD_AFTER_HEARTBEATS};
 pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};

@@ -1,9 +1,10 @@
-//! Where and how an agent talks: the mission id, the key prefix and the Zenoh endpoints, from
-//! flags and a network TOML file, every one checked before a transport sees it.
+//! Where and how an agent talks: the mission id, the key prefix, the Zenoh endpoints and its
+//! security (the files of its mission authority, or `--insecure`), from flags and a network
+//! TOML file, every one checked before a transport sees it.
 
 use crate::error::{FleetError, FleetResult};
 use serde::Deserialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The default key prefix.
 pub const DEFAULT_PREFIX: &str = "mason";
@@ -19,6 +20,46 @@ pub struct Network {
     pub listen: Vec<String>,
     /// Endpoints to connect to.
     pub connect: Vec<String>,
+    /// How the links are secured.
+    pub security: Security,
+}
+
+/// How an agent's links are secured (DESIGN §8).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Security {
+    /// Zenoh TLS with mutual authentication and access control, from the member's folder of
+    /// `ca.pem`, `cert.pem` and `key.pem` (`--tls-dir`, see `mason keys`). Endpoints are `tls/`.
+    Tls(PathBuf),
+    /// Plain links (`tcp/`, `udp/`), no authentication (`--insecure`): any peer on the network
+    /// can join and speak for any UAV; only the check on arrival stands.
+    Insecure,
+}
+
+impl Security {
+    /// `mutual-tls` or `insecure`, as logs and `trace.json` say it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Security::Tls(_) => "mutual-tls",
+            Security::Insecure => "insecure",
+        }
+    }
+}
+
+/// The network flags of an agent (`mason agent`), before they are checked.
+#[derive(Clone, Debug, Default)]
+pub struct NetworkFlags {
+    /// `--mission`.
+    pub mission: Option<String>,
+    /// `--prefix`.
+    pub prefix: Option<String>,
+    /// `--listen`.
+    pub listen: Vec<String>,
+    /// `--connect`.
+    pub connect: Vec<String>,
+    /// `--tls-dir`.
+    pub tls_dir: Option<PathBuf>,
+    /// `--insecure`.
+    pub insecure: bool,
 }
 
 /// The network options of a TOML file (`mason agent --config`).
@@ -35,19 +76,19 @@ pub struct NetworkFile {
     /// Endpoints to connect to.
     #[serde(default)]
     pub connect: Vec<String>,
+    /// The member's folder of TLS files (relative to the TOML file's folder).
+    pub tls_dir: Option<PathBuf>,
+    /// Plain links, no authentication.
+    #[serde(default)]
+    pub insecure: bool,
 }
 
 impl Network {
-    /// The network of a file's settings (if any) with the flags on top: `mission` and `prefix`
-    /// override the file's, `listen` and `connect` add to its lists. Every value is checked;
-    /// errors name the flag (and the file).
-    pub fn resolve(
-        file: Option<&Path>,
-        mission: Option<String>,
-        prefix: Option<String>,
-        listen: &[String],
-        connect: &[String],
-    ) -> FleetResult<Network> {
+    /// The network of a file's settings (if any) with the flags on top: `mission`, `prefix`
+    /// and `tls_dir` override the file's, `listen` and `connect` add to its lists. Every value
+    /// is checked; errors name the flag (and the file). One of `tls_dir` and `insecure` is
+    /// needed, and the endpoints must match it (`tls/`, or `tcp/` and `udp/`).
+    pub fn resolve(file: Option<&Path>, flags: &NetworkFlags) -> FleetResult<Network> {
         let from_file: NetworkFile = match file {
             Some(p) => mason_io::read_toml(p)?,
             None => NetworkFile::default(),
@@ -56,36 +97,72 @@ impl Network {
             Some(p) => format!("{} ({}: {flag})", flag, p.display()),
             None => flag.to_string(),
         };
-        let mission = mission.or(from_file.mission).ok_or_else(|| {
+        let mission = flags.mission.clone().or(from_file.mission).ok_or_else(|| {
             FleetError::bad(
                 "--mission: every agent needs the mission id (or `mission` in --config)",
             )
         })?;
         check_chunks(&shown("--mission"), &mission, true)?;
-        let prefix = prefix
+        let prefix = flags
+            .prefix
+            .clone()
             .or(from_file.prefix)
             .unwrap_or_else(|| DEFAULT_PREFIX.into());
         check_chunks(&shown("--prefix"), &prefix, false)?;
+        let beside_file = |d: PathBuf| match file.and_then(Path::parent) {
+            Some(parent) if d.is_relative() => parent.join(d),
+            _ => d,
+        };
+        let tls_dir = flags.tls_dir.clone().or(from_file.tls_dir.map(beside_file));
+        let security = match (tls_dir, flags.insecure || from_file.insecure) {
+            (Some(d), false) => Security::Tls(d),
+            (None, true) => Security::Insecure,
+            (Some(_), true) => {
+                return Err(FleetError::bad(format!(
+                    "{} and {}: choose one (TLS with the mission's keys, or plain links)",
+                    shown("--tls-dir"),
+                    shown("--insecure")
+                )))
+            }
+            (None, false) => {
+                return Err(FleetError::bad(
+                    "--tls-dir: an agent needs its folder of mission keys (ca.pem, cert.pem, key.pem; made by `mason keys` or `mason launch`), or --insecure for plain links on a trusted bench",
+                ))
+            }
+        };
         let mut all_listen = from_file.listen;
-        all_listen.extend(listen.iter().cloned());
+        all_listen.extend(flags.listen.iter().cloned());
         let mut all_connect = from_file.connect;
-        all_connect.extend(connect.iter().cloned());
-        for e in &all_listen {
-            check_endpoint(&shown("--listen"), e, true)?;
-        }
-        for e in &all_connect {
-            check_endpoint(&shown("--connect"), e, false)?;
+        all_connect.extend(flags.connect.iter().cloned());
+        for (flag, list, listen) in [
+            ("--listen", &all_listen, true),
+            ("--connect", &all_connect, false),
+        ] {
+            for e in list {
+                let flag = shown(flag);
+                check_endpoint(&flag, e, listen)?;
+                let tls = e.starts_with("tls/");
+                if tls != matches!(security, Security::Tls(_)) {
+                    let why = if tls {
+                        "a tls/ endpoint needs --tls-dir, not --insecure"
+                    } else {
+                        "plain links need --insecure; with --tls-dir use tls/HOST:PORT"
+                    };
+                    return Err(FleetError::bad(format!("{flag} `{e}`: {why}")));
+                }
+            }
         }
         Ok(Network {
             mission,
             prefix,
             listen: all_listen,
             connect: all_connect,
+            security,
         })
     }
 }
 
-/// Checks a Zenoh endpoint `proto/host:port` (tcp or udp; port 0 only to listen).
+/// Checks a Zenoh endpoint `proto/host:port` (tcp, udp or tls; port 0 only to listen).
 pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
     if e.chars().count() > MAX_ENDPOINT {
         let head: String = e.chars().take(80).collect();
@@ -97,9 +174,9 @@ pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
     let (proto, addr) = e
         .split_once('/')
         .ok_or_else(|| bad("expected PROTO/HOST:PORT, e.g. tcp/127.0.0.1:7447"))?;
-    if proto != "tcp" && proto != "udp" {
+    if !["tcp", "udp", "tls"].contains(&proto) {
         return Err(bad(&format!(
-            "unknown protocol `{proto}` (this build speaks tcp and udp)"
+            "unknown protocol `{proto}` (Mason speaks tls, and tcp and udp with --insecure)"
         )));
     }
     let addr = addr.split(['?', '#']).next().unwrap_or_default();
@@ -197,11 +274,59 @@ mod tests {
             .to_string();
         assert!(e.contains("at most 64 characters") && e.len() < 300, "{e}");
         assert!(check_chunks("--prefix", "a/b/c/d/e/f/g/h/i", false).is_err());
-        let n = Network::resolve(None, Some("m".into()), None, &[], &["tcp/h:1".into()]).unwrap();
+        let flags = NetworkFlags {
+            mission: Some("m".into()),
+            connect: vec!["tcp/h:1".into()],
+            insecure: true,
+            ..NetworkFlags::default()
+        };
+        let n = Network::resolve(None, &flags).unwrap();
         assert_eq!(n.prefix, DEFAULT_PREFIX);
-        let e = Network::resolve(None, None, None, &[], &[])
+        assert_eq!(n.security, Security::Insecure);
+        let e = Network::resolve(None, &NetworkFlags::default())
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("--mission"), "{e}");
+    }
+
+    #[test]
+    fn tls_or_insecure_is_chosen_and_endpoints_follow_it() {
+        let base = NetworkFlags {
+            mission: Some("m".into()),
+            ..NetworkFlags::default()
+        };
+        let e = Network::resolve(None, &base).unwrap_err().to_string();
+        assert!(
+            e.starts_with("--tls-dir") && e.contains("--insecure"),
+            "{e}"
+        );
+        let tls = NetworkFlags {
+            tls_dir: Some("keys/uav-0".into()),
+            connect: vec!["tls/127.0.0.1:7447".into()],
+            ..base.clone()
+        };
+        let n = Network::resolve(None, &tls).unwrap();
+        assert_eq!(n.security, Security::Tls("keys/uav-0".into()));
+        let both = NetworkFlags {
+            insecure: true,
+            ..tls.clone()
+        };
+        let e = Network::resolve(None, &both).unwrap_err().to_string();
+        assert!(e.contains("choose one"), "{e}");
+        let plain = NetworkFlags {
+            connect: vec!["tcp/127.0.0.1:7447".into()],
+            ..tls.clone()
+        };
+        let e = Network::resolve(None, &plain).unwrap_err().to_string();
+        assert!(e.contains("need --insecure"), "{e}");
+        let tls_insecure = NetworkFlags {
+            tls_dir: None,
+            insecure: true,
+            ..tls
+        };
+        let e = Network::resolve(None, &tls_insecure)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("needs --tls-dir"), "{e}");
     }
 }

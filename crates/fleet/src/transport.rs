@@ -18,6 +18,11 @@ pub trait Transport {
     /// The samples that arrive before `deadline`, unchecked: returns as soon as at least one
     /// has arrived (or at the deadline, possibly with none).
     fn recv(&mut self, deadline: Instant) -> Vec<Arrival>;
+    /// Samples dropped unread since the last call because the receive queue was full (a
+    /// bounded transport under a flood); 0 by default.
+    fn overflowed(&mut self) -> u64 {
+        0
+    }
 }
 
 /// An in-memory bus between agents in one process (threads): every message goes to every

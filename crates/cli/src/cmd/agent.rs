@@ -4,7 +4,7 @@
 
 use crate::cmd::mission::MissionArgs;
 use crate::fail::{input_error, CliResult};
-use mason_fleet::{AgentOptions, FleetSetting, Network};
+use mason_fleet::{AgentOptions, FleetSetting, Network, NetworkFlags};
 use mason_mission::{Coord, LinkFaults};
 use mason_order::Status;
 use std::path::{Path, PathBuf};
@@ -183,10 +183,18 @@ pub struct AgentArgs {
     /// Key prefix: messages go to PREFIX/MISSION/UAV/KIND (default mason)
     #[arg(long)]
     pub prefix: Option<String>,
-    /// Network options from a TOML file: mission, prefix, listen, connect (flags add to the
-    /// lists and override the rest)
+    /// Network options from a TOML file: mission, prefix, listen, connect, tls_dir (relative
+    /// to the file), insecure (flags add to the lists and override the rest)
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// This UAV's folder of TLS files from its mission authority: ca.pem, cert.pem, key.pem
+    /// (made by `mason keys`, or `mason launch` in OUT/uav-<i>); endpoints are tls/HOST:PORT
+    #[arg(long)]
+    pub tls_dir: Option<PathBuf>,
+    /// Plain links (tcp/, udp/) without authentication, for a trusted bench: any peer on the
+    /// network can then speak for any UAV
+    #[arg(long)]
+    pub insecure: bool,
     /// Write the trace here: one JSON event per line, flushed per line
     #[arg(long)]
     pub trace: Option<PathBuf>,
@@ -211,13 +219,15 @@ pub struct AgentArgs {
 impl AgentArgs {
     /// The network options: the file's, with the flags on top; every one checked.
     pub fn network(&self) -> CliResult<Network> {
-        Ok(Network::resolve(
-            self.config.as_deref(),
-            self.mission.clone(),
-            self.prefix.clone(),
-            &self.listen,
-            &self.connect,
-        )?)
+        let flags = NetworkFlags {
+            mission: self.mission.clone(),
+            prefix: self.prefix.clone(),
+            listen: self.listen.clone(),
+            connect: self.connect.clone(),
+            tls_dir: self.tls_dir.clone(),
+            insecure: self.insecure,
+        };
+        Ok(Network::resolve(self.config.as_deref(), &flags)?)
     }
 
     /// This agent's own options.
@@ -253,7 +263,26 @@ pub fn run(a: AgentArgs, quiet: bool) -> CliResult<()> {
         ctrlc::set_handler(move || stop.store(true, Ordering::Relaxed))
             .map_err(|e| input_error(format!("cannot handle Ctrl-C: {e}")))?;
     }
-    let mut link = ZenohLink::open(&net, a.uav)?;
+    let uavs = setting.config.uavs;
+    let max_sample = mason_mission::agent::max_message_bytes(setting.wall.len(), uavs);
+    let mut link = ZenohLink::open(&net, a.uav, uavs, max_sample)?;
+    if !quiet {
+        match &net.security {
+            mason_fleet::Security::Tls(d) => eprintln!(
+                "mason agent: UAV {} ({}): mutual TLS with the keys of {}",
+                a.uav,
+                net.mission,
+                d.display()
+            ),
+            mason_fleet::Security::Insecure => {}
+        }
+    }
+    if net.security == mason_fleet::Security::Insecure {
+        eprintln!(
+            "mason agent: warning: UAV {} ({}) is insecure (--insecure): plain links, no authentication; any peer on the network can speak for any UAV",
+            a.uav, net.mission
+        );
+    }
     // The wall, for clients that are not teammates (the ROS 2 bridge).
     link.serve_scene(&mason_report::wall_scene_json(
         &setting.config.arena,

@@ -43,6 +43,14 @@ pub struct LaunchArgs {
     /// `simulate --rosbag`)
     #[arg(long)]
     pub rosbag: Option<PathBuf>,
+    /// Plain TCP without authentication, for a trusted bench (by default the launch makes a
+    /// mission authority in OUT/authority and one TLS set per UAV in OUT/uav-<i>, and the
+    /// agents talk over mutual TLS with access control)
+    #[arg(long)]
+    pub insecure: bool,
+    /// Ground stations to make TLS files for, in OUT/station-<s>
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    pub stations: usize,
 }
 
 /// Parses `U@T` values of `flag` for a team of `uavs`.
@@ -78,6 +86,8 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
         lead: a.lead,
         kills: at_times("--kill", &a.kill, n)?,
         restarts: at_times("--restart", &a.restart, n)?,
+        insecure: a.insecure,
+        stations: a.stations,
     };
     let interrupted = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     #[cfg(feature = "zenoh")]
@@ -151,6 +161,10 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             .as_deref()
             .unwrap_or("passed (zone, precedence, every brick accounted for)")
     );
+    match &done.authority {
+        Some(dir) => println!("security: mutual TLS, mission authority {}", dir.display()),
+        None => println!("security: INSECURE (plain TCP, no authentication)"),
+    }
     println!(
         "wall time: {:.1} s; merged trace: {}",
         done.wall_s,

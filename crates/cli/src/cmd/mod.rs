@@ -6,6 +6,7 @@ pub mod check;
 pub mod crew;
 pub mod demo;
 pub mod generate;
+pub mod keys;
 pub mod launch;
 pub mod mission;
 pub mod plan;

@@ -22,14 +22,17 @@
 //! | `jump` | raises the incarnation by more than [`MAX_INCARNATION_STEP`] (or starts above [`MAX_FIRST_INCARNATION`]), or the sequence number by more than [`SEQ_SLACK`] + [`SEQ_PER_S`] per second of the sender's time |
 //! | `range` | holds an index outside the team or the wall, `placed` not strictly ascending, or a number that is not finite or over [`MAX_ABS_NUMBER`] |
 //! | `implausible` | says more bricks are placed than one wall zone could have let through by its time |
+//! | `overflow` | never reached the check: the transport's receive queue was full (a flood), counted by [`Agent::overflowed`] |
 //!
 //! A sample that fails is dropped and counted ([`DropCounts`]); [`Dropped::first`] says it is
 //! the first of its cause, for a log that names each cause once. Nothing here fails, panics or
 //! allocates in proportion to the sample beyond its bounded size: no message can end an agent.
 //!
-//! What the checks cannot do: without authentication (Zenoh TLS and access control, issue #27
-//! items 1 and 2), a peer on the network can still speak as a teammate with a plausible
-//! status. The checks bound what such a message can claim; they do not tell who sent it.
+//! What the checks cannot do: tell who sent a sample. That is the transport's part: over
+//! Zenoh, mutual TLS with the mission authority and access control on the sender's key
+//! (`mason_fleet::zenoh_link`) let only UAV *i* put on UAV *i*'s keys. Without them
+//! (`--insecure`), a peer on the network can speak as a teammate with a plausible status: the
+//! checks bound what such a message can claim, not who sent it.
 
 use super::wire::{Command, Message, Order, COMMAND_KIND, SCHEMA_VERSION, STATION_CHUNK};
 use super::Agent;
@@ -90,11 +93,13 @@ pub enum DropCause {
     Range,
     /// More bricks placed than the wall zone could have let through.
     Implausible,
+    /// Dropped by the transport before the check: its receive queue was full.
+    Overflow,
 }
 
 impl DropCause {
     /// Every cause, in the order of the module's table.
-    pub const ALL: [DropCause; 12] = [
+    pub const ALL: [DropCause; 13] = [
         DropCause::Size,
         DropCause::Malformed,
         DropCause::Version,
@@ -107,6 +112,7 @@ impl DropCause {
         DropCause::Jump,
         DropCause::Range,
         DropCause::Implausible,
+        DropCause::Overflow,
     ];
 
     /// The cause's name in logs and summaries (snake_case).
@@ -124,6 +130,7 @@ impl DropCause {
             DropCause::Jump => "jump",
             DropCause::Range => "range",
             DropCause::Implausible => "implausible",
+            DropCause::Overflow => "overflow",
         }
     }
 
@@ -411,6 +418,18 @@ impl Agent<'_> {
         let m = self.admit(now, arrival)?;
         self.receive(now, m);
         Ok(())
+    }
+
+    /// Counts `k` samples the transport dropped unread because its receive queue was full
+    /// ([`DropCause::Overflow`]); `Some` the first time, for a log that names it once.
+    pub fn overflowed(&mut self, k: u64) -> Option<Dropped> {
+        let counts = &mut self.inbox.drops.0[DropCause::Overflow.index()];
+        let first = *counts == 0 && k > 0;
+        *counts = counts.saturating_add(k);
+        first.then_some(Dropped {
+            cause: DropCause::Overflow,
+            first: true,
+        })
     }
 
     /// The samples dropped so far, per cause.

@@ -67,7 +67,10 @@ pub mod wire;
 mod work;
 mod zone;
 
-pub use gate::{Arrival, Body, Checked, DropCause, DropCounts, Dropped, SampleKey};
+pub use gate::{
+    max_message_bytes, Arrival, Body, Checked, DropCause, DropCounts, Dropped, SampleKey,
+    MAX_STATIONS,
+};
 pub use vehicle::{Autopilot, SimulatedVehicle, WallView};
 pub use wire::{
     Ack, Command, Message, MessageKind, Order, Out, PairRef, Request, Status, SCHEMA_VERSION,
