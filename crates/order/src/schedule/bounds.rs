@@ -142,7 +142,13 @@ struct ZoneEnds {
     end: Vec<f64>,
     /// Groups: (place, rest, w, usable first, usable last).
     items: Vec<(f64, f64, usize, bool, bool)>,
+    /// For k ≤ [`NEAR_UAVS`]: the same least loss where each brick also waits for the bricks
+    /// under it and is waited for by the bricks on it ([`near_loss`]); −∞ above.
+    near: Vec<f64>,
 }
+
+/// Teams up to this size also get [`near_loss`].
+const NEAR_UAVS: usize = 16;
 
 impl ZoneEnds {
     fn new(p: &TeamProblem<'_>) -> ZoneEnds {
@@ -203,7 +209,9 @@ impl ZoneEnds {
             }
             best
         };
+        let near = near_loss(p, m.min(NEAR_UAVS));
         ZoneEnds {
+            near,
             start: knapsack(false),
             end: knapsack(true),
             items: items
@@ -230,8 +238,106 @@ impl ZoneEnds {
                 last = last.min(delay - w as f64 * rest + self.end[k - w]);
             }
         }
-        first + last
+        let near = self.near.get(k).copied().unwrap_or(f64::NEG_INFINITY);
+        (first + last).max(near)
     }
+}
+
+/// The first-start and last-end loss of [`ZoneEnds`], stronger for small teams: a brick starts
+/// no earlier than the placing phases of all the bricks under it (they place one after another
+/// before it), and ends no later than the makespan less those of all the bricks on it. Per
+/// brick these are bounded below by `head` = max(Σ supports' p, max over supports (p + head))
+/// and `tail` likewise upwards; a group of bricks with the same times takes its members' least
+/// head and tail. The j-th first brick then starts at max(its head, the phases of the first
+/// bricks before it), and likewise for the last ends; Smith's order no longer holds, so a
+/// dynamic programme over (UAVs covered, phases so far) finds the least cost exactly, with
+/// every group usable any number of times (a relaxation). Entry k: the least loss with k UAVs
+/// at work, for k ≤ `kmax`.
+fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
+    use std::collections::BTreeMap;
+    let wall = p.wall();
+    let mut order: Vec<BrickId> = wall.ids().collect();
+    order.sort_by_key(|&b| wall.brick(b).level);
+    let mut head = vec![0.0f64; p.len()];
+    let mut carried: Vec<Vec<BrickId>> = vec![Vec::new(); p.len()];
+    for &b in &order {
+        let sup = wall.supports(b);
+        let sum: f64 = sup.iter().map(|&s| p.place_s(s)).sum();
+        let chain = sup
+            .iter()
+            .map(|&s| p.place_s(s) + head[s.index()])
+            .fold(0.0, f64::max);
+        head[b.index()] = sum.max(chain);
+        for &s in sup {
+            carried[s.index()].push(b);
+        }
+    }
+    let mut tail = vec![0.0f64; p.len()];
+    for &b in order.iter().rev() {
+        let on = &carried[b.index()];
+        let sum: f64 = on.iter().map(|&s| p.place_s(s)).sum();
+        let chain = on
+            .iter()
+            .map(|&s| p.place_s(s) + tail[s.index()])
+            .fold(0.0, f64::max);
+        tail[b.index()] = sum.max(chain);
+    }
+    // Groups (place, rest, need) with their least head and tail.
+    let mut groups: Vec<(f64, f64, u32, f64, f64)> = Vec::new();
+    for b in wall.ids() {
+        let key = (p.place_s(b), p.rest_s(b), p.need(b));
+        let (h, t) = (head[b.index()], tail[b.index()]);
+        match groups.iter_mut().find(|g| (g.0, g.1, g.2) == key) {
+            Some(g) => {
+                g.3 = g.3.min(h);
+                g.4 = g.4.min(t);
+            }
+            None => groups.push((key.0, key.1, key.2, h, t)),
+        }
+    }
+    // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
+    let side = |end: bool| -> Vec<f64> {
+        let mut best = vec![f64::INFINITY; kmax + 1];
+        // (covered, phases so far as bits) → least cost; the first brick must wait for nothing.
+        let mut layer: BTreeMap<(usize, u64), f64> = BTreeMap::new();
+        for &(place, rest, need, h, t) in &groups {
+            let wait = if end { t } else { h };
+            if wait > 0.0 {
+                continue;
+            }
+            for w in 1..=(need as usize).min(kmax) {
+                let cost = -if end { w as f64 * rest } else { 0.0 };
+                let e = layer.entry((w, place.to_bits())).or_insert(f64::INFINITY);
+                *e = e.min(cost);
+            }
+        }
+        while !layer.is_empty() {
+            let mut next: BTreeMap<(usize, u64), f64> = BTreeMap::new();
+            for (&(c, o), &cost) in &layer {
+                best[c] = best[c].min(cost);
+                let o = f64::from_bits(o);
+                for &(place, rest, need, h, t) in &groups {
+                    let wait = if end { t } else { h };
+                    for w in 1..=(need as usize) {
+                        if c + w > kmax {
+                            break;
+                        }
+                        let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
+                        let e = next
+                            .entry((c + w, (o + place).to_bits()))
+                            .or_insert(f64::INFINITY);
+                        *e = e.min(cost + add);
+                    }
+                }
+            }
+            layer = next;
+        }
+        best
+    };
+    let (start, end) = (side(false), side(true));
+    (0..=kmax)
+        .map(|k| if k == 0 { 0.0 } else { start[k] + end[k] })
+        .collect()
 }
 
 /// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
