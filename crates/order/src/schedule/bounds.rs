@@ -5,8 +5,10 @@
 //!   - the resource bound: with S UAV-cycles in all (a 2-UAV brick counts 2) and m UAVs,
 //!     some UAV starts ⌈S/m⌉ bricks, so with one cycle length c it ends no earlier than
 //!     (⌈S/m⌉ − 1)·c + the shortest placing phase; with mixed cycles, the total UAV time
-//!     less the most rest the m last bricks can leave out, plus (zone rule) the stagger of
-//!     the UAVs' first starts and last ends, spread over m UAVs;
+//!     less the most rest the m last bricks can leave out, plus (zone rule) the UAVs' first
+//!     starts and last ends, spread over m UAVs: their least sum is found exactly for a
+//!     relaxation (`ZoneEnds`, and for teams up to 16 with the bricks under and on each
+//!     first and last brick, `near_loss`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
 //!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
 //!     from every brick), which never overlap either.
