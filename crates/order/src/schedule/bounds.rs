@@ -260,30 +260,16 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
     let wall = p.wall();
     let mut order: Vec<BrickId> = wall.ids().collect();
     order.sort_by_key(|&b| wall.brick(b).level);
-    let mut head = vec![0.0f64; p.len()];
     let mut carried: Vec<Vec<BrickId>> = vec![Vec::new(); p.len()];
     for &b in &order {
-        let sup = wall.supports(b);
-        let sum: f64 = sup.iter().map(|&s| p.place_s(s)).sum();
-        let chain = sup
-            .iter()
-            .map(|&s| p.place_s(s) + head[s.index()])
-            .fold(0.0, f64::max);
-        head[b.index()] = sum.max(chain);
-        for &s in sup {
+        for &s in wall.supports(b) {
             carried[s.index()].push(b);
         }
     }
-    let mut tail = vec![0.0f64; p.len()];
-    for &b in order.iter().rev() {
-        let on = &carried[b.index()];
-        let sum: f64 = on.iter().map(|&s| p.place_s(s)).sum();
-        let chain = on
-            .iter()
-            .map(|&s| p.place_s(s) + tail[s.index()])
-            .fold(0.0, f64::max);
-        tail[b.index()] = sum.max(chain);
-    }
+    let head = waits(p, order.iter().copied(), |b| wall.supports(b));
+    let tail = waits(p, order.iter().rev().copied(), |b| {
+        carried[b.index()].as_slice()
+    });
     // Groups (place, rest, need) with their least head and tail.
     let mut groups: Vec<(f64, f64, u32, f64, f64)> = Vec::new();
     for b in wall.ids() {
@@ -340,6 +326,26 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
     (0..=kmax)
         .map(|k| if k == 0 { 0.0 } else { start[k] + end[k] })
         .collect()
+}
+
+/// The placing phases that must come before (or after) each brick, visited in `bricks` with
+/// its neighbours below (or above) in `near`: each of them, and the longest chain through them.
+fn waits<'a>(
+    p: &TeamProblem<'_>,
+    bricks: impl Iterator<Item = BrickId>,
+    near: impl Fn(BrickId) -> &'a [BrickId],
+) -> Vec<f64> {
+    let mut wait = vec![0.0f64; p.len()];
+    for b in bricks {
+        let next = near(b);
+        let sum: f64 = next.iter().map(|&s| p.place_s(s)).sum();
+        let chain = next
+            .iter()
+            .map(|&s| p.place_s(s) + wait[s.index()])
+            .fold(0.0, f64::max);
+        wait[b.index()] = sum.max(chain);
+    }
+    wait
 }
 
 /// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
