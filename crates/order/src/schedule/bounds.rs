@@ -191,11 +191,11 @@ impl ZoneEnds {
             best[0] = 0.0;
             for &(place, rest, w, count, _, _) in &items {
                 let mut next = best.clone();
-                for c in 0..=m {
-                    if !best[c].is_finite() {
+                for (c, &from) in best.iter().enumerate() {
+                    if !from.is_finite() {
                         continue;
                     }
-                    let mut cost = best[c];
+                    let mut cost = from;
                     let mut cov = c;
                     for _ in 0..count {
                         if cov + w > m {
