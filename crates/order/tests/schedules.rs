@@ -660,3 +660,38 @@ proptest! {
         prop_assert!(c.is_ok(), "{objective:?} budget {budget:?}: {:?}", c.err());
     }
 }
+
+/// The makespan bound under the zone rule (the thesis model's), against the exhaustive optimum
+/// on tiny walls with mixed placing and rest times, orange pairs and 2–4 UAVs: the bound's
+/// first-start and last-end relaxation must never pass the optimum. At least 150 of the 300
+/// walls must be solved to optimality, or the check says little.
+#[test]
+fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0x7a6f_6e65);
+    let mut solved = 0;
+    for case in 0..300 {
+        let wall = random_wall(&mut rng, 6, 3);
+        let mut model = TeamModel::thesis();
+        if case % 3 != 0 {
+            for t in &mut model.types {
+                t.place_s = f64::from(rng.gen_range(1..40));
+                t.cycle_rest_s = f64::from(rng.gen_range(0..100));
+            }
+        }
+        let uavs = rng.gen_range(2..5);
+        let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
+        let exact = exhaustive_schedule(&p, &Budget::nodes(2_000_000));
+        if exact.status != Status::Optimal {
+            continue;
+        }
+        solved += 1;
+        let lb = bounds::makespan_lower_bound(&p);
+        assert!(
+            exact.makespan_s >= lb - 1e-6,
+            "case {case}: optimum {} below bound {lb} ({} bricks, {uavs} UAVs)",
+            exact.makespan_s,
+            wall.len()
+        );
+    }
+    assert!(solved >= 150, "only {solved} walls solved exactly");
+}

@@ -5,8 +5,10 @@
 //!   - the resource bound: with S UAV-cycles in all (a 2-UAV brick counts 2) and m UAVs,
 //!     some UAV starts ⌈S/m⌉ bricks, so with one cycle length c it ends no earlier than
 //!     (⌈S/m⌉ − 1)·c + the shortest placing phase; with mixed cycles, the total UAV time
-//!     less the most rest the m last bricks can leave out, plus (zone rule) the stagger of
-//!     the UAVs' first starts and last ends, spread over m UAVs;
+//!     less the most rest the m last bricks can leave out, plus (zone rule) the UAVs' first
+//!     starts and last ends, spread over m UAVs: their least sum is found exactly for a
+//!     relaxation (`ZoneEnds`, and for teams up to 16 with the bricks under and on each
+//!     first and last brick, `near_loss`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
 //!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
 //!     from every brick), which never overlap either.
@@ -80,15 +82,17 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
             // A schedule may leave UAVs unused: take the weakest case over k used UAVs.
             let shortest = ids().map(|b| p.place_s(b)).fold(f64::INFINITY, f64::min);
             let pairs = ids().any(|b| p.need(b) == 2);
+            // A 2-UAV brick can open the schedule only if it stands on nothing.
+            let first_pair = ids().any(|b| p.need(b) == 2 && p.wall().supports(b).is_empty());
+            let ends = p.zone_rule().then(|| ZoneEnds::new(p));
             let mut bound = f64::INFINITY;
             for k in 1..=p.uavs() {
-                let stagger = if p.zone_rule() {
-                    let steps: usize = (0..k).map(|i| if pairs { i / 2 } else { i }).sum();
-                    2.0 * steps as f64 * shortest
-                } else {
-                    0.0
-                };
-                bound = bound.min((work - last_rests(p, k) + stagger) / k as f64);
+                let mut loss = -last_rests(p, k);
+                if let Some(e) = &ends {
+                    let steps = zone_stagger(k, pairs, first_pair) + zone_stagger(k, pairs, true);
+                    loss = (loss + steps as f64 * shortest).max(e.loss(k));
+                }
+                bound = bound.min((work + loss) / k as f64);
             }
             bound
         }
@@ -99,6 +103,249 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
         conflict_clique(p, search)
     };
     chain.max(resource).max(zone)
+}
+
+/// Under the zone rule, the placing phases (of the shortest brick) that k UAVs' first starts
+/// add up to at least: the UAVs' first bricks place one after another, so the j-th of them
+/// (from 0) starts no earlier than j phases. A 2-UAV brick takes two UAVs at once: with
+/// `pair_opens` (one can be the very first brick) the fewest phases are 0, 0, 1, 1, 2, …;
+/// with `pairs` only (every 2-UAV brick stands on another brick, so one comes first)
+/// 0, 1, 1, 2, 2, …; with no 2-UAV brick 0, 1, 2, …. Read backwards from the makespan, the
+/// same count bounds the UAVs' last ends.
+fn zone_stagger(k: usize, pairs: bool, pair_opens: bool) -> usize {
+    (0..k)
+        .map(|i| match (pairs, pair_opens) {
+            (true, true) => i / 2,
+            (true, false) => i.div_ceil(2),
+            (false, _) => i,
+        })
+        .sum()
+}
+
+/// The zone rule's first starts and last ends, found exactly for a relaxation.
+///
+/// Every UAV has a first brick and a last one. Under the zone rule the UAVs' first bricks
+/// place one after another, so a UAV's first start is at least the placing phases of the
+/// first bricks placed before its own; reading back from the makespan, a UAV's last end is
+/// at least the placing phases of the last bricks placed after its own before the makespan,
+/// and the rest after its last brick is time it need not spend. So with k UAVs at work,
+/// `k·makespan ≥ W + Σ first starts + Σ (makespan − last end) − Σ last rests`, W their whole
+/// work. A sequence of bricks, each the first (or last) of w of its UAVs (1 ≤ w ≤ its need),
+/// covering k UAVs, costs Σ_t p_t · (UAVs covered after t), less Σ w_t·r_t at the end: the
+/// least such cost bounds the schedule's. Relaxed: each group of bricks with the same times
+/// may be used as often as it has bricks for each w, precedence is ignored except that the
+/// very first brick stands on nothing (it opens the schedule) and the very last carries
+/// nothing (it closes it). By the exchange argument the cheapest sequence orders its bricks by
+/// p/w (Smith's rule), so a knapsack over the groups in that order, built from the back so
+/// that the cost does not depend on k, gives every k at once in O(groups · m²).
+struct ZoneEnds {
+    /// Least cost of a sequence covering c UAVs, without and with the rests (index c).
+    start: Vec<f64>,
+    end: Vec<f64>,
+    /// Groups: (place, rest, w, usable first, usable last).
+    items: Vec<(f64, f64, usize, bool, bool)>,
+    /// For k ≤ [`NEAR_UAVS`]: the same least loss where each brick also waits for the bricks
+    /// under it and is waited for by the bricks on it ([`near_loss`]); −∞ above.
+    near: Vec<f64>,
+}
+
+/// Teams up to this size also get [`near_loss`].
+const NEAR_UAVS: usize = 16;
+
+impl ZoneEnds {
+    fn new(p: &TeamProblem<'_>) -> ZoneEnds {
+        let wall = p.wall();
+        let mut carries = vec![false; p.len()];
+        for b in wall.ids() {
+            for s in wall.supports(b) {
+                carries[s.index()] = true;
+            }
+        }
+        // Groups of bricks with the same place, rest and need: (place, rest, need, count,
+        // some stands on nothing, some carries nothing).
+        let mut groups: Vec<(f64, f64, u32, usize, bool, bool)> = Vec::new();
+        for b in wall.ids() {
+            let key = (p.place_s(b), p.rest_s(b), p.need(b));
+            let opens = wall.supports(b).is_empty();
+            let closes = !carries[b.index()];
+            match groups.iter_mut().find(|g| (g.0, g.1, g.2) == key) {
+                Some(g) => {
+                    g.3 += 1;
+                    g.4 |= opens;
+                    g.5 |= closes;
+                }
+                None => groups.push((key.0, key.1, key.2, 1, opens, closes)),
+            }
+        }
+        let mut items: Vec<(f64, f64, usize, usize, bool, bool)> = Vec::new();
+        for &(place, rest, need, count, opens, closes) in &groups {
+            for w in 1..=need as usize {
+                items.push((place, rest, w, count, opens, closes));
+            }
+        }
+        // Built from the back of the sequence: the largest p/w first.
+        items.sort_by(|a, b| (b.0 / b.2 as f64).total_cmp(&(a.0 / a.2 as f64)));
+        let m = p.uavs();
+        let knapsack = |with_rest: bool| {
+            let mut best = vec![f64::INFINITY; m + 1];
+            best[0] = 0.0;
+            for &(place, rest, w, count, _, _) in &items {
+                let mut next = best.clone();
+                for (c, &from) in best.iter().enumerate() {
+                    if !from.is_finite() {
+                        continue;
+                    }
+                    let mut cost = from;
+                    let mut cov = c;
+                    for _ in 0..count {
+                        if cov + w > m {
+                            break;
+                        }
+                        // Placed before the UAVs covered so far: it delays each of them.
+                        cost += place * cov as f64 - if with_rest { w as f64 * rest } else { 0.0 };
+                        cov += w;
+                        next[cov] = next[cov].min(cost);
+                    }
+                }
+                best = next;
+            }
+            best
+        };
+        let near = near_loss(p, m.min(NEAR_UAVS));
+        ZoneEnds {
+            near,
+            start: knapsack(false),
+            end: knapsack(true),
+            items: items
+                .iter()
+                .map(|&(pl, r, w, _, o, c)| (pl, r, w, o, c))
+                .collect(),
+        }
+    }
+
+    /// The least `Σ first starts + Σ (makespan − last end) − Σ last rests` with k UAVs at
+    /// work (+∞: k UAVs cannot all have a brick).
+    fn loss(&self, k: usize) -> f64 {
+        let mut first = f64::INFINITY;
+        let mut last = f64::INFINITY;
+        for &(place, rest, w, opens, closes) in &self.items {
+            if w > k {
+                continue;
+            }
+            let delay = place * (k - w) as f64;
+            if opens {
+                first = first.min(delay + self.start[k - w]);
+            }
+            if closes {
+                last = last.min(delay - w as f64 * rest + self.end[k - w]);
+            }
+        }
+        let near = self.near.get(k).copied().unwrap_or(f64::NEG_INFINITY);
+        (first + last).max(near)
+    }
+}
+
+/// The first-start and last-end loss of [`ZoneEnds`], stronger for small teams: a brick starts
+/// no earlier than the placing phases of all the bricks under it (they place one after another
+/// before it), and ends no later than the makespan less those of all the bricks on it. Per
+/// brick these are bounded below by `head` = max(Σ supports' p, max over supports (p + head))
+/// and `tail` likewise upwards; a group of bricks with the same times takes its members' least
+/// head and tail. The j-th first brick then starts at max(its head, the phases of the first
+/// bricks before it), and likewise for the last ends; Smith's order no longer holds, so a
+/// dynamic programme over (UAVs covered, phases so far) finds the least cost exactly, with
+/// every group usable any number of times (a relaxation). Entry k: the least loss with k UAVs
+/// at work, for k ≤ `kmax`.
+fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
+    use std::collections::BTreeMap;
+    let wall = p.wall();
+    let mut order: Vec<BrickId> = wall.ids().collect();
+    order.sort_by_key(|&b| wall.brick(b).level);
+    let mut carried: Vec<Vec<BrickId>> = vec![Vec::new(); p.len()];
+    for &b in &order {
+        for &s in wall.supports(b) {
+            carried[s.index()].push(b);
+        }
+    }
+    let head = waits(p, order.iter().copied(), |b| wall.supports(b));
+    let tail = waits(p, order.iter().rev().copied(), |b| {
+        carried[b.index()].as_slice()
+    });
+    // Groups (place, rest, need) with their least head and tail.
+    let mut groups: Vec<(f64, f64, u32, f64, f64)> = Vec::new();
+    for b in wall.ids() {
+        let key = (p.place_s(b), p.rest_s(b), p.need(b));
+        let (h, t) = (head[b.index()], tail[b.index()]);
+        match groups.iter_mut().find(|g| (g.0, g.1, g.2) == key) {
+            Some(g) => {
+                g.3 = g.3.min(h);
+                g.4 = g.4.min(t);
+            }
+            None => groups.push((key.0, key.1, key.2, h, t)),
+        }
+    }
+    // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
+    let side = |end: bool| -> Vec<f64> {
+        let mut best = vec![f64::INFINITY; kmax + 1];
+        // (covered, phases so far as bits) → least cost; the first brick must wait for nothing.
+        let mut layer: BTreeMap<(usize, u64), f64> = BTreeMap::new();
+        for &(place, rest, need, h, t) in &groups {
+            let wait = if end { t } else { h };
+            if wait > 0.0 {
+                continue;
+            }
+            for w in 1..=(need as usize).min(kmax) {
+                let cost = -if end { w as f64 * rest } else { 0.0 };
+                let e = layer.entry((w, place.to_bits())).or_insert(f64::INFINITY);
+                *e = e.min(cost);
+            }
+        }
+        while !layer.is_empty() {
+            let mut next: BTreeMap<(usize, u64), f64> = BTreeMap::new();
+            for (&(c, o), &cost) in &layer {
+                best[c] = best[c].min(cost);
+                let o = f64::from_bits(o);
+                for &(place, rest, need, h, t) in &groups {
+                    let wait = if end { t } else { h };
+                    for w in 1..=(need as usize) {
+                        if c + w > kmax {
+                            break;
+                        }
+                        let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
+                        let e = next
+                            .entry((c + w, (o + place).to_bits()))
+                            .or_insert(f64::INFINITY);
+                        *e = e.min(cost + add);
+                    }
+                }
+            }
+            layer = next;
+        }
+        best
+    };
+    let (start, end) = (side(false), side(true));
+    (0..=kmax)
+        .map(|k| if k == 0 { 0.0 } else { start[k] + end[k] })
+        .collect()
+}
+
+/// The placing phases that must come before (or after) each brick, visited in `bricks` with
+/// its neighbours below (or above) in `near`: each of them, and the longest chain through them.
+fn waits<'a>(
+    p: &TeamProblem<'_>,
+    bricks: impl Iterator<Item = BrickId>,
+    near: impl Fn(BrickId) -> &'a [BrickId],
+) -> Vec<f64> {
+    let mut wait = vec![0.0f64; p.len()];
+    for b in bricks {
+        let next = near(b);
+        let sum: f64 = next.iter().map(|&s| p.place_s(s)).sum();
+        let chain = next
+            .iter()
+            .map(|&s| p.place_s(s) + wait[s.index()])
+            .fold(0.0, f64::max);
+        wait[b.index()] = sum.max(chain);
+    }
+    wait
 }
 
 /// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
