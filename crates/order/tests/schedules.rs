@@ -695,3 +695,31 @@ fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
     }
     assert!(solved >= 150, "only {solved} walls solved exactly");
 }
+
+/// #32: a parallel decode can outlast a time limit on a huge wall, so it is given up at the
+/// deadline; the serial decode always ends, and the search still returns a whole, valid
+/// schedule when the limit has passed before it began.
+#[test]
+fn a_search_past_its_deadline_still_returns_a_valid_whole_schedule() {
+    use mason_order::schedule::sgs::{Decoder, Mode};
+    let row = vec!["R"; 200].join(" ");
+    let text = vec![row; 20].join("\n");
+    let wall = parse_layer_text(&text, "t").unwrap();
+    let p = TeamProblem::new(&wall, TeamModel::thesis(), 3, None, Objective::Makespan).unwrap();
+    let list: Vec<BrickId> = wall.ids().collect();
+    let spent = Budget::time(std::time::Duration::ZERO);
+    assert_eq!(
+        Decoder::new(&p, Mode::Parallel).decode_within(&list, &spent),
+        None
+    );
+    let whole = Decoder::new(&p, Mode::Parallel).decode(&list);
+    assert_eq!(whole.placed, wall.len());
+    let serial = Decoder::new(&p, Mode::Serial).decode_within(&list, &spent);
+    assert_eq!(serial.map(|d| d.placed), Some(wall.len()));
+    let out = plan_schedule(&p, &spent, 0);
+    assert!(matches!(out.status, Status::Optimal | Status::Timeout));
+    let s = out.schedule.expect("a schedule");
+    let eval = validate_schedule(&wall, p.model(), 3, None, &s).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(eval.bricks, wall.len());
+    assert!((eval.makespan_s - out.makespan_s).abs() < 1e-6);
+}

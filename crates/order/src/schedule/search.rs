@@ -178,7 +178,12 @@ struct Searcher<'a, 'w> {
 impl Searcher<'_, '_> {
     fn score(&mut self, list: &[BrickId]) -> Score {
         self.decodes += 1;
-        let d = self.decoder.decode(list);
+        // A parallel decode given up at the deadline scores worst: the other thread's serial
+        // decode always ends, so the search still has a schedule.
+        let Some(d) = self.decoder.decode_within(list, self.budget) else {
+            self.last = None;
+            return [f64::INFINITY; 3];
+        };
         self.last = Some(d);
         match self.p.objective() {
             Objective::Makespan => [d.makespan_s, d.sum_end_s, 0.0],

@@ -20,6 +20,7 @@
 //! and the rest of the list is decoded from that time on (replanning after a failure).
 
 use super::problem::{Placement, Schedule, TeamProblem};
+use crate::outcome::Budget;
 use mason_wall::BrickId;
 
 const EPS: f64 = 1e-9;
@@ -36,6 +37,9 @@ pub struct Decoded {
     /// Bricks placed.
     pub placed: usize,
 }
+
+/// How many steps of a parallel decode pass between two looks at the clock.
+const STEPS_PER_CHECK: u64 = 1024;
 
 /// Which schedule generation scheme decodes a list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -185,6 +189,18 @@ impl<'a, 'w> Decoder<'a, 'w> {
         self.run(list)
     }
 
+    /// [`Self::decode`], given up (`None`) once `budget` runs out. Only the parallel scheme
+    /// checks it (every [`STEPS_PER_CHECK`] steps): it scans the eligible bricks at every event,
+    /// so on a huge wall one decode can outlast a time limit, where the serial scheme's single
+    /// pass cannot be given up without leaving the search with no schedule at all.
+    pub fn decode_within(&mut self, list: &[BrickId], budget: &Budget) -> Option<Decoded> {
+        self.reset();
+        match self.mode {
+            Mode::Parallel => self.run_parallel(list, Some(budget)),
+            Mode::Serial => Some(self.run(list)),
+        }
+    }
+
     /// Fixes `kept` placements (they must be valid together), removes the UAVs not `alive`,
     /// and decodes `list` (the bricks not kept) with no start before `floor`.
     pub fn resume(
@@ -209,7 +225,9 @@ impl<'a, 'w> Decoder<'a, 'w> {
 
     fn run(&mut self, list: &[BrickId]) -> Decoded {
         if self.mode == Mode::Parallel {
-            return self.run_parallel(list);
+            return self
+                .run_parallel(list, None)
+                .expect("a decode without a budget always ends");
         }
         for &b in list {
             if self.state[b.index()] != 0 {
@@ -244,7 +262,7 @@ impl<'a, 'w> Decoder<'a, 'w> {
         self.eligible.insert((self.pos[i], c.0));
     }
 
-    fn run_parallel(&mut self, list: &[BrickId]) -> Decoded {
+    fn run_parallel(&mut self, list: &[BrickId], stop: Option<&Budget>) -> Option<Decoded> {
         let wall = self.p.wall();
         self.pos.fill(usize::MAX);
         for (k, b) in list.iter().enumerate() {
@@ -265,7 +283,12 @@ impl<'a, 'w> Decoder<'a, 'w> {
         let budget = self.p.budget_s().unwrap_or(f64::INFINITY);
         let mut t = self.floor;
         let mut picked: Vec<(usize, u32)> = Vec::new();
+        let mut steps = 0u64;
         while !self.eligible.is_empty() {
+            steps += 1;
+            if steps % STEPS_PER_CHECK == 0 && stop.is_some_and(Budget::out_of_time) {
+                return None;
+            }
             let free: usize = (0..self.free.len())
                 .filter(|&u| self.alive[u] && self.free[u] <= t + EPS)
                 .count();
@@ -338,7 +361,7 @@ impl<'a, 'w> Decoder<'a, 'w> {
         for (_, raw) in std::mem::take(&mut self.eligible) {
             self.state[raw as usize] = 2;
         }
-        self.result
+        Some(self.result)
     }
 
     /// The earliest start ≥ `t0` at which `b` conflicts with no placing brick.
