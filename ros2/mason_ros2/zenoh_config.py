@@ -40,6 +40,12 @@ def config_entries(endpoints: list, tls_dir: str | None) -> dict:
         e[f"{tls}/enable_mtls"] = "true"
         # Peers are reached by address: the mission's authority and the names are what count.
         e[f"{tls}/verify_name_on_connect"] = "false"
+        # No listener of its own (Zenoh's default is plain tcp) and TLS links only: an agent
+        # that reached the station over a plain link, learnt by gossip, would see no
+        # certificate, and its access control would drop the station's commands (an abort once
+        # reached one agent of three this way).
+        e["listen/endpoints"] = json.dumps([])
+        e["transport/link/protocols"] = json.dumps(["tls"])
     return e
 
 

@@ -153,6 +153,10 @@ def test_tls_configures_the_station_certificate(tmp_path):
     assert json.loads(e[f"{tls}/connect_certificate"]) == str(tmp_path / "cert.pem")
     assert json.loads(e[f"{tls}/connect_private_key"]) == str(tmp_path / "key.pem")
     assert e[f"{tls}/enable_mtls"] == "true"
+    # Only TLS links, and no plain listener that an agent could reach without a certificate.
+    assert json.loads(e["transport/link/protocols"]) == ["tls"]
+    assert json.loads(e["listen/endpoints"]) == []
+    assert "transport/link/protocols" not in config_entries(["tcp/127.0.0.1:1"], None)
     assert "transport/link/tls/root_ca_certificate" not in config_entries(["tcp/127.0.0.1:1"], None)
 
 

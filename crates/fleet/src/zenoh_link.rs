@@ -138,6 +138,12 @@ pub fn config(net: &Network, me: usize, uavs: usize) -> FleetResult<zenoh::Confi
         set(&format!("{tls}/enable_mtls"), "true".into())?;
         // Peers are reached by address: what matters is the authority and the common name.
         set(&format!("{tls}/verify_name_on_connect"), "false".into())?;
+        // TLS links only, accepted and opened: gossip tells an agent of every peer's
+        // locators, and a link opened to a plain `tcp/` one (a station's default listener)
+        // carries no certificate, so the access control below, which knows subjects by their
+        // certificates' names, would drop that peer's commands (an abort once reached one
+        // agent of three this way).
+        set("transport/link/protocols", json_list(&["tls".to_string()]))?;
         let base = format!("{}/{}", net.prefix, net.mission);
         set(
             "access_control",
@@ -274,5 +280,39 @@ impl Transport for ZenohLink {
 
     fn overflowed(&mut self) -> u64 {
         self.overflow.swap(0, Ordering::Relaxed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn network(security: Security) -> Network {
+        Network {
+            mission: "m".into(),
+            prefix: "mason".into(),
+            listen: vec!["tls/127.0.0.1:7447".into()],
+            connect: Vec::new(),
+            security,
+        }
+    }
+
+    /// A mutual-TLS team accepts and opens TLS links only, so that no peer learnt by gossip
+    /// is reached over a plain link without a certificate (where the access control, which
+    /// knows its subjects by their certificates, would drop a station's commands).
+    #[test]
+    fn a_tls_team_opens_and_accepts_tls_links_only() {
+        let tls = config(&network(Security::Tls("keys/uav-0".into())), 0, 3).unwrap();
+        let protocols: Vec<String> =
+            serde_json::from_str(&tls.get_json("transport/link/protocols").unwrap()).unwrap();
+        assert_eq!(protocols, ["tls"]);
+        assert!(tls
+            .get_json("access_control/enabled")
+            .unwrap()
+            .contains("true"));
+        let mut plain = network(Security::Insecure);
+        plain.listen = vec!["tcp/127.0.0.1:7447".into()];
+        let plain = config(&plain, 0, 3).unwrap();
+        assert_eq!(plain.get_json("transport/link/protocols").unwrap(), "null");
     }
 }
