@@ -47,7 +47,7 @@ pub fn earliest_end(p: &TeamProblem<'_>) -> Vec<f64> {
 }
 
 /// One cycle length shared by every brick of the wall, if there is one.
-fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
+pub(super) fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
     let c = p.place_s(BrickId(0)) + p.rest_s(BrickId(0));
     p.wall()
         .ids()
@@ -404,15 +404,15 @@ fn conflict_clique(p: &TeamProblem<'_>, search: &Budget) -> f64 {
 }
 
 /// The reward relaxation's data: per brick weight and eligibility, the team's capacity.
-struct Knapsack {
-    weight: Vec<f64>,
-    eligible: Vec<bool>,
+pub(super) struct Knapsack {
+    pub(super) weight: Vec<f64>,
+    pub(super) eligible: Vec<bool>,
     /// The supports of each eligible brick (the closure's requirements).
-    requires: Vec<Vec<usize>>,
-    capacity: f64,
+    pub(super) requires: Vec<Vec<usize>>,
+    pub(super) capacity: f64,
 }
 
-fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
+pub(super) fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
     let head = earliest_end(p);
     let eligible: Vec<bool> = head.iter().map(|&h| h <= budget + 1e-9).collect();
     let requires: Vec<Vec<usize>> = p

@@ -22,6 +22,7 @@ use super::bounds::{
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoded, Decoder, Mode};
+use super::slots::reward_upper_bound_exact;
 use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -633,11 +634,37 @@ pub fn plan_schedule_with(
     let decodes = results.iter().map(|r| r.decodes).sum();
     let improvements = results.iter().map(|r| r.improvements).sum();
     let r = results.swap_remove(win);
-    let (d, schedule) = r.decoded.unwrap_or_else(|| {
+    let (mut d, mut schedule) = r.decoded.unwrap_or_else(|| {
         let mut decoder = Decoder::new(p, r.mode);
         let d = decoder.decode(&r.list);
         (d, decoder.schedule())
     });
+    let mut bound = bound;
+    // Below the LP bound: the integer knapsack and the full-slot argument may prove less, and
+    // the slot search may meet a better schedule on the way.
+    if let (Objective::Reward, Some((b, _))) = (p.objective(), &reward_bound) {
+        if d.reward < bound - 1e-9 {
+            let exact = reward_upper_bound_exact(p, *b, d.reward, bound, budget);
+            if let Some((s, reward)) = exact.schedule {
+                d = Decoded {
+                    reward,
+                    makespan_s: s
+                        .placements
+                        .iter()
+                        .map(|pl| pl.start_s + p.place_s(pl.brick))
+                        .fold(0.0, f64::max),
+                    sum_end_s: s
+                        .placements
+                        .iter()
+                        .map(|pl| pl.start_s + p.place_s(pl.brick))
+                        .sum(),
+                    placed: s.placements.len(),
+                };
+                schedule = s;
+            }
+            bound = exact.bound;
+        }
+    }
     let expected_reward = match p.objective() {
         Objective::Expected { .. } => Some(-r.score[0]),
         _ => None,
