@@ -664,3 +664,98 @@ fn slot_schedule(split: &[Vec<usize>], s: &Slots, p: &TeamProblem<'_>) -> Schedu
     out.sort();
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schedule::bounds::reward_upper_bound;
+    use crate::schedule::{exhaustive_schedule, plan_schedule, TeamModel};
+    use crate::schedule::{Objective, ScheduleError};
+    use crate::Status;
+
+    /// Four reds within 0.8 m of each other, two UAVs, T = 90 s (cmcp: 40 s placing, 50 s
+    /// cycle): two starts per UAV, four UAV-cycles. The LP (and integer) knapsack takes all
+    /// four; using every cycle would put two conflicting bricks in one slot, so the bound is 3.
+    fn crowded() -> mason_wall::Wall {
+        let text = "1 1 0 0 0.1 0\n2 1 0.25 0 0.1 0\n3 1 0.5 0 0.1 0\n4 1 0.75 0 0.1 0\n";
+        mason_wall::parse_cmcp(text, "t", mason_wall::CmcpSizes::Yaml).unwrap()
+    }
+
+    fn reward_problem(wall: &mason_wall::Wall, uavs: usize, budget: f64) -> TeamProblem<'_> {
+        TeamProblem::new(
+            wall,
+            TeamModel::cmcp(),
+            uavs,
+            Some(budget),
+            Objective::Reward,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_set_that_cannot_fill_its_slots_is_refuted() {
+        let wall = crowded();
+        let p = reward_problem(&wall, 2, 90.0);
+        let lp = reward_upper_bound(&p, 90.0).bound;
+        assert_eq!(lp, 4.0);
+        let exact = reward_upper_bound_exact(&p, 90.0, 0.0, lp, &Budget::unlimited());
+        assert!(exact.complete);
+        assert_eq!(exact.bound, 3.0);
+        let opt = exhaustive_schedule(&p, &Budget::unlimited());
+        assert_eq!((opt.status, opt.reward), (Status::Optimal, 2.0));
+    }
+
+    #[test]
+    fn the_full_slot_argument_needs_slots_that_overlap_in_time() {
+        // At T = 130 s a UAV still starts two bricks (σ = 40 s = the placing phase): two
+        // bricks of one "slot" may then place one after the other, so it does not apply.
+        let wall = crowded();
+        let p = reward_problem(&wall, 2, 130.0);
+        assert!(full_slots(&p, 130.0).is_none());
+        assert!(full_slots(&p, 129.0).is_some());
+        let lp = reward_upper_bound(&p, 130.0).bound;
+        let exact = reward_upper_bound_exact(&p, 130.0, 0.0, lp, &Budget::unlimited());
+        assert_eq!(exact.bound, 4.0);
+        assert_eq!(exhaustive_schedule(&p, &Budget::unlimited()).reward, 3.0);
+    }
+
+    #[test]
+    fn a_found_split_is_a_valid_schedule() {
+        // Two reds 1 m apart, a blue on them both and a red far away: the slot search places
+        // the two reds first, then the blue and the far red.
+        let text = "1 1 0.5 0 0.1 0\n2 1 1.5 0 0.1 0\n3 3 1.0 0 0.3 0\n4 1 4.0 0 0.1 0\n";
+        let wall = mason_wall::parse_cmcp(text, "t", mason_wall::CmcpSizes::Yaml).unwrap();
+        let p = reward_problem(&wall, 2, 90.0);
+        let lp = reward_upper_bound(&p, 90.0).bound;
+        let exact = reward_upper_bound_exact(&p, 90.0, 0.0, lp, &Budget::unlimited());
+        let (s, r) = exact.schedule.expect("a split");
+        let ev = crate::schedule::validate_schedule(&wall, p.model(), 2, Some(90.0), &s).unwrap();
+        assert_eq!((ev.reward, r, exact.bound), (7.0, 7.0, 7.0));
+    }
+
+    #[test]
+    fn stopped_early_it_keeps_the_lp_bound() {
+        let wall = crowded();
+        let p = reward_problem(&wall, 2, 90.0);
+        let stop = Budget::time(std::time::Duration::ZERO);
+        let exact = reward_upper_bound_exact(&p, 90.0, 0.0, 4.0, &stop);
+        assert!(!exact.complete);
+        assert_eq!(exact.bound, 4.0);
+    }
+
+    /// The planner reports the tightened bound, and `schedule_checked` refuses a reward above
+    /// it.
+    #[test]
+    fn the_planner_reports_the_tightened_bound_and_the_check_holds_it() {
+        let wall = crowded();
+        let p = reward_problem(&wall, 2, 90.0);
+        let out = plan_schedule(&p, &Budget::nodes(200), 0);
+        assert_eq!((out.reward, out.bound), (2.0, 3.0));
+        let mut o = out.clone();
+        o.reward = 4.0;
+        assert!(matches!(
+            crate::schedule::checked::check_bound(&p, &o),
+            Err(ScheduleError::OutsideBound { .. })
+        ));
+    }
+}
