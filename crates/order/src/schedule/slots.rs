@@ -28,7 +28,7 @@
 //! is a valid schedule (slot k starts at (k−1)·c), returned beside the bound.
 
 use super::bounds::{knapsack, uniform_cycle};
-use super::closure::{max_weight_closure_until, EPS as CLOSURE_EPS};
+use super::closure::{max_weight_closure_counted, EPS as CLOSURE_EPS};
 use super::problem::{Placement, Schedule, TeamProblem};
 use crate::outcome::Budget;
 use mason_wall::BrickId;
@@ -36,6 +36,12 @@ use mason_wall::BrickId;
 /// Work (closure nodes and edges built, slot-search nodes) the refinement may do in all:
 /// past it the LP bound stands. A constant, so that the result does not depend on the clock.
 pub const EXACT_WORK: u64 = 40_000_000;
+
+/// Fixed bricks past which the branch and bound gives up (its recursion depth is at most this).
+const MAX_DEPTH: usize = 4000;
+
+/// The branch and bound's stack: far more than MAX_DEPTH levels of its recursion take.
+const STACK_BYTES: usize = 64 << 20;
 
 /// Nodes the slot search may visit for one closed set before it accepts the set unproved.
 const SLOT_NODES: u64 = 20_000;
@@ -161,7 +167,9 @@ impl Bb<'_, '_> {
             .collect();
         self.work += free.len() as u64 + requires.iter().map(|r| r.len() as u64).sum::<u64>();
         let search = self.search;
-        let set = max_weight_closure_until(&weights, &requires, &|| search.out_of_time());
+        let (set, scans) =
+            max_weight_closure_counted(&weights, &requires, &|| search.out_of_time());
+        self.work += scans;
         let Some(set) = set else {
             self.stopped = true;
             return None;
@@ -308,6 +316,12 @@ impl Bb<'_, '_> {
         if self.out_of_work() {
             return;
         }
+        // Each level of the recursion fixes at least one brick; a deeper tree gives up (the
+        // LP bound stands) rather than risk a small thread's stack.
+        if self.undo.len() > MAX_DEPTH {
+            self.stopped = true;
+            return;
+        }
         let Some(mut sol) = sol.or_else(|| self.solve()) else {
             return;
         };
@@ -432,7 +446,7 @@ impl Bb<'_, '_> {
             cycle,
             budget,
         );
-        self.work += nodes * members.len() as u64;
+        self.work += nodes * self.n as u64;
         match out {
             Some(true) => Peel::Feasible(split),
             Some(false) => Peel::Infeasible,
@@ -625,7 +639,22 @@ pub fn reward_upper_bound_exact(
         search,
         undo: Vec::new(),
     };
-    bb.node(None);
+    // The recursion is as deep as the bricks it fixes: it runs on a thread of its own with
+    // room for MAX_DEPTH levels whatever the caller's stack.
+    let run = std::thread::scope(|sc| {
+        std::thread::Builder::new()
+            .name("reward-bound".into())
+            .stack_size(STACK_BYTES)
+            .spawn_scoped(sc, move || {
+                bb.node(None);
+                bb
+            })
+            .ok()
+            .and_then(|h| h.join().ok())
+    });
+    let Some(mut bb) = run else {
+        return unchanged;
+    };
     let schedule = bb.witness.take().and_then(|(split, reward)| {
         let s = bb.slots.as_ref()?;
         (reward > achieved + 1e-9).then(|| (slot_schedule(&split, s, p), reward))
