@@ -18,7 +18,9 @@
 //!   in T), and bricks whose precedence chain cannot end by T are out. For every λ ≥ 0,
 //!   `λ·C + max over closed sets of Σ (reward − λ·weight)` bounds every valid schedule; the
 //!   inner maximum is a maximum-weight closure ([`super::closure`]), and λ is found by
-//!   bisection on the subgradient. With integer rewards the bound is rounded down.
+//!   bisection on the subgradient. With integer rewards the bound is rounded down. The planner
+//!   then tightens it where it can ([`super::slots`]: the knapsack in whole bricks, and the
+//!   full-slot argument).
 //! * Expected reward with each UAV failing at rate λ_f: the same relaxation with the
 //!   expected working time `E[min(F, T)] = (1 − e^(−λ_f T))/λ_f` per UAV. The relaxation is
 //!   concave in the capacity, so by Jensen it bounds the expectation of every policy, even
