@@ -129,6 +129,7 @@ struct Bb<'a, 'w> {
     slots: Option<Slots>,
     witness: Option<(Vec<Vec<usize>>, f64)>,
     work: u64,
+    work_cap: u64,
     stopped: bool,
     slack: f64,
     search: &'a Budget,
@@ -137,7 +138,7 @@ struct Bb<'a, 'w> {
 
 impl Bb<'_, '_> {
     fn out_of_work(&mut self) -> bool {
-        if self.work > EXACT_WORK || self.search.out_of_time() {
+        if self.work > self.work_cap || self.search.out_of_time() {
             self.stopped = true;
         }
         self.stopped
@@ -590,6 +591,18 @@ pub fn reward_upper_bound_exact(
     lp: f64,
     search: &Budget,
 ) -> ExactBound {
+    exact_with_work(p, budget, achieved, lp, search, EXACT_WORK)
+}
+
+/// [`reward_upper_bound_exact`] with a work cap of its own (`work`, in [`EXACT_WORK`]'s units).
+pub(crate) fn exact_with_work(
+    p: &TeamProblem<'_>,
+    budget: f64,
+    achieved: f64,
+    lp: f64,
+    search: &Budget,
+    work: u64,
+) -> ExactBound {
     let n = p.len();
     let whole = |x: f64| x.fract() == 0.0 && x >= 0.0;
     let unchanged = ExactBound {
@@ -634,6 +647,7 @@ pub fn reward_upper_bound_exact(
         slots: full_slots(p, budget),
         witness: None,
         work: 0,
+        work_cap: work,
         stopped: false,
         slack: 4.0 * CLOSURE_EPS * (n + 2) as f64,
         search,
