@@ -747,13 +747,14 @@ fn uniform_cycle_model(rng: &mut ChaCha8Rng) -> TeamModel {
 /// small random walls (straight, L, layer text), tight budgets and teams of 1–3: never below
 /// the optimum, never above the LP bound, whatever reward it is told was reached (up to the
 /// optimum); a schedule it returns is valid and earns what it says. The planner, which uses
-/// it, never reports a bound below the optimum, and `Optimal` only at the optimum. The cases
+/// it, never reports a bound below the optimum, and `Optimal` only at the optimum; when it
+/// returns a slot schedule before searching, that schedule's makespan is the least. The cases
 /// must also exercise the tightening: some bounds fall below the LP bound, some schedules come
 /// from the slot search.
 #[test]
 fn exact_reward_bound_is_sound_against_exhaustive_search() {
     use mason_order::schedule::slots::reward_upper_bound_exact;
-    let (mut cases, mut tightened, mut met, mut witnesses) = (0, 0, 0, 0);
+    let (mut cases, mut tightened, mut met, mut witnesses, mut early) = (0, 0, 0, 0, 0);
     for seed in 0..1500u64 {
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x0051_0775);
         let wall = match rng.gen_range(0..3) {
@@ -821,12 +822,28 @@ fn exact_reward_bound_is_sound_against_exhaustive_search() {
                 out.reward
             );
         }
+        if (out.reward - opt).abs() < 1e-6 {
+            assert!(
+                out.makespan_s >= exact.makespan_s - 1e-6,
+                "seed {seed}: beats the optimum"
+            );
+        }
+        if out.status == Status::Optimal && out.stats.decodes == 0 {
+            // Returned before any search: its makespan was proved the least at that reward.
+            early += 1;
+            assert!(
+                (out.makespan_s - exact.makespan_s).abs() < 1e-6,
+                "seed {seed}: makespan {} claimed least, the optimum's is {}",
+                out.makespan_s,
+                exact.makespan_s
+            );
+        }
     }
-    eprintln!("{cases} cases: {tightened} tightened below the LP bound, {met} at the optimum, {witnesses} slot schedules");
+    eprintln!("{cases} cases: {tightened} tightened below the LP bound, {met} at the optimum, {witnesses} slot schedules, {early} proved before the search");
     assert!(cases >= 1000, "only {cases} cases solved exhaustively");
     assert!(
-        tightened >= 10 && witnesses >= 5,
-        "{tightened} tightened, {witnesses} slot schedules"
+        tightened >= 10 && witnesses >= 5 && early >= 5,
+        "{tightened} tightened, {witnesses} slot schedules, {early} early"
     );
 }
 

@@ -22,7 +22,7 @@ use super::bounds::{
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoded, Decoder, Mode};
-use super::slots::{exact_with_work, EXACT_WORK};
+use super::slots::{exact_with_work, least_makespan_at, EXACT_WORK};
 use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -641,6 +641,38 @@ pub fn plan_schedule_with(
         ),
         (_, None) => unreachable!("TeamProblem::new requires a budget for reward and expected"),
     };
+    // The first try's schedule may be optimal on both counts already: its reward at the bound,
+    // and its makespan the least any schedule earning that much can have. Then there is
+    // nothing left to search.
+    if let (Some(e), Some((b, _))) = (&exact, &reward_bound) {
+        if let (true, Some((s, reward))) = (e.complete, &e.schedule) {
+            let d = slot_decoded(p, s, *reward);
+            let least = (*reward >= bound - 1e-9)
+                .then(|| least_makespan_at(p, *b, *reward, budget, FIRST_EXACT_WORK))
+                .flatten();
+            if least.is_some_and(|l| d.makespan_s <= l + 1e-9) {
+                budget.better(Better {
+                    value: *reward,
+                    bound,
+                    decodes: 0,
+                    elapsed_s: t0.elapsed().as_secs_f64(),
+                });
+                return TeamOutcome {
+                    status: Status::Optimal,
+                    schedule: Some(s.clone()),
+                    reward: *reward,
+                    makespan_s: d.makespan_s,
+                    expected_reward: None,
+                    bound,
+                    stats: TeamStats {
+                        elapsed: t0.elapsed(),
+                        decodes: 0,
+                        improvements: 0,
+                    },
+                };
+            }
+        }
+    }
     let scen = match p.objective() {
         Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
         _ => Vec::new(),

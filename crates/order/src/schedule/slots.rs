@@ -603,7 +603,6 @@ pub(crate) fn exact_with_work(
     search: &Budget,
     work: u64,
 ) -> ExactBound {
-    let n = p.len();
     let whole = |x: f64| x.fract() == 0.0 && x >= 0.0;
     let unchanged = ExactBound {
         bound: lp,
@@ -616,6 +615,47 @@ pub(crate) fn exact_with_work(
             ..unchanged
         };
     }
+    let Some(mut bb) = run(
+        p,
+        budget,
+        achieved.floor(),
+        0.0,
+        full_slots(p, budget),
+        search,
+        work,
+    ) else {
+        return unchanged;
+    };
+    let schedule = bb.witness.take().and_then(|(split, reward)| {
+        let s = bb.slots.as_ref()?;
+        (reward > achieved + 1e-9).then(|| (slot_schedule(&split, s, p), reward))
+    });
+    if bb.stopped {
+        return ExactBound {
+            schedule,
+            ..unchanged
+        };
+    }
+    ExactBound {
+        bound: bb.best.min(lp),
+        complete: true,
+        schedule,
+    }
+}
+
+/// Builds the branch and bound (capacity less `short` UAV-cycles, seeking sets above `best`)
+/// and runs it to its end or its cap. The recursion is as deep as the bricks it fixes: it runs
+/// on a thread of its own with room for MAX_DEPTH levels whatever the caller's stack.
+fn run<'a, 'w>(
+    p: &'a TeamProblem<'w>,
+    budget: f64,
+    best: f64,
+    short: f64,
+    slots: Option<Slots>,
+    search: &'a Budget,
+    work: u64,
+) -> Option<Bb<'a, 'w>> {
+    let n = p.len();
     let k = knapsack(p, budget, budget);
     let mut carries = vec![Vec::new(); n];
     for (i, req) in k.requires.iter().enumerate() {
@@ -636,15 +676,15 @@ pub(crate) fn exact_with_work(
         reward: (0..n).map(|i| p.reward(BrickId(i as u32))).collect(),
         requires: k.requires,
         carries,
-        capacity: k.capacity,
+        capacity: k.capacity - short,
         state: k.eligible.iter().map(|&e| if e { 0 } else { -1 }).collect(),
         in_reward: 0.0,
         in_weight: 0.0,
         rank,
         rank_of,
         offered: Default::default(),
-        best: achieved.floor(),
-        slots: full_slots(p, budget),
+        best,
+        slots,
         witness: None,
         work: 0,
         work_cap: work,
@@ -653,9 +693,7 @@ pub(crate) fn exact_with_work(
         search,
         undo: Vec::new(),
     };
-    // The recursion is as deep as the bricks it fixes: it runs on a thread of its own with
-    // room for MAX_DEPTH levels whatever the caller's stack.
-    let run = std::thread::scope(|sc| {
+    std::thread::scope(|sc| {
         std::thread::Builder::new()
             .name("reward-bound".into())
             .stack_size(STACK_BYTES)
@@ -665,25 +703,32 @@ pub(crate) fn exact_with_work(
             })
             .ok()
             .and_then(|h| h.join().ok())
-    });
-    let Some(mut bb) = run else {
-        return unchanged;
-    };
-    let schedule = bb.witness.take().and_then(|(split, reward)| {
-        let s = bb.slots.as_ref()?;
-        (reward > achieved + 1e-9).then(|| (slot_schedule(&split, s, p), reward))
-    });
-    if bb.stopped {
-        return ExactBound {
-            schedule,
-            ..unchanged
-        };
+    })
+}
+
+/// The least makespan of any schedule earning `reward` or more, when the full-slot argument
+/// applies and the branch and bound proves that every closed set earning that much uses all
+/// m·K UAV-cycles (none fits in one cycle less): every UAV then starts K bricks, the last at
+/// (K−1)·c or later, so the makespan is at least (K−1)·c + the shortest placing phase.
+/// `None` when that cannot be shown within `work` (or rewards are not whole numbers).
+pub(crate) fn least_makespan_at(
+    p: &TeamProblem<'_>,
+    budget: f64,
+    reward: f64,
+    search: &Budget,
+    work: u64,
+) -> Option<f64> {
+    let s = full_slots(p, budget)?;
+    if !p.wall().ids().all(|b| p.reward(b).fract() == 0.0) {
+        return None;
     }
-    ExactBound {
-        bound: bb.best.min(lp),
-        complete: true,
-        schedule,
-    }
+    let bb = run(p, budget, reward - 1.0, 1.0, None, search, work)?;
+    let p_min = p
+        .wall()
+        .ids()
+        .map(|b| p.place_s(b))
+        .fold(f64::INFINITY, f64::min);
+    (!bb.stopped && bb.best < reward - 0.5).then(|| (s.k - 1) as f64 * s.cycle + p_min)
 }
 
 /// The schedule of a full-slot split: slot k (from 0) starts at k·c, its bricks taking the
@@ -774,6 +819,20 @@ mod tests {
         let (s, r) = exact.schedule.expect("a split");
         let ev = crate::schedule::validate_schedule(&wall, p.model(), 2, Some(90.0), &s).unwrap();
         assert_eq!((ev.reward, r, exact.bound), (7.0, 7.0, 7.0));
+        // Every set earning 7 uses all four UAV-cycles: the makespan is at least 50 + 40 s, and
+        // the planner returns the slot schedule without searching.
+        let least = least_makespan_at(&p, 90.0, 7.0, &Budget::unlimited(), EXACT_WORK);
+        assert_eq!(least, Some(90.0));
+        assert_eq!(
+            least_makespan_at(&p, 90.0, 6.0, &Budget::unlimited(), EXACT_WORK),
+            None
+        );
+        let out = plan_schedule(&p, &Budget::unlimited(), 0);
+        assert_eq!(
+            (out.status, out.reward, out.makespan_s),
+            (Status::Optimal, 7.0, 90.0)
+        );
+        assert_eq!(out.stats.decodes, 0);
     }
 
     #[test]
