@@ -46,6 +46,14 @@ const STACK_BYTES: usize = 64 << 20;
 /// Nodes the slot search may visit for one closed set before it accepts the set unproved.
 const SLOT_NODES: u64 = 20_000;
 
+/// Bricks the slot search may look at for one closed set (each node looks at the whole set)
+/// before it accepts the set unproved.
+const SLOT_WORK: u64 = 4_000_000;
+
+/// How far past T a slot's earliest end may lie and still count (s): far above the
+/// validator's slack, so that no schedule it accepts is refuted.
+const SLOT_SLACK: f64 = 1e-3;
+
 /// A tightened reward bound, with the best full-slot schedule met on the way.
 #[derive(Clone, Debug)]
 pub struct ExactBound {
@@ -78,13 +86,15 @@ fn full_slots(p: &TeamProblem<'_>, budget: f64) -> Option<Slots> {
     }
     let k = ((budget - p_min) / c + 1e-9).floor() + 1.0;
     let sigma = budget - p_min - (k - 1.0) * c;
-    // A margin far above the validator's time slack (1e-6 s per check) keeps the windows apart.
-    (sigma + 1e-3 < p_min && p.wall().ids().all(|b| p.place_s(b) <= c + 1e-9)).then_some(Slots {
-        cycle: c,
-        k: k as usize,
-        m: p.uavs(),
-        budget,
-    })
+    // A margin far above the validator's time slack (1e-6 s per check, so at most 1e-6·K per
+    // window over K cycles) keeps the windows apart.
+    (sigma + SLOT_SLACK + 4e-6 * k < p_min && p.wall().ids().all(|b| p.place_s(b) <= c + 1e-9))
+        .then_some(Slots {
+            cycle: c,
+            k: k as usize,
+            m: p.uavs(),
+            budget,
+        })
 }
 
 /// A node's Lagrangian solution: its bound, the λ it was found at, and a heaviest closure of
@@ -433,7 +443,7 @@ impl Bb<'_, '_> {
             }
         }
         let mut split = vec![Vec::new(); k];
-        let mut nodes = 0u64;
+        let (mut nodes, mut work) = (0u64, 0u64);
         let out = self.peel_from(
             &mut PeelState {
                 members: &members,
@@ -441,13 +451,15 @@ impl Bb<'_, '_> {
                 above: &mut above,
                 split: &mut split,
                 nodes: &mut nodes,
+                work: &mut work,
+                depth: &mut vec![0; self.n],
             },
             k,
             m,
             cycle,
             budget,
         );
-        self.work += nodes * self.n as u64;
+        self.work += work + self.n as u64;
         match out {
             Some(true) => Peel::Feasible(split),
             Some(false) => Peel::Infeasible,
@@ -471,8 +483,14 @@ impl Bb<'_, '_> {
         if k == 0 {
             return Some(st.members.iter().all(|&i| !st.rem[i]));
         }
-        // The longest chain left must fit in the k slots left.
-        let mut depth = vec![0usize; self.n];
+        // Each node looks at every brick of the set once.
+        *st.work += st.members.len() as u64;
+        if *st.work > SLOT_WORK {
+            return None;
+        }
+        // The longest chain left must fit in the k slots left (the bricks left, in level
+        // order: each one's supports come first).
+        let depth = &mut *st.depth;
         for &i in st.members {
             if st.rem[i] {
                 depth[i] = 1 + self.requires[i]
@@ -493,7 +511,7 @@ impl Bb<'_, '_> {
             .iter()
             .copied()
             .filter(|&i| st.rem[i] && st.above[i] == 0)
-            .filter(|&i| start + self.p.place_s(BrickId(i as u32)) <= budget + 1e-9)
+            .filter(|&i| start + self.p.place_s(BrickId(i as u32)) <= budget + SLOT_SLACK)
             .collect();
         tops.sort_by_key(|&i| (std::cmp::Reverse(depth[i]), i));
         let mut chosen = Vec::new();
@@ -515,6 +533,11 @@ impl Bb<'_, '_> {
         cycle: f64,
         budget: f64,
     ) -> Option<bool> {
+        // Every call counts, so that the cap also bounds the recursion's depth.
+        *st.nodes += 1;
+        if *st.nodes > SLOT_NODES {
+            return None;
+        }
         if need == 0 {
             for &i in chosen.iter() {
                 st.rem[i] = false;
@@ -578,6 +601,10 @@ struct PeelState<'s> {
     above: &'s mut Vec<usize>,
     split: &'s mut Vec<Vec<usize>>,
     nodes: &'s mut u64,
+    /// Bricks looked at (capped by [`SLOT_WORK`]).
+    work: &'s mut u64,
+    /// Per brick: the longest chain of bricks left ending at it (scratch).
+    depth: &'s mut Vec<usize>,
 }
 
 /// The reward bound of [`super::bounds::reward_upper_bound_within`], tightened by the integer
