@@ -26,6 +26,10 @@
 //! The bound is the best accepted reward once the branch and bound has run to its end; when the
 //! work cap or the deadline stops it first, the LP bound stands. A split found all the way down
 //! is a valid schedule (slot k starts at (k−1)·c), returned beside the bound.
+//!
+//! `least_makespan_at` runs the same branch and bound with one UAV-cycle less: when no closed
+//! set earning a reward fits there, every schedule earning it uses all m·K cycles, so it ends
+//! no earlier than (K−1)·c + p_min, and a slot schedule ending then is optimal on both counts.
 
 use super::bounds::{knapsack, uniform_cycle};
 use super::closure::{max_weight_closure_counted, EPS as CLOSURE_EPS};
@@ -33,8 +37,9 @@ use super::problem::{Placement, Schedule, TeamProblem};
 use crate::outcome::Budget;
 use mason_wall::BrickId;
 
-/// Work (closure nodes and edges built, slot-search nodes) the refinement may do in all:
-/// past it the LP bound stands. A constant, so that the result does not depend on the clock.
+/// Work (the max-flows' edge scans and the graphs built, the bricks the slot search looks at)
+/// the refinement may do in all: past it the LP bound stands. A constant, so that the result
+/// does not depend on the clock (about 0.3 s on a 2-core machine of 2026).
 pub const EXACT_WORK: u64 = 40_000_000;
 
 /// Fixed bricks past which the branch and bound gives up (its recursion depth is at most this).
