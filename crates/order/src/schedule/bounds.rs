@@ -18,7 +18,9 @@
 //!   in T), and bricks whose precedence chain cannot end by T are out. For every λ ≥ 0,
 //!   `λ·C + max over closed sets of Σ (reward − λ·weight)` bounds every valid schedule; the
 //!   inner maximum is a maximum-weight closure ([`super::closure`]), and λ is found by
-//!   bisection on the subgradient. With integer rewards the bound is rounded down.
+//!   bisection on the subgradient. With integer rewards the bound is rounded down. The planner
+//!   then tightens it where it can ([`super::slots`]: the knapsack in whole bricks, and the
+//!   full-slot argument).
 //! * Expected reward with each UAV failing at rate λ_f: the same relaxation with the
 //!   expected working time `E[min(F, T)] = (1 − e^(−λ_f T))/λ_f` per UAV. The relaxation is
 //!   concave in the capacity, so by Jensen it bounds the expectation of every policy, even
@@ -47,7 +49,7 @@ pub fn earliest_end(p: &TeamProblem<'_>) -> Vec<f64> {
 }
 
 /// One cycle length shared by every brick of the wall, if there is one.
-fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
+pub(super) fn uniform_cycle(p: &TeamProblem<'_>) -> Option<f64> {
     let c = p.place_s(BrickId(0)) + p.rest_s(BrickId(0));
     p.wall()
         .ids()
@@ -404,15 +406,15 @@ fn conflict_clique(p: &TeamProblem<'_>, search: &Budget) -> f64 {
 }
 
 /// The reward relaxation's data: per brick weight and eligibility, the team's capacity.
-struct Knapsack {
-    weight: Vec<f64>,
-    eligible: Vec<bool>,
+pub(super) struct Knapsack {
+    pub(super) weight: Vec<f64>,
+    pub(super) eligible: Vec<bool>,
     /// The supports of each eligible brick (the closure's requirements).
-    requires: Vec<Vec<usize>>,
-    capacity: f64,
+    pub(super) requires: Vec<Vec<usize>>,
+    pub(super) capacity: f64,
 }
 
-fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
+pub(super) fn knapsack(p: &TeamProblem<'_>, budget: f64, uav_time: f64) -> Knapsack {
     let head = earliest_end(p);
     let eligible: Vec<bool> = head.iter().map(|&h| h <= budget + 1e-9).collect();
     let requires: Vec<Vec<usize>> = p

@@ -42,7 +42,7 @@ pub fn schedule_checked(
 
 /// The objective must lie on its side of the proven bound: a makespan at or above its lower
 /// bound, a reward or expected reward at or below its upper bound (up to rounding).
-fn check_bound(p: &TeamProblem<'_>, o: &TeamOutcome) -> Result<(), ScheduleError> {
+pub(super) fn check_bound(p: &TeamProblem<'_>, o: &TeamOutcome) -> Result<(), ScheduleError> {
     if o.schedule.is_none() || !o.bound.is_finite() {
         return Ok(());
     }

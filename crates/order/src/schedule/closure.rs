@@ -20,6 +20,8 @@ struct Network {
     out: Vec<Vec<usize>>,
     level: Vec<i32>,
     next: Vec<usize>,
+    /// Edges looked at so far (the work done).
+    scans: u64,
 }
 
 impl Network {
@@ -29,6 +31,7 @@ impl Network {
             out: vec![Vec::new(); nodes],
             level: vec![0; nodes],
             next: vec![0; nodes],
+            scans: 0,
         }
     }
 
@@ -44,6 +47,7 @@ impl Network {
         self.level[s] = 0;
         let mut queue = std::collections::VecDeque::from([s]);
         while let Some(v) = queue.pop_front() {
+            self.scans += self.out[v].len() as u64;
             for &e in &self.out[v] {
                 let w = self.edges[e].to;
                 if self.edges[e].cap > EPS && self.level[w] < 0 {
@@ -70,6 +74,7 @@ impl Network {
             }
             let mut advanced = false;
             while self.next[v] < self.out[v].len() {
+                self.scans += 1;
                 let e = self.out[v][self.next[v]];
                 let w = self.edges[e].to;
                 if self.edges[e].cap > EPS && self.level[w] == self.level[v] + 1 {
@@ -121,6 +126,16 @@ pub fn max_weight_closure_until(
     requires: &[Vec<usize>],
     stop: &dyn Fn() -> bool,
 ) -> Option<Vec<bool>> {
+    max_weight_closure_counted(weight, requires, stop).0
+}
+
+/// [`max_weight_closure_until`], with the work it did: the edges it looked at, a measure of
+/// time that does not depend on the clock.
+pub fn max_weight_closure_counted(
+    weight: &[f64],
+    requires: &[Vec<usize>],
+    stop: &dyn Fn() -> bool,
+) -> (Option<Vec<bool>>, u64) {
     let n = weight.len();
     let (s, t) = (n, n + 1);
     let mut net = Network::new(n + 2);
@@ -135,7 +150,7 @@ pub fn max_weight_closure_until(
         }
     }
     if !net.max_flow(s, t, stop) {
-        return None;
+        return (None, net.scans);
     }
     // The closure: nodes still reachable from s in the residual network.
     let mut inside = vec![false; n + 2];
@@ -151,7 +166,7 @@ pub fn max_weight_closure_until(
         }
     }
     inside.truncate(n);
-    Some(inside)
+    (Some(inside), net.scans + net.edges.len() as u64)
 }
 
 #[cfg(test)]

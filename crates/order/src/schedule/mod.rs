@@ -26,6 +26,7 @@ mod model;
 mod problem;
 pub mod search;
 pub mod sgs;
+pub mod slots;
 mod validate;
 
 pub use checked::{schedule_checked, CheckedSchedule};

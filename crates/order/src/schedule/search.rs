@@ -22,6 +22,7 @@ use super::bounds::{
 };
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoded, Decoder, Mode};
+use super::slots::{exact_with_work, least_makespan_at, EXACT_WORK};
 use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -555,6 +556,40 @@ fn search_thread(
     }
 }
 
+/// Work (in [`EXACT_WORK`]'s units) of the exact reward bound's first try, before the search.
+const FIRST_EXACT_WORK: u64 = EXACT_WORK / 4;
+
+/// The bricks of `s` in start order, then the rest level by level: a list that decodes to
+/// (nearly) `s`.
+fn schedule_list(p: &TeamProblem<'_>, s: &Schedule) -> Vec<BrickId> {
+    let mut sorted = s.clone();
+    sorted.sort();
+    let mut seen = vec![false; p.len()];
+    let mut list: Vec<BrickId> = Vec::with_capacity(p.len());
+    for pl in &sorted.placements {
+        if !std::mem::replace(&mut seen[pl.brick.index()], true) {
+            list.push(pl.brick);
+        }
+    }
+    list.extend(level_list(p).into_iter().filter(|b| !seen[b.index()]));
+    list
+}
+
+/// The figures of a full-slot schedule earning `reward`.
+fn slot_decoded(p: &TeamProblem<'_>, s: &Schedule, reward: f64) -> Decoded {
+    let ends = || {
+        s.placements
+            .iter()
+            .map(|pl| pl.start_s + p.place_s(pl.brick))
+    };
+    Decoded {
+        reward,
+        makespan_s: ends().fold(0.0, f64::max),
+        sum_end_s: ends().sum(),
+        placed: s.placements.len(),
+    }
+}
+
 /// Plans a team schedule for `p`'s objective within `budget`, deterministically for `seed`
 /// (unless the deadline stops it), on up to two threads.
 pub fn plan_schedule(p: &TeamProblem<'_>, budget: &Budget, seed: u64) -> TeamOutcome {
@@ -579,6 +614,18 @@ pub fn plan_schedule_with(
     if let Some((b, rb)) = &reward_bound {
         starts.push(knapsack_list(p, *b, rb, budget));
     }
+    // Under `reward`, a first, short try at the exact bound (cheap where the LP bound is tight or
+    // nearly so): its full-slot schedule, if any, starts the search too.
+    let exact = match (p.objective(), &reward_bound) {
+        (Objective::Reward, Some((b, rb))) => {
+            let e = exact_with_work(p, *b, 0.0, rb.bound, budget, FIRST_EXACT_WORK);
+            if let Some((s, _)) = &e.schedule {
+                starts.push(schedule_list(p, s));
+            }
+            Some(e)
+        }
+        _ => None,
+    };
     starts.push(level_list(p));
     starts.push(chain_list(p));
     // Only the makespan objective stops at its bound: under a budget, reaching the reward
@@ -589,13 +636,48 @@ pub fn plan_schedule_with(
             let lb = makespan_lower_bound_within(p, budget);
             (lb, Some(lb))
         }
-        (Objective::Reward, Some((_, rb))) => (rb.bound, None),
+        (Objective::Reward, Some((_, rb))) => (
+            exact.as_ref().map_or(rb.bound, |e| e.bound.min(rb.bound)),
+            None,
+        ),
         (Objective::Expected { hazard_per_hour }, Some((b, _))) => (
             expected_reward_upper_bound_within(p, *b, hazard_per_hour, budget),
             None,
         ),
         (_, None) => unreachable!("TeamProblem::new requires a budget for reward and expected"),
     };
+    // The first try's schedule may be optimal on both counts already: its reward at the bound,
+    // and its makespan the least any schedule earning that much can have. Then there is
+    // nothing left to search.
+    if let (Some(e), Some((b, _))) = (&exact, &reward_bound) {
+        if let (true, Some((s, reward))) = (e.complete, &e.schedule) {
+            let d = slot_decoded(p, s, *reward);
+            let least = (*reward >= bound - 1e-9)
+                .then(|| least_makespan_at(p, *b, *reward, budget, FIRST_EXACT_WORK))
+                .flatten();
+            if least.is_some_and(|l| d.makespan_s <= l + 1e-9) {
+                budget.better(Better {
+                    value: *reward,
+                    bound,
+                    decodes: 0,
+                    elapsed_s: t0.elapsed().as_secs_f64(),
+                });
+                return TeamOutcome {
+                    status: Status::Optimal,
+                    schedule: Some(s.clone()),
+                    reward: *reward,
+                    makespan_s: d.makespan_s,
+                    expected_reward: None,
+                    bound,
+                    stats: TeamStats {
+                        elapsed: t0.elapsed(),
+                        decodes: 0,
+                        improvements: 0,
+                    },
+                };
+            }
+        }
+    }
     let scen = match p.objective() {
         Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
         _ => Vec::new(),
@@ -638,11 +720,27 @@ pub fn plan_schedule_with(
     let decodes = results.iter().map(|r| r.decodes).sum();
     let improvements = results.iter().map(|r| r.improvements).sum();
     let r = results.swap_remove(win);
-    let (d, schedule) = r.decoded.unwrap_or_else(|| {
+    let (mut d, mut schedule) = r.decoded.unwrap_or_else(|| {
         let mut decoder = Decoder::new(p, r.mode);
         let d = decoder.decode(&r.list);
         (d, decoder.schedule())
     });
+    let mut bound = bound;
+    if let (Some(first), Some((b, _))) = (exact, &reward_bound) {
+        // Still below the bound after the search, and the first try stopped short: the whole
+        // work cap, now given the reward reached.
+        let more = (d.reward < bound - 1e-9 && !first.complete)
+            .then(|| exact_with_work(p, *b, d.reward, bound, budget, EXACT_WORK));
+        for e in [Some(first), more].into_iter().flatten() {
+            bound = bound.min(e.bound);
+            if let Some((s, reward)) = e.schedule {
+                if reward > d.reward + 1e-9 {
+                    d = slot_decoded(p, &s, reward);
+                    schedule = s;
+                }
+            }
+        }
+    }
     let expected_reward = match p.objective() {
         Objective::Expected { .. } => Some(-r.score[0]),
         _ => None,
