@@ -185,12 +185,12 @@ const PIECE_SPREAD: f64 = 0.4;
 /// each, or `None` when that cannot be done with confidence.
 ///
 /// The count is the area in medians, accepted only when it is within [`SPLIT_SLACK`] of a
-/// whole number from 2 to 4. The blob is eroded (chessboard distance to its outside) until
+/// whole number from 2 to 4. The blob is eroded (chamfer distance to its outside) until
 /// its core falls apart into exactly that many pieces, each at least a 40th of the median;
-/// every pixel then joins the core nearest to it inside the blob (a breadth-first growth from
-/// all cores at once, in a fixed order). Refused: a count that is not clear, a core that
-/// never falls apart into that many pieces (or into more first), or a piece whose area is
-/// more than [`PIECE_SPREAD`] from the median.
+/// the cores then grow back down the depths (at each depth, breadth first from all cores at
+/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: a
+/// count that is not clear, a core that never falls apart into that many pieces (or into
+/// more first), or a piece whose area is more than [`PIECE_SPREAD`] from the median.
 pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
     let ratio = blob.area() as f64 / median.max(1) as f64;
     let n = ratio.round();
@@ -201,7 +201,8 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
     let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
     let bw = blob.bbox.2 as usize - x0 + 1;
     let bh = blob.bbox.3 as usize - y0 + 1;
-    // Chessboard distance to the outside, by two passes over the bounding box (padded by 0).
+    // Chamfer distance (3 a step along an axis, 4 diagonally) to the outside, by two passes
+    // over the bounding box (padded by 0).
     let mut dist = vec![0u32; bw * bh];
     for &(x, y) in &blob.pixels {
         dist[(y as usize - y0) * bw + x as usize - x0] = u32::MAX;
@@ -219,12 +220,12 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             if dist[i] == 0 {
                 continue;
             }
-            let m = [(-1, -1), (0, -1), (1, -1), (-1, 0)]
+            let m = [(-1, -1, 4), (0, -1, 3), (1, -1, 4), (-1, 0, 3)]
                 .iter()
-                .map(|&(dx, dy)| at(&dist, x + dx, y + dy))
+                .map(|&(dx, dy, w)| at(&dist, x + dx, y + dy).saturating_add(w))
                 .min()
                 .unwrap_or(0);
-            dist[i] = m.saturating_add(1).min(dist[i]);
+            dist[i] = m.min(dist[i]);
         }
     }
     for y in (0..bh as isize).rev() {
@@ -233,19 +234,19 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             if dist[i] == 0 {
                 continue;
             }
-            let m = [(1, 1), (0, 1), (-1, 1), (1, 0)]
+            let m = [(1, 1, 4), (0, 1, 3), (-1, 1, 4), (1, 0, 3)]
                 .iter()
-                .map(|&(dx, dy)| at(&dist, x + dx, y + dy))
+                .map(|&(dx, dy, w)| at(&dist, x + dx, y + dy).saturating_add(w))
                 .min()
                 .unwrap_or(0);
-            dist[i] = dist[i].min(m.saturating_add(1));
+            dist[i] = dist[i].min(m);
         }
     }
     let deepest = dist.iter().copied().max().unwrap_or(0);
     let min_core = (median / 40).max(1);
     let mut label = vec![0u32; bw * bh];
     let mut found = None;
-    for t in 2..=deepest {
+    for t in 4..=deepest {
         // The cores at depth t: 8-connected pieces of the pixels at least t deep.
         label.iter_mut().for_each(|l| *l = 0);
         let mut sizes: Vec<usize> = Vec::new();
@@ -286,14 +287,14 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
                     *l = 0;
                 }
             }
-            found = Some(sizes);
+            found = Some((sizes, t));
             break;
         }
         if big == 0 {
             return None;
         }
     }
-    let sizes = found?;
+    let (sizes, level) = found?;
     // Renumber the kept cores 1..=n in order of their first pixel.
     let mut renumber = vec![0u32; sizes.len() + 1];
     let mut next = 0;
@@ -306,19 +307,22 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             *l = renumber[*l as usize];
         }
     }
-    // Grow all cores at once, breadth first, inside the blob.
-    let mut queue: std::collections::VecDeque<usize> =
-        (0..bw * bh).filter(|&i| label[i] != 0).collect();
-    while let Some(i) = queue.pop_front() {
-        let (x, y) = ((i % bw) as isize, (i / bw) as isize);
-        for dy in -1..=1 {
-            for dx in -1..=1 {
-                let (nx, ny) = (x + dx, y + dy);
-                if at(&dist, nx, ny) > 0 {
-                    let j = ny as usize * bw + nx as usize;
-                    if label[j] == 0 {
-                        label[j] = label[i];
-                        queue.push_back(j);
+    // Grow the cores down the depths, as water rises: at each depth, breadth first from all
+    // cores at once into the pixels at least that deep.
+    for t in (1..level).rev() {
+        let mut queue: std::collections::VecDeque<usize> =
+            (0..bw * bh).filter(|&i| label[i] != 0).collect();
+        while let Some(i) = queue.pop_front() {
+            let (x, y) = ((i % bw) as isize, (i / bw) as isize);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if at(&dist, nx, ny) >= t {
+                        let j = ny as usize * bw + nx as usize;
+                        if label[j] == 0 {
+                            label[j] = label[i];
+                            queue.push_back(j);
+                        }
                     }
                 }
             }
