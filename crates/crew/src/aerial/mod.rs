@@ -518,6 +518,26 @@ pub fn read_aerial_image(
                     return None;
                 }
                 let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+                // A mostly covered cell can only be free under a top leaning from a blocked
+                // neighbour on its side toward the nadir (or level with it).
+                let side = |c: u32, at: f64| -> &'static [i64] {
+                    if at >= f64::from(c) + 1.0 {
+                        &[0, 1]
+                    } else if at < f64::from(c) {
+                        &[-1, 0]
+                    } else {
+                        &[-1, 0, 1]
+                    }
+                };
+                let (xi, yi) = (i64::from(x), i64::from(y));
+                let leaned_on = side(x, n.0).iter().any(|&dx| {
+                    side(y, n.1)
+                        .iter()
+                        .any(|&dy| (dx, dy) != (0, 0) && is_sure(xi + dx, yi + dy))
+                });
+                if shares[i] >= HALF_COVERED.1 && !leaned_on {
+                    return None;
+                }
                 let bins = cover::bins(&classes, width, &floor_to_image, &image_to_floor, (x, y));
                 cover::fit(&bins, (x, y), n, &is_sure)
             })
