@@ -177,9 +177,9 @@ pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
 }
 
 /// A merged blob is split only when its area is this close (in medians) to a whole number.
-const SPLIT_SLACK: f64 = 0.3;
+pub const SPLIT_SLACK: f64 = 0.3;
 /// Each piece of a split blob is within this share of the median (either way).
-const PIECE_SPREAD: f64 = 0.4;
+pub const PIECE_SPREAD: f64 = 0.4;
 
 /// Splits a blob of several touching robots (or goals) of median area `median` into one blob
 /// each, or `None` when that cannot be done with confidence.

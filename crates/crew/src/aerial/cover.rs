@@ -20,11 +20,15 @@
 //! the bins on the wrong side (blurred edges), and at least [`EVIDENCE`] of them floor beyond
 //! the lean: floor seen from the nadir behind the cover, and no cover beyond it to the cell's
 //! far edge, where the top ends (a blocked cell is covered to its far edge by its own top).
-//! A k above [`MAX_K`] is not considered. A mostly covered cell with less such floor,
-//! but some ([`DOUBT`]), may be a free cell almost all under a top: refused, not blocked. Covered bins
-//! within [`BLEED`] of an edge shared with a blocked cell are not counted (a coloured
-//! penumbra or inter-reflection beside an obstacle's base). Anything else is left to the
-//! window: blocked above 70 %, refused between 30 and 70 %.
+//! A k above [`MAX_K`] is not considered. A mostly covered cell with less such floor, but
+//! some ([`DOUBT`]), may be a free cell almost all under a top: refused, not blocked.
+//! Covered bins within [`BLEED`] of an edge shared with a blocked cell are not counted (a
+//! coloured penumbra or inter-reflection beside an obstacle's base). Anything else is left
+//! to the window: blocked above 70 %, refused between 30 and 70 %.
+//!
+//! Limit: a free cell that a top covers whole (a lean of a cell or more) cannot be told from
+//! the silhouette alone from a blocked one; it reads as blocked. Where the side face facing
+//! the nadir ends and the top begins would tell; this module does not look at shading.
 
 use super::colour::Class;
 use super::homography::{Homography, Point};

@@ -14,9 +14,10 @@
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
 //!
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
-//! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a colour between the
-//! robots' or goals' and another, a cell half covered, a grid that does not fit the image.
-//! Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells) and O(blob pixels).
+//! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
+//! colour between the robots' or goals' and another, a cell half covered that no leaning top
+//! explains, a grid that does not fit the image. Cost: one pass over the pixels (O(pixels),
+//! on all cores) plus O(cells), O(pixels of the covered cells) and O(blob pixels).
 //!
 //! ```
 //! use mason_crew::aerial::{read_aerial, AerialConfig};
