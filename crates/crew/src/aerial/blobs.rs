@@ -121,6 +121,10 @@ const MERGED: f64 = 1.7;
 const PIECE: f64 = 0.4;
 /// A lone piece smaller than this share of the median is noise; larger, it is doubtful.
 const NOISE: f64 = 0.2;
+/// A kept blob under this share of the median is a robot (or goal) partly hidden, or a
+/// single one among robots touching in pairs that made the median: the reading is refused
+/// when a blob of the median's size splits in two.
+pub const SMALL: f64 = 0.6;
 /// A piece this close (pixels, bounding boxes) to a blob joins it.
 const JOIN_GAP: u32 = 2;
 

@@ -723,6 +723,31 @@ fn marks(
             ),
         ));
     }
+    // A blob well under the median is a partly hidden one, or a single one among pairs
+    // touching that made the median: then a blob of the median's size splits in two.
+    let median = sorted.median_area as f64;
+    if let Some(b) = sorted
+        .kept
+        .iter()
+        .find(|b| (b.area() as f64) < blobs::SMALL * median)
+    {
+        if let Some(pair) = sorted
+            .kept
+            .iter()
+            .find(|p| blobs::split(p, sorted.median_area / 2).is_some())
+        {
+            return Err(at_pixel(
+                source,
+                pair.centroid(),
+                format!(
+                    "{kind}s touching: a blob of {} px splits in two like {kind}s of half the median ({} px), and a {kind}-coloured blob of {} px is that size: the median may be of {kind}s touching",
+                    pair.area(),
+                    sorted.median_area,
+                    b.area()
+                ),
+            ));
+        }
+    }
     let mut out = Vec::with_capacity(sorted.kept.len());
     for b in sorted.kept {
         let on_floor = blobs::on_floor(&b, image_to_floor);

@@ -205,6 +205,15 @@ fn refuses_what_it_cannot_read() {
         "{e}"
     );
 
+    // Two robots alone and two pairs touching: the median blob is a pair, and a pair splits
+    // into two robots the size of the lone ones.
+    let mut pairs = scene();
+    pairs
+        .robots
+        .extend([(1.7, 2.5), (2.3, 2.5), (5.7, 4.5), (6.3, 4.5)]);
+    let e = refusal(&pairs, &grid(8, 5));
+    assert!(e.contains("the median may be of robots touching"), "{e}");
+
     let mut border = scene();
     border.robots[1] = (6.03, 3.5);
     let e = refusal(&border, &grid(8, 5));
