@@ -38,6 +38,14 @@ FAMILIES = {
               floors=((0.50, 0.55, 0.62), (0.80, 0.72, 0.56), (0.36, 0.36, 0.37)),
               shelf_colours=((0.20, 0.25, 0.75), (0.85, 0.62, 0.10), (0.10, 0.55, 0.70), (0.60, 0.20, 0.65)),
               tiles=0.5, shelf_inset=0.06, warm=0.25, camera_height=(40, 180)),
+    # D: held out (rendered after the last change to the reader of issue #29). Cylinder and
+    # yawed-box robots, ring, diamond and square goals, greenish-grey, light and brown floors
+    # tiled every third of a cell, deep-blue, violet, yellow and teal shelves inset 0.03 cell,
+    # and a camera from 50 to 160 cells per 24 high.
+    "D": dict(robot_shapes=("cylinder", "rotbox"), goal_shapes=("ring", "diamond", "square"),
+              floors=((0.55, 0.58, 0.52), (0.82, 0.80, 0.78), (0.50, 0.42, 0.35)),
+              shelf_colours=((0.05, 0.10, 0.45), (0.40, 0.20, 0.70), (0.90, 0.75, 0.15), (0.05, 0.40, 0.45)),
+              tiles=1 / 3, shelf_inset=0.03, warm=0.2, camera_height=(50, 160)),
 }
 
 
