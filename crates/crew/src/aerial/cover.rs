@@ -315,6 +315,44 @@ mod tests {
     }
 
     #[test]
+    fn bins_count_a_cell_s_pixels_on_the_floor() {
+        // A 4 × 4-cell floor, 10 px a cell, straight down: cell (1, 2) is x 10..20, y 20..30.
+        let width = 40;
+        let mut classes = vec![Class::Floor as u8; width * 40];
+        for y in 20..30 {
+            for x in 10..13 {
+                classes[y * width + x] = Class::Obstacle as u8;
+            }
+        }
+        classes[25 * width + 15] = Class::Unsure as u8;
+        let to_image = Homography::floor_to_image(
+            4.0,
+            4.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 40.0), (0.0, 40.0)],
+        )
+        .unwrap();
+        let b = bins(
+            &classes,
+            width,
+            &to_image,
+            &to_image.inverse().unwrap(),
+            (1, 2),
+        );
+        for j in 0..BINS {
+            for i in 0..BINS {
+                let (o, f) = (b.obstacle[j * BINS + i], b.floor[j * BINS + i]);
+                if i < 3 {
+                    assert_eq!((o, f), (1, 0), "bin ({i}, {j})");
+                } else if (i, j) == (5, 5) {
+                    assert_eq!((o, f), (0, 0), "an unsure pixel counts as neither");
+                } else {
+                    assert_eq!((o, f), (0, 1), "bin ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn a_leaning_top_explains_the_near_part_of_a_free_cell() {
         // The nadir far to the right; cell (6, 9) with cell (7, 9) blocked: its top leans
         // 0.7 cell over (6, 9), from its right edge.
