@@ -30,6 +30,22 @@ FAMILIES = {
     "B": dict(robot_shapes=("dome", "cylinder"), goal_shapes=("ring", "disc"),
               floors=((0.45, 0.45, 0.47), (0.75, 0.74, 0.70), (0.58, 0.52, 0.46)),
               shelf_colours=((0.35, 0.15, 0.55), (0.30, 0.55, 0.85), (0.12, 0.35, 0.25))),
+    # C: held out (rendered after the reader of issue #29 was finished). Yawed-box and puck
+    # robots (a cylinder with a darker cap), cross and diamond goals, tiled floors (bluish,
+    # beige, asphalt), shelves inset 0.06 cell from their cells' borders in other colours,
+    # warmer and cooler light, and a camera from 40 to 180 (not 60 to 140) cells per 24 high.
+    "C": dict(robot_shapes=("rotbox", "puck"), goal_shapes=("cross", "diamond"),
+              floors=((0.50, 0.55, 0.62), (0.80, 0.72, 0.56), (0.36, 0.36, 0.37)),
+              shelf_colours=((0.20, 0.25, 0.75), (0.85, 0.62, 0.10), (0.10, 0.55, 0.70), (0.60, 0.20, 0.65)),
+              tiles=0.5, shelf_inset=0.06, warm=0.25, camera_height=(40, 180)),
+    # D: held out (rendered after the last change to the reader of issue #29). Cylinder and
+    # yawed-box robots, ring, diamond and square goals, greenish-grey, light and brown floors
+    # tiled every third of a cell, deep-blue, violet, yellow and teal shelves inset 0.03 cell,
+    # and a camera from 50 to 160 cells per 24 high.
+    "D": dict(robot_shapes=("cylinder", "rotbox"), goal_shapes=("ring", "diamond", "square"),
+              floors=((0.55, 0.58, 0.52), (0.82, 0.80, 0.78), (0.50, 0.42, 0.35)),
+              shelf_colours=((0.05, 0.10, 0.45), (0.40, 0.20, 0.70), (0.90, 0.75, 0.15), (0.05, 0.40, 0.45)),
+              tiles=1 / 3, shelf_inset=0.03, warm=0.2, camera_height=(50, 160)),
 }
 
 
@@ -38,13 +54,20 @@ def parse_range(text, cast=int):
     return cast(lo), cast(hi or lo)
 
 
-def floor_texture(rng, w, h, px, base, lines):
-    """The floor as an RGB array, px texels per cell: base colour, stains, grain, painted lines."""
+def floor_texture(rng, w, h, px, base, lines, tiles=None):
+    """The floor as an RGB array, px texels per cell: base colour, stains, grain, tile seams
+    (every `tiles` cells, when given), painted lines."""
     tw, th = w * px, h * px
     coarse = rng.normal(0.0, 1.0, (h // 3 + 2, w // 3 + 2))
     stain = np.array(Image.fromarray(coarse.astype(np.float32)).resize((tw, th), Image.BICUBIC))
     grain = rng.normal(0.0, 1.0, (th, tw))
     shade = 1.0 + 0.05 * stain + 0.03 * grain
+    if tiles:
+        step = max(2, int(round(tiles * px)))
+        seam = np.zeros((th, tw), bool)
+        seam[::step, :] = True
+        seam[:, ::step] = True
+        shade = np.where(seam, shade * 0.85, shade)
     tex = np.clip(np.array(base)[None, None, :] * shade[:, :, None], 0, 1)
     if lines:
         width = max(1, int(round(lines["width"] * px)))
@@ -103,11 +126,11 @@ def pick_layout(rng, w, h, n_robots, fam, robot_size, goal_size):
     return blocked, shelves, robots, goals
 
 
-def camera(rng, w, h, cell_px, tilt_max):
+def camera(rng, w, h, cell_px, tilt_max, cam_height=(60, 140)):
     """A pinhole camera over the floor: position, target, up, horizontal fov, image size."""
     tilt = math.radians(rng.uniform(0, tilt_max)) if tilt_max > 0 and rng.random() < 0.6 else 0.0
     azim = rng.uniform(0, 2 * math.pi)
-    height = rng.uniform(60, 140) * max(w, h) / 24
+    height = rng.uniform(*cam_height) * max(w, h) / 24
     centre = np.array([w / 2, h / 2, 0.0])
     offset = np.array([math.sin(tilt) * math.cos(azim), math.sin(tilt) * math.sin(azim), math.cos(tilt)])
     origin = centre + offset * height
@@ -180,9 +203,13 @@ def plastic(rgb, rough):
             "diffuse_reflectance": {"type": "rgb", "value": list(rgb)}}
 
 
-def box(cx, cy, z0, sx, sy, sz, bsdf):
+def box(cx, cy, z0, sx, sy, sz, bsdf, yaw=0.0):
     T = mi.ScalarTransform4f()
-    return {"type": "cube", "to_world": T.translate([cx, cy, z0 + sz / 2]).scale([sx / 2, sy / 2, sz / 2]), "bsdf": bsdf}
+    to_world = T.translate([cx, cy, z0 + sz / 2])
+    if yaw:
+        to_world = to_world.rotate([0, 0, 1], yaw)
+    to_world = to_world.scale([sx / 2, sy / 2, sz / 2])
+    return {"type": "cube", "to_world": to_world, "bsdf": bsdf}
 
 
 def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, cam, robot, goal, light):
@@ -207,9 +234,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
     else:
         objs["sun"] = {"type": "directional", "direction": list(-sun),
                        "irradiance": {"type": "rgb", "value": light["sun"]}}
+    inset = fam.get("shelf_inset", 0.02)
     for i, s in enumerate(shelves):
-        objs[f"shelf{i}"] = box(s["x"] + s["w"] / 2, h - (s["y"] + s["h"] / 2), 0, s["w"] - 0.04, s["h"] - 0.04,
-                                s["height"], plastic(s["colour"], 0.3))
+        objs[f"shelf{i}"] = box(s["x"] + s["w"] / 2, h - (s["y"] + s["h"] / 2), 0, s["w"] - 2 * inset,
+                                s["h"] - 2 * inset, s["height"], plastic(s["colour"], 0.3))
     for i, (cx, cy) in enumerate(robots):
         cy = h - cy
         col = robot["colour"] * rng.uniform(0.85, 1.1)
@@ -217,6 +245,18 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
         r, hgt = robot["size"] / 2, robot["height"]
         if robot["shape"] == "box":
             objs[f"robot{i}"] = box(cx, cy, 0, 2 * r, 2 * r, hgt, mat)
+        elif robot["shape"] == "rotbox":
+            # A box of the same footprint area as the cylinder, turned about its axis.
+            side = r * math.sqrt(math.pi)
+            objs[f"robot{i}"] = box(cx, cy, 0, side, side, hgt, mat, yaw=float(rng.uniform(0, 90)))
+        elif robot["shape"] == "puck":
+            objs[f"robot{i}"] = {"type": "cylinder", "p0": [cx, cy, 0], "p1": [cx, cy, hgt], "radius": r, "bsdf": mat}
+            objs[f"robot{i}top"] = {"type": "disk", "to_world": T.translate([cx, cy, hgt]).scale([r, r, 1]), "bsdf": mat}
+            cap = plastic(np.clip(col * 0.45, 0, 1), robot["rough"])
+            objs[f"robot{i}cap"] = {"type": "cylinder", "p0": [cx, cy, hgt], "p1": [cx, cy, hgt + 0.15 * hgt],
+                                    "radius": 0.45 * r, "bsdf": cap}
+            objs[f"robot{i}capt"] = {"type": "disk", "to_world": T.translate([cx, cy, hgt + 0.15 * hgt]).scale([0.45 * r, 0.45 * r, 1]),
+                                     "bsdf": cap}
         else:
             objs[f"robot{i}"] = {"type": "cylinder", "p0": [cx, cy, 0], "p1": [cx, cy, hgt], "radius": r, "bsdf": mat}
             if robot["shape"] == "dome":
@@ -230,6 +270,11 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
         z = 0.003
         if goal["shape"] == "square":
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 2 * r, z, mat)
+        elif goal["shape"] == "diamond":
+            objs[f"goal{i}"] = box(cx, cy, 0, 2 * r / math.sqrt(2), 2 * r / math.sqrt(2), z, mat, yaw=45.0)
+        elif goal["shape"] == "cross":
+            objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 0.7 * r, z, mat)
+            objs[f"goal{i}b"] = box(cx, cy, 0, 0.7 * r, 2 * r, z, mat)
         else:
             objs[f"goal{i}"] = {"type": "disk", "to_world": T.translate([cx, cy, z]).scale([r, r, 1]), "bsdf": mat}
             if goal["shape"] == "ring":
@@ -279,17 +324,17 @@ def render_one(args, seed, out_dir):
         lines = dict(width=float(rng.uniform(0.04, 0.09)),
                      colour=[0.12, 0.12, 0.12] if rng.random() < 0.6 else [0.92, 0.92, 0.9])
     tex_px = int(min(24, max(8, 4096 // max(w, h))))
-    tex = floor_texture(rng, w, h, tex_px, base, lines)
+    tex = floor_texture(rng, w, h, tex_px, base, lines, fam.get("tiles"))
     tex_path = os.path.join(out_dir, f".floor-{args.family}{seed}.png")
     Image.fromarray((tex * 255).astype(np.uint8)).save(tex_path)
     elev = math.radians(rng.uniform(35, 80))
     az = rng.uniform(0, 2 * math.pi)
-    warm = rng.uniform(-0.15, 0.15)
+    warm = rng.uniform(-fam.get("warm", 0.15), fam.get("warm", 0.15))
     light = dict(sun_dir=[math.cos(elev) * math.cos(az), math.cos(elev) * math.sin(az), math.sin(elev)],
                  sun=[3.0 * (1 + warm), 3.0, 3.0 * (1 - warm)],
                  sky=[0.35 * (1 - warm / 2), 0.38, 0.42 * (1 + warm / 2)],
                  soft=float(rng.uniform(1.0, 6.0)) if rng.random() < 0.5 else 0.0)
-    cam = camera(rng, w, h, cell_px, args.tilt)
+    cam = camera(rng, w, h, cell_px, args.tilt, fam.get("camera_height", (60, 140)))
     mi_scene = mi.load_dict(scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals,
                                        cam, robot, goal, light))
     img = np.array(mi.render(mi_scene, seed=seed))

@@ -74,7 +74,11 @@ fn assert_exact(name: &str, r: &AerialReading, truth: &Value) {
 
 #[test]
 fn rendered_views_read_exactly() {
-    for name in ["A0011", "A0901", "A0902", "A0904", "A0906", "A0908"] {
+    // A0013: two robots touching after blur, split; A0037: a free cell whose window a
+    // shelf's leaning top covers a third of, explained by the lean.
+    for name in [
+        "A0011", "A0013", "A0037", "A0901", "A0902", "A0904", "A0906", "A0908",
+    ] {
         let (image, truth) = scene(name);
         let r = read_aerial(&image, name, &config(&truth, true))
             .unwrap_or_else(|e| panic!("{name}: {e}"));

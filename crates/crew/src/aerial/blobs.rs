@@ -121,6 +121,10 @@ const MERGED: f64 = 1.7;
 const PIECE: f64 = 0.4;
 /// A lone piece smaller than this share of the median is noise; larger, it is doubtful.
 const NOISE: f64 = 0.2;
+/// A kept blob under this share of the median is a robot (or goal) partly hidden, or a
+/// single one among robots touching in pairs that made the median: the reading is refused
+/// when a blob of the median's size splits in two.
+pub const SMALL: f64 = 0.6;
 /// A piece this close (pixels, bounding boxes) to a blob joins it.
 const JOIN_GAP: u32 = 2;
 
@@ -174,6 +178,205 @@ pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
         doubtful,
         median_area: median,
     }
+}
+
+/// A merged blob is split only when its area is this close (in medians) to a whole number.
+pub const SPLIT_SLACK: f64 = 0.3;
+/// Each piece of a split blob is within this share of the median (either way).
+pub const PIECE_SPREAD: f64 = 0.4;
+
+/// Splits a blob of several touching robots (or goals) of median area `median` into one blob
+/// each, or `None` when that cannot be done with confidence.
+///
+/// The count is the area in medians, accepted only when it is within [`SPLIT_SLACK`] of a
+/// whole number from 2 to 4. The blob is eroded (chamfer distance to its outside) until
+/// its core falls apart into exactly that many pieces, each at least a 40th of the median;
+/// the cores then grow back down the depths (at each depth, breadth first from all cores at
+/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: a
+/// count that is not clear, a core that never falls apart into that many pieces (or into
+/// more first), or a piece whose area is more than [`PIECE_SPREAD`] from the median.
+pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
+    let ratio = blob.area() as f64 / median.max(1) as f64;
+    let n = ratio.round();
+    if !(2.0..=4.0).contains(&n) || (ratio - n).abs() > SPLIT_SLACK {
+        return None;
+    }
+    let n = n as usize;
+    let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
+    let bw = blob.bbox.2 as usize - x0 + 1;
+    let bh = blob.bbox.3 as usize - y0 + 1;
+    // Chamfer distance (3 a step along an axis, 4 diagonally) to the outside, by two passes
+    // over the bounding box (padded by 0).
+    let mut dist = vec![0u32; bw * bh];
+    for &(x, y) in &blob.pixels {
+        dist[(y as usize - y0) * bw + x as usize - x0] = u32::MAX;
+    }
+    let at = |d: &[u32], x: isize, y: isize| -> u32 {
+        if x < 0 || y < 0 || x >= bw as isize || y >= bh as isize {
+            0
+        } else {
+            d[y as usize * bw + x as usize]
+        }
+    };
+    for y in 0..bh as isize {
+        for x in 0..bw as isize {
+            let i = y as usize * bw + x as usize;
+            if dist[i] == 0 {
+                continue;
+            }
+            let m = [(-1, -1, 4), (0, -1, 3), (1, -1, 4), (-1, 0, 3)]
+                .iter()
+                .map(|&(dx, dy, w)| at(&dist, x + dx, y + dy).saturating_add(w))
+                .min()
+                .unwrap_or(0);
+            dist[i] = m.min(dist[i]);
+        }
+    }
+    for y in (0..bh as isize).rev() {
+        for x in (0..bw as isize).rev() {
+            let i = y as usize * bw + x as usize;
+            if dist[i] == 0 {
+                continue;
+            }
+            let m = [(1, 1, 4), (0, 1, 3), (-1, 1, 4), (1, 0, 3)]
+                .iter()
+                .map(|&(dx, dy, w)| at(&dist, x + dx, y + dy).saturating_add(w))
+                .min()
+                .unwrap_or(0);
+            dist[i] = dist[i].min(m);
+        }
+    }
+    let deepest = dist.iter().copied().max().unwrap_or(0);
+    // At most about 64 depths are tried, so a huge blob costs O(64 × its bounding box).
+    let stride = (deepest / 64).max(1) as usize;
+    let min_core = (median / 40).max(1);
+    let mut label = vec![0u32; bw * bh];
+    let mut found = None;
+    for t in (4..=deepest).step_by(stride) {
+        // The cores at depth t: 8-connected pieces of the pixels at least t deep.
+        label.iter_mut().for_each(|l| *l = 0);
+        let mut sizes: Vec<usize> = Vec::new();
+        let mut stack = Vec::new();
+        for start in 0..bw * bh {
+            if dist[start] < t || label[start] != 0 {
+                continue;
+            }
+            sizes.push(0);
+            let id = sizes.len() as u32;
+            label[start] = id;
+            stack.push(start);
+            while let Some(i) = stack.pop() {
+                sizes[id as usize - 1] += 1;
+                let (x, y) = ((i % bw) as isize, (i / bw) as isize);
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let (nx, ny) = (x + dx, y + dy);
+                        if at(&dist, nx, ny) >= t {
+                            let j = ny as usize * bw + nx as usize;
+                            if label[j] == 0 {
+                                label[j] = id;
+                                stack.push(j);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let big = sizes.iter().filter(|&&s| s >= min_core).count();
+        if big > n {
+            return None;
+        }
+        if big == n {
+            // Drop the small cores: their pixels are grown into like any other.
+            for l in label.iter_mut() {
+                if *l != 0 && sizes[*l as usize - 1] < min_core {
+                    *l = 0;
+                }
+            }
+            found = Some((sizes, t));
+            break;
+        }
+        if big == 0 {
+            return None;
+        }
+    }
+    let (sizes, level) = found?;
+    // Renumber the kept cores 1..=n in order of their first pixel.
+    let mut renumber = vec![0u32; sizes.len() + 1];
+    let mut next = 0;
+    for l in label.iter_mut() {
+        if *l != 0 {
+            if renumber[*l as usize] == 0 {
+                next += 1;
+                renumber[*l as usize] = next;
+            }
+            *l = renumber[*l as usize];
+        }
+    }
+    // Grow the cores down the depths, as water rises: at each depth, breadth first from all
+    // cores at once into the pixels at least that deep.
+    for t in (1..level).rev().step_by(stride).chain([1]) {
+        let mut queue: std::collections::VecDeque<usize> =
+            (0..bw * bh).filter(|&i| label[i] != 0).collect();
+        while let Some(i) = queue.pop_front() {
+            let (x, y) = ((i % bw) as isize, (i / bw) as isize);
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if at(&dist, nx, ny) >= t {
+                        let j = ny as usize * bw + nx as usize;
+                        if label[j] == 0 {
+                            label[j] = label[i];
+                            queue.push_back(j);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Pixels the growth did not reach (a piece joined across a gap, see [`sort`]) join the
+    // piece whose reached pixels' centroid is nearest.
+    let mut sums = vec![(0.0f64, 0.0f64, 0usize); n + 1];
+    for (i, &l) in label.iter().enumerate() {
+        if l != 0 {
+            let c = &mut sums[l as usize];
+            (c.0, c.1, c.2) = (c.0 + (i % bw) as f64, c.1 + (i / bw) as f64, c.2 + 1);
+        }
+    }
+    for &(x, y) in &blob.pixels {
+        let i = (y as usize - y0) * bw + x as usize - x0;
+        if label[i] == 0 {
+            let (px, py) = ((i % bw) as f64, (i / bw) as f64);
+            let nearest = (1..=n).filter(|&l| sums[l].2 > 0).min_by(|&a, &b| {
+                let d = |l: usize| {
+                    let m = sums[l].2 as f64;
+                    (sums[l].0 / m - px).powi(2) + (sums[l].1 / m - py).powi(2)
+                };
+                d(a).total_cmp(&d(b))
+            })?;
+            label[i] = nearest as u32;
+        }
+    }
+    let mut pieces = vec![
+        Blob {
+            pixels: Vec::new(),
+            bbox: (u32::MAX, u32::MAX, 0, 0),
+        };
+        n
+    ];
+    for &(x, y) in &blob.pixels {
+        let l = label[(y as usize - y0) * bw + x as usize - x0];
+        let b = pieces.get_mut((l as usize).checked_sub(1)?)?;
+        b.pixels.push((x, y));
+        b.bbox = (
+            b.bbox.0.min(x),
+            b.bbox.1.min(y),
+            b.bbox.2.max(x),
+            b.bbox.3.max(y),
+        );
+    }
+    let fits = |b: &Blob| (b.area() as f64 / median.max(1) as f64 - 1.0).abs() <= PIECE_SPREAD;
+    pieces.iter().all(fits).then_some(pieces)
 }
 
 /// Where a standing object's footprint centre is on the floor, from its blob and the nadir
@@ -289,6 +492,106 @@ mod tests {
         assert_eq!(s.kept[1].area(), 40);
         assert_eq!(s.merged.len(), 1);
         assert_eq!(s.doubtful.len(), 1);
+    }
+
+    /// Pixel discs of radius `r` at the given centres, as one blob.
+    fn discs(centres: &[(f64, f64)], r: f64) -> Blob {
+        let mut pixels = Vec::new();
+        for y in 0..60u32 {
+            for x in 0..80u32 {
+                let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                if centres
+                    .iter()
+                    .any(|c| (px - c.0).powi(2) + (py - c.1).powi(2) <= r * r)
+                {
+                    pixels.push((x, y));
+                }
+            }
+        }
+        let bbox = pixels
+            .iter()
+            .fold((u32::MAX, u32::MAX, 0, 0), |b, &(x, y)| {
+                (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
+            });
+        Blob { pixels, bbox }
+    }
+
+    #[test]
+    fn touching_robots_are_split_when_the_count_is_clear() {
+        let one = discs(&[(10.0, 10.0)], 5.0).area();
+        // Two discs overlapping by a pixel, and three in a row.
+        for centres in [
+            vec![(20.0, 20.0), (29.5, 21.0)],
+            vec![(10.0, 30.0), (19.6, 30.0), (29.2, 30.0)],
+        ] {
+            let blob = discs(&centres, 5.0);
+            let pieces = split(&blob, one).expect("split");
+            assert_eq!(pieces.len(), centres.len());
+            let mut got: Vec<Point> = pieces.iter().map(Blob::centroid).collect();
+            got.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for (g, c) in got.iter().zip(&centres) {
+                assert!(
+                    (g.0 - c.0).abs() < 1.0 && (g.1 - c.1).abs() < 1.0,
+                    "{got:?}"
+                );
+            }
+            assert_eq!(pieces.iter().map(Blob::area).sum::<usize>(), blob.area());
+        }
+        // 2.5 medians: the count is not clear.
+        let mut blob = discs(&[(20.0, 20.0), (29.5, 21.0)], 5.0);
+        let small = discs(&[(24.5, 28.0)], 3.5);
+        let extra: Vec<(u32, u32)> = small
+            .pixels
+            .iter()
+            .copied()
+            .filter(|p| !blob.pixels.contains(p))
+            .collect();
+        blob.pixels.extend(extra);
+        blob.bbox.3 = small.bbox.3;
+        let ratio = blob.area() as f64 / one as f64;
+        assert!((ratio - 2.5).abs() < 0.2, "{ratio}");
+        assert!(split(&blob, one).is_none());
+        // Twice the median but no neck: a bar of 20 × 8 px.
+        let bar = blob_at(0, 0, 20);
+        let bar = Blob {
+            pixels: bar.pixels.into_iter().filter(|p| p.1 < 8).collect(),
+            bbox: (0, 0, 19, 7),
+        };
+        assert!(split(&bar, 80).is_none());
+    }
+
+    /// Two discs of radius 120 px touching: about 64 depths are tried, not 360.
+    #[test]
+    fn a_huge_blob_splits_in_few_depths() {
+        let r = 120.0f64;
+        let mut pixels = Vec::new();
+        for y in 0..250u32 {
+            for x in 0..500u32 {
+                let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                if [(125.0, 125.0), (364.0, 125.0)]
+                    .iter()
+                    .any(|c: &(f64, f64)| (px - c.0).powi(2) + (py - c.1).powi(2) <= r * r)
+                {
+                    pixels.push((x, y));
+                }
+            }
+        }
+        let bbox = pixels
+            .iter()
+            .fold((u32::MAX, u32::MAX, 0, 0), |b, &(x, y)| {
+                (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
+            });
+        let blob = Blob { pixels, bbox };
+        let pieces = split(&blob, blob.area() / 2).expect("split");
+        assert_eq!(pieces.len(), 2);
+        assert!(pieces
+            .iter()
+            .all(|p| p.centroid().0 < 245.0 || p.centroid().0 > 245.0));
+        assert!(
+            (pieces[0].centroid().0 - 125.0).abs() < 2.0,
+            "{:?}",
+            pieces[0].centroid()
+        );
     }
 
     #[test]

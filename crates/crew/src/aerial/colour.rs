@@ -3,7 +3,8 @@
 //! Colours are judged after white balance on the floor (the floor's median colour becomes
 //! grey), by hue, saturation s = (max − min) / max and chroma c = (max − min) relative to the
 //! floor's brightness. Robots and goals need less colour than obstacles (see the constants). A shadow darkens the floor but keeps its hue-less grey (s stays low),
-//! so a shadow stays floor; a robot in a shadow keeps its hue. The floor's lit brightness is
+//! so a shadow stays floor; a pale obstacle as bright as the lit floor (no shadow) needs
+//! less saturation; a robot in a shadow keeps its hue. The floor's lit brightness is
 //! its median, so chroma does not depend on exposure.
 
 /// A colour as a hue in degrees (0 red, 120 green, 240 blue).
@@ -113,6 +114,9 @@ const MARK_COLOUR: (f64, f64) = (0.25, 0.05);
 /// Saturation and chroma of an obstacle's pixel: higher, since shadows under a blue sky are
 /// bluish after white balance on the sunlit floor.
 const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
+/// Brightness (relative to the lit floor) at which a pixel is no shadow, and the saturation
+/// that then suffices for an obstacle (pale shelves), with the chroma above: a mark's.
+const LIT_OBSTACLE: (f64, f64) = (0.85, MARK_COLOUR.0);
 /// Half-width of the robots' and the goals' hue bands, in degrees (robots are a clear colour;
 /// goals are paint or tape on the floor, whose green varies more).
 const HUE_BAND: (f64, f64) = (25.0, 35.0);
@@ -147,7 +151,9 @@ impl Classifier {
             Class::Robot
         } else if dg <= HUE_BAND.1 {
             Class::Goal
-        } else if !clear(OBSTACLE_COLOUR) {
+        } else if !(clear(OBSTACLE_COLOUR)
+            || (max >= LIT_OBSTACLE.0 && clear((LIT_OBSTACLE.1, OBSTACLE_COLOUR.1))))
+        {
             Class::Floor
         } else if dr <= HUE_BAND.0 + HUE_DOUBT || dg <= HUE_BAND.1 + HUE_DOUBT {
             Class::Unsure
@@ -177,6 +183,15 @@ mod tests {
         assert_eq!(c.classify([30, 60, 150]), Class::Obstacle);
         // Amber, between red and yellow: neither a robot's colour nor clearly another.
         assert_eq!(c.classify([220, 120, 20]), Class::Unsure);
+    }
+
+    #[test]
+    fn a_pale_obstacle_is_told_from_a_bluish_shadow() {
+        let c = Classifier::new([150.0, 150.0, 150.0], Hue::RED, Hue::GREEN);
+        // Pale blue, brighter than the floor: saturation 0.27.
+        assert_eq!(c.classify([150, 175, 205]), Class::Obstacle);
+        // The same tint in a shadow (two thirds as bright): floor.
+        assert_eq!(c.classify([75, 88, 103]), Class::Floor);
     }
 
     #[test]

@@ -6,14 +6,18 @@
 //!    corners through a [`homography`], and the grid: given (W × H cells or the cell size in
 //!    pixels) or found from painted [`lines`];
 //! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
-//!    and each cell's obstacle coverage, in one pass over the [`pixels`];
+//!    and each cell's obstacle coverage, in one pass over the [`pixels`]; a cell the window
+//!    count leaves in doubt is judged on its [`cover`] in finer bins, against what the
+//!    leaning tops of the obstacles next to it would cover;
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
-//!    the floor (a robot's top leans away from the camera; its base is found).
+//!    the floor (a robot's top leans away from the camera; its base is found); a blob of
+//!    several touching is split when its area and shape tell how ([`blobs::split`]).
 //!
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
-//! guessed: two robots touching, a robot or goal on a cell border, a colour between the
-//! robots' or goals' and another, a cell half covered, a grid that does not fit the image.
-//! Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells) and O(blob pixels).
+//! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
+//! colour between the robots' or goals' and another, a cell half covered that no leaning top
+//! explains, a grid that does not fit the image. Cost: one pass over the pixels (O(pixels),
+//! on all cores) plus O(cells), O(pixels of the covered cells) and O(blob pixels).
 //!
 //! ```
 //! use mason_crew::aerial::{read_aerial, AerialConfig};
@@ -36,6 +40,7 @@
 
 pub mod blobs;
 pub mod colour;
+pub mod cover;
 pub mod homography;
 pub mod lines;
 pub mod pixels;
@@ -54,7 +59,9 @@ pub const MAX_GRID_CELLS: u64 = 1 << 20;
 pub const MIN_CELL_PX: f64 = 3.0;
 /// A robot's or goal's centre closer than this (in cells) to a cell border is refused.
 pub const BORDER_MARGIN: f64 = 0.1;
-/// A cell whose middle is covered by an obstacle at a share in this range is refused.
+/// A cell whose window is covered by an obstacle at a share in this range is refused, unless
+/// a neighbour's leaning top explains the cover ([`cover`]); above it, the cell is blocked
+/// under the same proviso.
 pub const HALF_COVERED: (f64, f64) = (0.3, 0.7);
 
 /// How to read an aerial view.
@@ -118,7 +125,8 @@ pub struct Mark {
 pub struct AerialReading {
     /// The floor grid, with its blocked cells.
     pub grid: Grid,
-    /// The robots, in row-major order of their blobs.
+    /// The robots, in row-major order of their blobs (robots split from one blob of several
+    /// touching follow the others).
     pub robots: Vec<Mark>,
     /// The goals, likewise.
     pub goals: Vec<Mark>,
@@ -473,8 +481,9 @@ pub fn read_aerial_image(
             ))
             .unwrap_or((0.0, 0.0))
     };
-    let mut blocked = vec![false; gw as usize * gh as usize];
-    for (i, b) in blocked.iter_mut().enumerate() {
+    let cells = gw as usize * gh as usize;
+    let mut shares = Vec::with_capacity(cells);
+    for i in 0..cells {
         let Some(share) = coverage.share(i) else {
             return Err(at_pixel(
                 source,
@@ -486,24 +495,91 @@ pub fn read_aerial_image(
                 ),
             ));
         };
-        if share > HALF_COVERED.0 && share < HALF_COVERED.1 {
+        shares.push(share);
+    }
+    // Cells whose window is mostly covered; those among them, and the half-covered cells,
+    // that a neighbour's leaning top explains are free (see `cover`).
+    let sure: Vec<bool> = shares.iter().map(|&s| s >= HALF_COVERED.1).collect();
+    let is_sure = |x: i64, y: i64| {
+        x >= 0
+            && y >= 0
+            && x < i64::from(gw)
+            && y < i64::from(gh)
+            && sure[(y * i64::from(gw) + x) as usize]
+    };
+    let width = img.width() as usize;
+    // The fits, on all cores (each cell's alone: the result does not depend on the cores).
+    let fits: Vec<Option<cover::Fit>> = {
+        use rayon::prelude::*;
+        (0..cells)
+            .into_par_iter()
+            .map(|i| {
+                let n = nadir?;
+                if shares[i] <= HALF_COVERED.0 {
+                    return None;
+                }
+                let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+                // A mostly covered cell can only be free under a top leaning from a blocked
+                // neighbour on its side toward the nadir (or level with it).
+                let side = |c: u32, at: f64| -> &'static [i64] {
+                    if at >= f64::from(c) + 1.0 {
+                        &[0, 1]
+                    } else if at < f64::from(c) {
+                        &[-1, 0]
+                    } else {
+                        &[-1, 0, 1]
+                    }
+                };
+                let (xi, yi) = (i64::from(x), i64::from(y));
+                let leaned_on = side(x, n.0).iter().any(|&dx| {
+                    side(y, n.1)
+                        .iter()
+                        .any(|&dy| (dx, dy) != (0, 0) && is_sure(xi + dx, yi + dy))
+                });
+                if shares[i] >= HALF_COVERED.1 && !leaned_on {
+                    return None;
+                }
+                let bins = cover::bins(&classes, width, &floor_to_image, &image_to_floor, (x, y));
+                cover::fit(&bins, (x, y), n, &is_sure)
+            })
+            .collect()
+    };
+    let mut blocked = vec![false; cells];
+    for (i, b) in blocked.iter_mut().enumerate() {
+        let share = shares[i];
+        if share <= HALF_COVERED.0 {
+            continue;
+        }
+        let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+        let leaning = fits[i];
+        if leaning.is_some_and(|f| f.free()) {
+            continue;
+        }
+        if share >= HALF_COVERED.1 && leaning.is_some_and(|f| f.doubtful()) {
             return Err(at_pixel(
                 source,
                 cell_centre_px(i),
                 format!(
-                    "cell ({}, {}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over): cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
-                    i % gw as usize,
-                    i / gw as usize,
+                    "cell ({x}, {y}) is {:.0} % covered by an obstacle, but a neighbour's leaning top may cover it almost whole: cannot tell whether it is blocked",
+                    share * 100.0
+                ),
+            ));
+        }
+        if share < HALF_COVERED.1 {
+            return Err(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!(
+                    "cell ({x}, {y}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over), and no neighbour's leaning top explains the cover: cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
                     share * 100.0,
                     HALF_COVERED.0 * 100.0,
                     HALF_COVERED.1 * 100.0
                 ),
             ));
         }
-        *b = share >= HALF_COVERED.1;
+        *b = true;
     }
     let grid = Grid::new(gw, gh, blocked);
-    let width = img.width() as usize;
     let px = cell_size_px(&floor_to_image, (fw, fh));
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let robots = marks(
@@ -620,18 +696,21 @@ fn marks(
     px_on_floor: f64,
     source: &str,
 ) -> Result<Vec<Mark>, CrewError> {
-    let sorted = blobs::sort(found);
-    if let Some(b) = sorted.merged.first() {
-        return Err(at_pixel(
-            source,
-            b.centroid(),
-            format!(
-                "{kind}s touching: a blob of {} px, {:.1} times the median {kind} ({} px)",
-                b.area(),
-                b.area() as f64 / sorted.median_area as f64,
-                sorted.median_area
-            ),
-        ));
+    let mut sorted = blobs::sort(found);
+    for b in std::mem::take(&mut sorted.merged) {
+        let Some(pieces) = blobs::split(&b, sorted.median_area) else {
+            return Err(at_pixel(
+                source,
+                b.centroid(),
+                format!(
+                    "{kind}s touching: a blob of {} px, {:.1} times the median {kind} ({} px), that cannot be separated",
+                    b.area(),
+                    b.area() as f64 / sorted.median_area as f64,
+                    sorted.median_area
+                ),
+            ));
+        };
+        sorted.kept.extend(pieces);
     }
     if let Some(b) = sorted.doubtful.first() {
         return Err(at_pixel(
@@ -643,6 +722,31 @@ fn marks(
                 sorted.median_area
             ),
         ));
+    }
+    // A blob well under the median is a partly hidden one, or a single one among pairs
+    // touching that made the median: then a blob of the median's size splits in two.
+    let median = sorted.median_area as f64;
+    if let Some(b) = sorted
+        .kept
+        .iter()
+        .find(|b| (b.area() as f64) < blobs::SMALL * median)
+    {
+        if let Some(pair) = sorted
+            .kept
+            .iter()
+            .find(|p| blobs::split(p, sorted.median_area / 2).is_some())
+        {
+            return Err(at_pixel(
+                source,
+                pair.centroid(),
+                format!(
+                    "{kind}s touching: a blob of {} px splits in two like {kind}s of half the median ({} px), and a {kind}-coloured blob of {} px is that size: the median may be of {kind}s touching",
+                    pair.area(),
+                    sorted.median_area,
+                    b.area()
+                ),
+            ));
+        }
     }
     let mut out = Vec::with_capacity(sorted.kept.len());
     for b in sorted.kept {

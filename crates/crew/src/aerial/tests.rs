@@ -177,16 +177,42 @@ fn refusal(p: &Paint, cfg: &AerialConfig) -> String {
 
 #[test]
 fn refuses_what_it_cannot_read() {
+    // Two robots touching, each on its own cell: split and read.
     let mut touching = scene();
     touching.robots.push((7.1, 3.5));
     touching.goals.push((4.5, 4.5));
     touching.robots.push((1.5, 2.5));
     touching.goals.push((6.5, 0.5));
-    let e = refusal(&touching, &grid(8, 5));
+    let r = read_aerial(&png(&touching.straight(12)), "v.png", &grid(8, 5)).unwrap();
+    let mut robots = xy(&r, &r.robots);
+    robots.sort_unstable();
+    assert_eq!(robots, [(0, 0), (1, 2), (6, 3), (7, 3)]);
+    // A red bar as large as two robots, with no neck between them: cannot be separated.
+    let mut bar = scene();
+    bar.robots.push((1.5, 2.5));
+    bar.goals.push((6.5, 0.5));
+    let mut img = bar.straight(12);
+    for y in 28..35 {
+        for x in 64..76 {
+            img.put_pixel(x, y, Rgb([200, 30, 25]));
+        }
+    }
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
     assert!(
-        e.contains("robots touching") && e.contains("pixel ("),
+        e.contains("robots touching") && e.contains("cannot be separated") && e.contains("pixel ("),
         "{e}"
     );
+
+    // Two robots alone and two pairs touching: the median blob is a pair, and a pair splits
+    // into two robots the size of the lone ones.
+    let mut pairs = scene();
+    pairs
+        .robots
+        .extend([(1.7, 2.5), (2.3, 2.5), (5.7, 4.5), (6.3, 4.5)]);
+    let e = refusal(&pairs, &grid(8, 5));
+    assert!(e.contains("the median may be of robots touching"), "{e}");
 
     let mut border = scene();
     border.robots[1] = (6.03, 3.5);

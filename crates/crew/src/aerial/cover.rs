@@ -1,0 +1,412 @@
+//! Whether a covered cell is blocked, or free under a neighbour's leaning top.
+//!
+//! The window count of [`super::pixels`] settles most cells: an obstacle covers a blocked
+//! cell's window whole and a free cell's hardly at all. It cannot settle a free cell beyond
+//! a tall obstacle far from the nadir, whose top leans further than the window allows (under
+//! a tilted camera, most of a cell). Such a cell is judged on more evidence: its obstacle
+//! cover in a 10 × 10 lattice of bins on the floor, against what the obstacles around it
+//! would cover if it were free.
+//!
+//! Geometry: an obstacle standing on footprint F, of height z, under a camera at height H
+//! over the nadir N, covers on the floor (the image mapped back through the homography) the
+//! union of F scaled about N by every s from 1 to k = H / (H − z): its sides and its top,
+//! which lean away from N. So a floor point p is covered by the obstacles on the cells
+//! already known to be blocked (`sure`) exactly when, walking from p toward N, one reaches
+//! such a cell at a point q with |p − N| / |q − N| ≤ k. That ratio is each bin's `reach`
+//! (infinite when no blocked cell lies within [`MAX_LEAN`] cells toward N).
+//!
+//! A cell is free under a leaning top when one k (the same for the whole cell) splits its
+//! bins: covered bins reach within k, bins showing floor do not, with at most [`MISFIT`] of
+//! the bins on the wrong side (blurred edges), and at least [`EVIDENCE`] of them floor beyond
+//! the lean: floor seen from the nadir behind the cover, and no cover beyond it to the cell's
+//! far edge, where the top ends (a blocked cell is covered to its far edge by its own top).
+//! A k above [`MAX_K`] is not considered. A mostly covered cell with less such floor, but
+//! some ([`DOUBT`]), may be a free cell almost all under a top: refused, not blocked.
+//! Covered bins within [`BLEED`] of an edge shared with a blocked cell are not counted (a
+//! coloured penumbra or inter-reflection beside an obstacle's base). Anything else is left
+//! to the window: blocked above 70 %, refused between 30 and 70 %.
+//!
+//! Limit: a free cell that a top covers whole (a lean of a cell or more) cannot be told from
+//! the silhouette alone from a blocked one; it reads as blocked. Where the side face facing
+//! the nadir ends and the top begins would tell; this module does not look at shading.
+
+use super::colour::Class;
+use super::homography::{Homography, Point};
+use super::pixels::OUTSIDE;
+
+/// Bins per cell along each axis.
+pub const BINS: usize = 10;
+/// How far (cells) a top may lean over the floor beyond its obstacle.
+pub const MAX_LEAN: f64 = 2.0;
+/// At most this share of a cell's bins may contradict the split at k.
+pub const MISFIT: f64 = 0.06;
+/// At least this share of a cell's bins must show floor beyond the lean for it to be free.
+pub const EVIDENCE: f64 = 0.1;
+/// The largest lean scale k considered: obstacles are at most a fifth of the camera's
+/// height (k = H / (H − z)).
+pub const MAX_K: f64 = 1.25;
+/// A mostly covered cell with at least this share of its bins floor beyond a lean (but less
+/// than [`EVIDENCE`]) may be a free cell almost all under a top: it is refused, not blocked.
+pub const DOUBT: f64 = 0.03;
+/// Covered bins this close (cells) to an edge shared with a blocked cell are not counted.
+pub const BLEED: f64 = 0.2;
+/// A bin is covered at this share of obstacle pixels, floor at 1 minus it.
+const COVERED: f64 = 0.6;
+
+/// Obstacle and floor pixels per bin of one cell, row-major (v, then u).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bins {
+    /// Obstacle pixels per bin.
+    pub obstacle: [u32; BINS * BINS],
+    /// Floor (robot, goal) pixels per bin.
+    pub floor: [u32; BINS * BINS],
+}
+
+/// Counts cell `(cx, cy)`'s pixels per bin from the pixels' classes.
+pub fn bins(
+    classes: &[u8],
+    width: usize,
+    floor_to_image: &Homography,
+    image_to_floor: &Homography,
+    (cx, cy): (u32, u32),
+) -> Bins {
+    let mut out = Bins {
+        obstacle: [0; BINS * BINS],
+        floor: [0; BINS * BINS],
+    };
+    let height = classes.len() / width.max(1);
+    let (fx, fy) = (f64::from(cx), f64::from(cy));
+    let corners = [
+        (fx, fy),
+        (fx + 1.0, fy),
+        (fx + 1.0, fy + 1.0),
+        (fx, fy + 1.0),
+    ];
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+    for c in corners {
+        let Some((x, y)) = floor_to_image.apply(c) else {
+            return out;
+        };
+        (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+    }
+    let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+    let (x0, x1) = (clamp(x0.floor(), width), clamp(x1.ceil() + 1.0, width));
+    let (y0, y1) = (clamp(y0.floor(), height), clamp(y1.ceil() + 1.0, height));
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let class = classes[y * width + x];
+            if class == OUTSIDE || class == Class::Unsure as u8 {
+                continue;
+            }
+            let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+                continue;
+            };
+            let (du, dv) = (u - fx, v - fy);
+            if !((0.0..1.0).contains(&du) && (0.0..1.0).contains(&dv)) {
+                continue;
+            }
+            let b = (dv * BINS as f64) as usize * BINS + (du * BINS as f64) as usize;
+            if class == Class::Obstacle as u8 {
+                out.obstacle[b] += 1;
+            } else {
+                out.floor[b] += 1;
+            }
+        }
+    }
+    out
+}
+
+/// The scale about the nadir at which a point `p` of cell `own` is first covered by a top
+/// leaning from a `sure` (blocked) cell: see the module's comment. Infinite when none lies
+/// within [`MAX_LEAN`] cells toward the nadir.
+fn reach(p: Point, nadir: Point, own: (i64, i64), sure: &dyn Fn(i64, i64) -> bool) -> f64 {
+    let (dx, dy) = (nadir.0 - p.0, nadir.1 - p.1);
+    let dist = (dx * dx + dy * dy).sqrt();
+    if dist < 1e-9 {
+        return f64::INFINITY;
+    }
+    let (ux, uy) = (dx / dist, dy / dist);
+    const STEP: f64 = 1.0 / 32.0;
+    let steps = (MAX_LEAN.min(dist) / STEP) as usize;
+    for j in 1..=steps {
+        let t = j as f64 * STEP;
+        let cell = ((p.0 + ux * t).floor() as i64, (p.1 + uy * t).floor() as i64);
+        if cell != own && sure(cell.0, cell.1) {
+            return dist / (dist - t);
+        }
+    }
+    f64::INFINITY
+}
+
+/// How well "free under a leaning top" explains a cell's bins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fit {
+    /// The lean's scale k that splits the bins best (1: nothing leans).
+    pub k: f64,
+    /// The share of the bins on the wrong side of k.
+    pub misfit: f64,
+    /// The share of the bins showing floor beyond the lean: with a lean (k > 1), floor bins
+    /// behind a covered bin of the cell (seen from the nadir), where the top's cover ends;
+    /// without one, every floor bin.
+    pub evidence: f64,
+}
+
+impl Fit {
+    /// Whether the cell is free, its cover explained by leaning tops.
+    pub fn free(&self) -> bool {
+        self.misfit <= MISFIT && self.evidence >= EVIDENCE
+    }
+
+    /// Whether the cell may be free under a top that covers almost all of it: too little
+    /// floor beyond the lean to call it free, too much to call it blocked.
+    pub fn doubtful(&self) -> bool {
+        self.misfit <= MISFIT && self.evidence >= DOUBT && !self.free()
+    }
+}
+
+/// Fits "free under a leaning top" to cell `(cx, cy)`'s bins, with the nadir at `nadir`
+/// (floor cells) and `sure(x, y)` telling the cells known to be blocked.
+pub fn fit(
+    bins: &Bins,
+    (cx, cy): (u32, u32),
+    nadir: Point,
+    sure: &dyn Fn(i64, i64) -> bool,
+) -> Option<Fit> {
+    let own = (i64::from(cx), i64::from(cy));
+    // Distance from each edge, when the cell beyond it is blocked: left, right, top, bottom.
+    let sides = [(-1, 0), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| sure(own.0 + dx, own.1 + dy));
+    let seen = (0..BINS * BINS)
+        .filter(|&b| bins.obstacle[b] + bins.floor[b] > 0)
+        .count();
+    if seen == 0 {
+        return None;
+    }
+    let floor_bins = (0..BINS * BINS)
+        .filter(|&b| {
+            let total = bins.obstacle[b] + bins.floor[b];
+            total > 0 && f64::from(bins.obstacle[b]) <= (1.0 - COVERED) * f64::from(total)
+        })
+        .count();
+    if (floor_bins as f64) < DOUBT * seen as f64 {
+        // Too little floor to be anything but covered: no need to trace the lean.
+        return Some(Fit {
+            k: 1.0,
+            misfit: 1.0,
+            evidence: floor_bins as f64 / seen as f64,
+        });
+    }
+    let mut covered = Vec::with_capacity(BINS * BINS);
+    let mut floor = Vec::with_capacity(BINS * BINS);
+    for j in 0..BINS {
+        for i in 0..BINS {
+            let b = j * BINS + i;
+            let total = bins.obstacle[b] + bins.floor[b];
+            if total == 0 {
+                continue;
+            }
+            let share = f64::from(bins.obstacle[b]) / f64::from(total);
+            let (fu, fv) = (
+                (i as f64 + 0.5) / BINS as f64,
+                (j as f64 + 0.5) / BINS as f64,
+            );
+            let p = (f64::from(cx) + fu, f64::from(cy) + fv);
+            if share >= COVERED {
+                let bleed = [fu, 1.0 - fu, fv, 1.0 - fv]
+                    .iter()
+                    .zip(sides)
+                    .any(|(&d, blocked)| blocked && d < BLEED);
+                if !bleed {
+                    covered.push(reach(p, nadir, own, sure));
+                }
+            } else if share <= 1.0 - COVERED {
+                floor.push((reach(p, nadir, own, sure), p));
+            }
+        }
+    }
+    // The k with the fewest bins on the wrong side; the smallest such k.
+    let mut candidates: Vec<f64> = covered
+        .iter()
+        .copied()
+        .filter(|&s| s.is_finite() && s <= MAX_K)
+        .collect();
+    candidates.push(1.0);
+    candidates.sort_by(f64::total_cmp);
+    candidates.dedup();
+    let mut covered_sorted = covered.clone();
+    covered_sorted.sort_by(f64::total_cmp);
+    let mut floor_sorted: Vec<f64> = floor.iter().map(|f| f.0).collect();
+    floor_sorted.sort_by(f64::total_cmp);
+    let wrong = |k: f64| {
+        covered_sorted.len() - covered_sorted.partition_point(|&s| s <= k)
+            + floor_sorted.partition_point(|&s| s <= k)
+    };
+    let (mut best_k, mut best) = (1.0, usize::MAX);
+    for k in candidates {
+        let w = wrong(k);
+        if w < best {
+            (best_k, best) = (k, w);
+        }
+    }
+    // Whether the bin at share (i, j) of the cell is covered.
+    let is_covered = |i: i64, j: i64| {
+        let b = j as usize * BINS + i as usize;
+        let total = bins.obstacle[b] + bins.floor[b];
+        total > 0 && f64::from(bins.obstacle[b]) >= COVERED * f64::from(total)
+    };
+    // Whether walking from p toward the nadir (`sign` 1) or away from it (−1) meets a covered
+    // bin before leaving the cell.
+    let meets_cover = |p: Point, sign: f64| {
+        let (dx, dy) = (nadir.0 - p.0, nadir.1 - p.1);
+        let dist = (dx * dx + dy * dy).sqrt();
+        if dist < 1e-9 {
+            return false;
+        }
+        let step = sign / (4 * BINS) as f64;
+        let mut t = step;
+        loop {
+            let q = (p.0 + dx / dist * t, p.1 + dy / dist * t);
+            let (i, j) = (
+                ((q.0 - f64::from(cx)) * BINS as f64).floor() as i64,
+                ((q.1 - f64::from(cy)) * BINS as f64).floor() as i64,
+            );
+            if !(0..BINS as i64).contains(&i) || !(0..BINS as i64).contains(&j) {
+                return false;
+            }
+            if is_covered(i, j) {
+                return true;
+            }
+            t += step;
+        }
+    };
+    // Floor where a top's cover ends: cover toward the nadir, none beyond to the cell's edge.
+    let behind_cover = |p: Point| meets_cover(p, 1.0) && !meets_cover(p, -1.0);
+    let beyond = floor
+        .iter()
+        .filter(|f| f.0 > best_k && (best_k <= 1.0 || behind_cover(f.1)))
+        .count();
+    Some(Fit {
+        k: best_k,
+        misfit: best as f64 / seen as f64,
+        evidence: beyond as f64 / seen as f64,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bins of a cell whose part with fu (along u) in `covered_u` shows an obstacle.
+    fn bins_covering(covered_u: std::ops::Range<f64>) -> Bins {
+        let mut b = Bins {
+            obstacle: [0; BINS * BINS],
+            floor: [0; BINS * BINS],
+        };
+        for j in 0..BINS {
+            for i in 0..BINS {
+                let fu = (i as f64 + 0.5) / BINS as f64;
+                if covered_u.contains(&fu) {
+                    b.obstacle[j * BINS + i] = 4;
+                } else {
+                    b.floor[j * BINS + i] = 4;
+                }
+            }
+        }
+        b
+    }
+
+    #[test]
+    fn bins_count_a_cell_s_pixels_on_the_floor() {
+        // A 4 × 4-cell floor, 10 px a cell, straight down: cell (1, 2) is x 10..20, y 20..30.
+        let width = 40;
+        let mut classes = vec![Class::Floor as u8; width * 40];
+        for y in 20..30 {
+            for x in 10..13 {
+                classes[y * width + x] = Class::Obstacle as u8;
+            }
+        }
+        classes[25 * width + 15] = Class::Unsure as u8;
+        let to_image = Homography::floor_to_image(
+            4.0,
+            4.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 40.0), (0.0, 40.0)],
+        )
+        .unwrap();
+        let b = bins(
+            &classes,
+            width,
+            &to_image,
+            &to_image.inverse().unwrap(),
+            (1, 2),
+        );
+        for j in 0..BINS {
+            for i in 0..BINS {
+                let (o, f) = (b.obstacle[j * BINS + i], b.floor[j * BINS + i]);
+                if i < 3 {
+                    assert_eq!((o, f), (1, 0), "bin ({i}, {j})");
+                } else if (i, j) == (5, 5) {
+                    assert_eq!((o, f), (0, 0), "an unsure pixel counts as neither");
+                } else {
+                    assert_eq!((o, f), (0, 1), "bin ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_leaning_top_explains_the_near_part_of_a_free_cell() {
+        // The nadir far to the right; cell (6, 9) with cell (7, 9) blocked: its top leans
+        // 0.7 cell over (6, 9), from its right edge.
+        let nadir = (40.0, 9.5);
+        let sure = |x: i64, y: i64| (x, y) == (7, 9);
+        let f = fit(&bins_covering(0.3..1.0), (6, 9), nadir, &sure).unwrap();
+        assert!(f.free(), "{f:?}");
+        assert!(f.k > 1.01 && f.k < 1.03, "{f:?}");
+        assert!((f.evidence - 0.3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn cover_no_top_can_reach_is_not_explained() {
+        let nadir = (40.0, 9.5);
+        // Covered from the left, away from the nadir: nothing leans toward the nadir.
+        let sure = |x: i64, y: i64| (x, y) == (5, 9);
+        let f = fit(&bins_covering(0.0..0.6), (6, 9), nadir, &sure).unwrap();
+        assert!(!f.free(), "{f:?}");
+        // Covered in the middle, with the blocked neighbour toward the nadir: a lean would
+        // cover the right part first.
+        let sure = |x: i64, y: i64| (x, y) == (7, 9);
+        let f = fit(&bins_covering(0.2..0.6), (6, 9), nadir, &sure).unwrap();
+        assert!(!f.free(), "{f:?}");
+        // Covered but for a tenth at the far edge: free; with less floor there, in doubt.
+        let f = fit(&bins_covering(0.1..1.0), (6, 9), nadir, &sure).unwrap();
+        assert!(f.free() && (f.evidence - 0.1).abs() < 1e-9, "{f:?}");
+        let almost = Fit {
+            k: 1.02,
+            misfit: 0.0,
+            evidence: 0.05,
+        };
+        assert!(!almost.free() && almost.doubtful());
+        // Covered whole: blocked, no doubt.
+        let f = fit(&bins_covering(0.0..1.0), (6, 9), nadir, &sure).unwrap();
+        assert!(!f.free() && !f.doubtful(), "{f:?}");
+    }
+
+    #[test]
+    fn a_thin_strip_beside_a_blocked_cell_is_bleed() {
+        // The nadir below; cell (3, 4) blocked above (3, 5); a coloured strip of 0.2 cell
+        // along their shared edge, on the side away from the camera.
+        let nadir = (15.5, 11.5);
+        let sure = |x: i64, y: i64| (x, y) == (3, 4);
+        let mut b = Bins {
+            obstacle: [0; BINS * BINS],
+            floor: [4; BINS * BINS],
+        };
+        for i in 0..2 * BINS {
+            (b.obstacle[i], b.floor[i]) = (4, 0);
+        }
+        let f = fit(&b, (3, 5), nadir, &sure).unwrap();
+        assert!(f.free(), "{f:?}");
+        // Without the blocked neighbour, the same strip is unexplained.
+        let f = fit(&b, (3, 5), nadir, &|_, _| false).unwrap();
+        assert!(!f.free(), "{f:?}");
+    }
+}
