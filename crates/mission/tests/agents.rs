@@ -578,3 +578,32 @@ fn on_a_perfect_bus_the_agents_build_as_fast_as_the_simulator() {
         }
     }
 }
+
+/// A kill that breaks an orange pair: the survivor waits at the pile for another partner
+/// (`Detect`, outcome `partner_failed`) while a teammate waits at the wall with a later brick.
+/// The deadlock rule once counted only `waiting_partner` as waiting at the pile, so such a
+/// team waited until `max_time_s`: 34 of 891 kill times (every 3 s from 10 to 900 s, each UAV)
+/// stalled on the bus, and real launches did too (`--seed 303 --kill 0@311`, 7 of 42 bricks).
+/// These are some of those kill times; after the fix all 891 finish.
+#[test]
+fn a_pair_broken_by_a_kill_finds_another_partner() {
+    for (u, at) in [
+        (0, 34.0),
+        (0, 61.0),
+        (0, 298.0),
+        (1, 31.0),
+        (1, 565.0),
+        (1, 595.0),
+        (2, 301.0),
+        (2, 328.0),
+        (2, 565.0),
+    ] {
+        let faults = BusFaults {
+            kills: vec![(u, at)],
+            ..BusFaults::default()
+        };
+        let (run, bricks) = fly("mbzirc", 3, Coord::Auto, &faults, 3);
+        assert!(run.finished, "kill {u}@{at}");
+        assert_eq!(placed(&run), bricks, "kill {u}@{at}");
+    }
+}

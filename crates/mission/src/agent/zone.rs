@@ -12,7 +12,7 @@
 //! without heartbeats) it enters only in its own slot. When everybody waits and nobody may
 //! enter, the holder of the latest brick puts it down (the simulator's deadlock rule).
 
-use super::wire::{Ack, Request};
+use super::wire::{Ack, Request, Status};
 use super::{Agent, MessageKind, GROUND};
 use crate::coord::Coord;
 use crate::core::{heard_mode, kind, put_down, Board, Seen};
@@ -302,7 +302,7 @@ impl Agent<'_> {
                 Seen {
                     alive: board.alive(v),
                     state: st.map_or(UavState::Check, |s| s.state),
-                    waiting_partner: st.is_some_and(|s| s.outcome == "waiting_partner"),
+                    waiting_partner: st.is_some_and(waits_for_partner),
                     brick: st.and_then(|s| s.brick).map(BrickId),
                 }
             })
@@ -335,6 +335,16 @@ impl Agent<'_> {
         // on the next message or heartbeat.
         Some(w.next_entry(self.now, self.me, self.n, zt)).filter(|&t| t > self.now)
     }
+}
+
+/// Whether a teammate's status says it waits at the pile for an orange brick's partner: it
+/// arrived first (`waiting_partner`), or its partner let go, restarted or is gone and it waits
+/// for another (`partner_failed`, which leaves it in `Detect` with no timer). The deadlock rule
+/// must count both, or a team whose pair lost a UAV waits forever: the survivor at the pile
+/// for a partner, a teammate at the wall with a later brick for the zone.
+fn waits_for_partner(st: &Status) -> bool {
+    st.state == UavState::Detect
+        && matches!(st.outcome.as_str(), "waiting_partner" | "partner_failed")
 }
 
 #[cfg(test)]
