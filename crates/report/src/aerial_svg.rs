@@ -9,6 +9,16 @@ use mason_crew::aerial::AerialReading;
 use mason_crew::Cell;
 use std::fmt::Write;
 
+/// The title's attributes that squeeze it into an image `w` pixels wide when it would not fit
+/// (13 px type, about 0.6 em a character), so that a small image keeps its whole title.
+fn title_fit(title: &str, w: u32) -> String {
+    let room = (f64::from(w) - 8.0).max(1.0);
+    match title.chars().count() as f64 * 0.6 * 13.0 > room {
+        true => format!(r#" textLength="{room:.0}" lengthAdjust="spacingAndGlyphs""#),
+        false => String::new(),
+    }
+}
+
 /// An SVG of the image `image` (its file's bytes, PNG or JPEG) with the reading drawn over it.
 /// `starts[i]` goes to `goals[i]` along `paths[i]` (`paths` may be empty: no plan).
 pub fn aerial_svg(
@@ -42,9 +52,10 @@ pub fn aerial_svg(
         -top,
         f64::from(h) + top
     );
+    let fit = title_fit(title, w);
     let _ = write!(
         s,
-        r##"<rect x="0" y="{}" width="{w}" height="{top}" fill="#ffffff"/><text x="4" y="-7" font-size="13">{}</text>"##,
+        r##"<rect x="0" y="{}" width="{w}" height="{top}" fill="#ffffff"/><text x="4" y="-7" font-size="13"{fit}>{}</text>"##,
         -top,
         escape(title)
     );
@@ -143,4 +154,20 @@ pub fn aerial_svg(
     }
     s.push_str("</svg>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::title_fit;
+
+    #[test]
+    fn a_long_title_is_squeezed_into_a_small_image_and_a_short_one_is_left_alone() {
+        assert_eq!(title_fit("A0011.jpg — read 17×11 cells", 605), "");
+        let long = "x".repeat(120);
+        assert_eq!(
+            title_fit(&long, 605),
+            r#" textLength="597" lengthAdjust="spacingAndGlyphs""#
+        );
+        assert!(title_fit(&long, 4).contains(r#"textLength="1""#));
+    }
 }
