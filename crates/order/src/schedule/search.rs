@@ -177,6 +177,13 @@ struct Searcher<'a, 'w> {
 }
 
 impl Searcher<'_, '_> {
+    /// The decode and schedule of the list just scored, if `keep` and it was decoded whole.
+    fn kept(&self, keep: bool) -> Option<(Decoded, Schedule)> {
+        self.last
+            .filter(|_| keep)
+            .map(|d| (d, self.decoder.schedule()))
+    }
+
     fn score(&mut self, list: &[BrickId]) -> Score {
         self.decodes += 1;
         // A parallel decode given up at the deadline scores worst: the other thread's serial
@@ -451,9 +458,12 @@ fn search_thread(
     let mut timed_out = false;
     let mut best_list = starts[0].clone();
     let mut best = s.score(&best_list);
-    // The score count when the best was scored: the decoder still holds its decode while no
-    // other list has been scored since.
-    let mut best_at = s.decodes;
+    // The best list's decode and schedule, taken when it is scored (improvements are few): a
+    // decode of a huge wall can take longer than what is left of a time limit, so the winner
+    // is never decoded again after the search (an `expected` score ends on a scenario's
+    // decode, so there the winner is decoded again).
+    let keep = !matches!(p.objective(), Objective::Expected { .. });
+    let mut best_decoded = s.kept(keep);
     for l in &starts[1..] {
         if budget.out_of_time() {
             timed_out = true;
@@ -463,7 +473,7 @@ fn search_thread(
         if better(&sc, &best) {
             best = sc;
             best_list = l.clone();
-            best_at = s.decodes;
+            best_decoded = s.kept(keep);
         }
     }
     // The listener hears the objective itself: a makespan, or a (expected) reward.
@@ -518,7 +528,7 @@ fn search_thread(
             if better(&cur_score, &best) {
                 best = cur_score;
                 best_list = cur.clone();
-                best_at = s.decodes;
+                best_decoded = s.kept(keep);
                 s.improvements += 1;
                 tell(&best, s.decodes);
             }
@@ -538,13 +548,7 @@ fn search_thread(
             stale = 0;
         }
     }
-    // A huge wall may be stopped after a decode or two: keep the best's decode rather than
-    // repeat it (an `expected` score ends on a scenario's decode, so it is decoded again).
-    let decoded = match (p.objective(), s.last) {
-        (Objective::Expected { .. }, _) => None,
-        (_, Some(d)) if best_at == s.decodes => Some((d, s.decoder.schedule())),
-        _ => None,
-    };
+    let decoded = best_decoded;
     ThreadResult {
         mode,
         score: best,

@@ -39,7 +39,7 @@ pub struct Decoded {
 }
 
 /// How many steps of a parallel decode pass between two looks at the clock.
-const STEPS_PER_CHECK: u64 = 1024;
+const STEPS_PER_CHECK: u64 = 16;
 
 /// Which schedule generation scheme decodes a list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
