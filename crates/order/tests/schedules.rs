@@ -697,6 +697,75 @@ fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
     assert!(solved >= 150, "only {solved} walls solved exactly");
 }
 
+/// The zone rule's wait after the last 2-UAV brick (`bounds::pair_wait`): when no 2-UAV brick
+/// is the last brick of either of its UAVs, the last one's two UAVs are free at once and one
+/// of them waits for the other's next brick. Against the exhaustive optimum on tiny walls that
+/// hold an orange brick, with the thesis times or mixed ones and 2–5 UAVs; at least half of
+/// the 1000 walls (`MASON_PAIR_CASES` sets another count) must be solved to optimality.
+#[test]
+fn zone_rule_bound_with_pair_waits_is_below_the_exhaustive_optimum() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0x7061_6972);
+    let mut solved = 0;
+    let mut tight = 0;
+    let cases: usize = std::env::var("MASON_PAIR_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1000);
+    for case in 0..cases {
+        let wall = loop {
+            let w = random_wall(&mut rng, 6, 3);
+            if w.ids()
+                .any(|b| w.brick(b).kind == mason_wall::BrickType::Orange)
+            {
+                break w;
+            }
+        };
+        let mut model = TeamModel::thesis();
+        if case % 3 != 0 {
+            for t in &mut model.types {
+                t.place_s = f64::from(rng.gen_range(1..40));
+                t.cycle_rest_s = f64::from(rng.gen_range(0..100));
+            }
+        }
+        let uavs = rng.gen_range(2..6);
+        let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
+        let exact = exhaustive_schedule(&p, &Budget::nodes(1_000_000));
+        if exact.status != Status::Optimal {
+            continue;
+        }
+        solved += 1;
+        let lb = bounds::makespan_lower_bound(&p);
+        assert!(
+            exact.makespan_s >= lb - 1e-6,
+            "case {case}: optimum {} below bound {lb} ({} bricks, {uavs} UAVs)",
+            exact.makespan_s,
+            wall.len()
+        );
+        if exact.makespan_s <= lb + 1e-6 {
+            tight += 1;
+        }
+    }
+    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
+    assert!(solved >= cases / 2, "only {solved} walls solved exactly");
+    assert!(tight > 0, "the bound met no optimum");
+}
+
+/// The MBZIRC wall under the thesis model: the wait after the last orange pair lifts the
+/// makespan bound at 2 and 3 UAVs (1793.375 → 1799.375 s, 1190.417 → 1191.25 s).
+#[test]
+fn mbzirc_makespan_bound_counts_the_wait_after_the_last_orange_pair() {
+    let wall = mason_wall::builtin("mbzirc").unwrap().wall();
+    for (uavs, want) in [(2, 1799.375), (3, 1191.25)] {
+        let p =
+            TeamProblem::new(&wall, TeamModel::thesis(), uavs, None, Objective::Makespan).unwrap();
+        let lb = bounds::makespan_lower_bound(&p);
+        assert!(
+            (lb - want).abs() < 1e-6,
+            "{uavs} UAVs: bound {lb}, expected {want}"
+        );
+    }
+}
+
 /// #32: a parallel decode can outlast a time limit on a huge wall, so it is given up at the
 /// deadline; the serial decode always ends, and the search still returns a whole, valid
 /// schedule when the limit has passed before it began.

@@ -8,7 +8,9 @@
 //!     less the most rest the m last bricks can leave out, plus (zone rule) the UAVs' first
 //!     starts and last ends, spread over m UAVs: their least sum is found exactly for a
 //!     relaxation (`ZoneEnds`, and for teams up to 16 with the bricks under and on each
-//!     first and last brick, `near_loss`);
+//!     first and last brick, `near_loss`); with 2-UAV bricks, unless one of them is some
+//!     UAV's last brick, the last of them leaves its two UAVs free at once and one waits at
+//!     least the shortest placing phase for the other's next brick (`pair_wait`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
 //!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
 //!     from every brick), which never overlap either.
@@ -92,7 +94,15 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
                 let mut loss = -last_rests(p, k);
                 if let Some(e) = &ends {
                     let steps = zone_stagger(k, pairs, first_pair) + zone_stagger(k, pairs, true);
-                    loss = (loss + steps as f64 * shortest).max(e.loss(k));
+                    // With 2-UAV bricks, either one of them is some UAV's last brick, or the
+                    // last of them leaves its UAVs to wait (`pair_wait`).
+                    let zone_loss = if pairs && k >= 2 {
+                        e.loss(k, Last::SomePair)
+                            .min(e.loss(k, Last::Singles) + pair_wait(shortest))
+                    } else {
+                        e.loss(k, Last::Any)
+                    };
+                    loss = (loss + steps as f64 * shortest).max(zone_loss);
                 }
                 bound = bound.min((work + loss) / k as f64);
             }
@@ -105,6 +115,22 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
         conflict_clique(p, search)
     };
     chain.max(resource).max(zone)
+}
+
+/// Under the zone rule, the least time the UAVs of a 2-UAV brick wait between bricks in all
+/// when no 2-UAV brick is the last brick of either of its UAVs (`shortest`: the shortest
+/// placing phase of any brick).
+///
+/// Take the last 2-UAV brick placed (by start). Both its UAVs have a next brick and are free
+/// at the same moment F (start + placing + rest of that brick). Their next bricks are not one
+/// brick: that would be a 2-UAV brick placed later. So they are two bricks, each starting at F
+/// or later, and under the zone rule their placing phases do not overlap: the later starts at
+/// least F + the earlier's placing phase ≥ F + `shortest`, and its UAV, free since F, waits at
+/// least that long. The bound counts `k·makespan ≥ W + first starts + (makespan − last ends)
+/// − last rests + waits`, so this wait adds to the loss of every such schedule; schedules in
+/// which some 2-UAV brick is a UAV's last are covered by the relaxation without the wait.
+fn pair_wait(shortest: f64) -> f64 {
+    shortest
 }
 
 /// Under the zone rule, the placing phases (of the shortest brick) that k UAVs' first starts
@@ -141,14 +167,40 @@ fn zone_stagger(k: usize, pairs: bool, pair_opens: bool) -> usize {
 /// p/w (Smith's rule), so a knapsack over the groups in that order, built from the back so
 /// that the cost does not depend on k, gives every k at once in O(groups · m²).
 struct ZoneEnds {
-    /// Least cost of a sequence covering c UAVs, without and with the rests (index c).
+    /// Least cost of a sequence covering c UAVs (index c): without the rests (first starts),
+    /// and with them (last ends) by [`Last`] flag (index 0: only 1-UAV bricks, 1: some 2-UAV
+    /// brick).
     start: Vec<f64>,
-    end: Vec<f64>,
-    /// Groups: (place, rest, w, usable first, usable last).
-    items: Vec<(f64, f64, usize, bool, bool)>,
-    /// For k ≤ [`NEAR_UAVS`]: the same least loss where each brick also waits for the bricks
-    /// under it and is waited for by the bricks on it ([`near_loss`]); −∞ above.
-    near: Vec<f64>,
+    end: [Vec<f64>; 2],
+    /// Groups: (place, rest, w, usable first, usable last, a 2-UAV group).
+    items: Vec<(f64, f64, usize, bool, bool, bool)>,
+    /// For k ≤ [`NEAR_UAVS`]: the same least first-start and last-end costs where each brick
+    /// also waits for the bricks under it and is waited for by the bricks on it
+    /// ([`near_loss`]); −∞ above.
+    near_start: Vec<f64>,
+    near_end: [Vec<f64>; 2],
+}
+
+/// Which UAVs' last bricks [`ZoneEnds::loss`] allows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Last {
+    /// Any bricks.
+    Any,
+    /// Only 1-UAV bricks: no 2-UAV brick is the last of either of its UAVs.
+    Singles,
+    /// At least one 2-UAV brick is the last of one of its UAVs or both.
+    SomePair,
+}
+
+impl Last {
+    /// Whether a set of last bricks with (`true`) or without 2-UAV bricks is allowed.
+    fn allows(self, some_pair: bool) -> bool {
+        match self {
+            Last::Any => true,
+            Last::Singles => !some_pair,
+            Last::SomePair => some_pair,
+        }
+    }
 }
 
 /// Teams up to this size also get [`near_loss`].
@@ -179,58 +231,68 @@ impl ZoneEnds {
                 None => groups.push((key.0, key.1, key.2, 1, opens, closes)),
             }
         }
-        let mut items: Vec<(f64, f64, usize, usize, bool, bool)> = Vec::new();
+        // Items: (place, rest, w, count, usable first, usable last, a 2-UAV group).
+        let mut items: Vec<(f64, f64, usize, usize, bool, bool, bool)> = Vec::new();
         for &(place, rest, need, count, opens, closes) in &groups {
             for w in 1..=need as usize {
-                items.push((place, rest, w, count, opens, closes));
+                items.push((place, rest, w, count, opens, closes, need > 1));
             }
         }
         // Built from the back of the sequence: the largest p/w first.
         items.sort_by(|a, b| (b.0 / b.2 as f64).total_cmp(&(a.0 / a.2 as f64)));
         let m = p.uavs();
+        // Per flag (some 2-UAV item used), the least cost covering c UAVs.
         let knapsack = |with_rest: bool| {
-            let mut best = vec![f64::INFINITY; m + 1];
-            best[0] = 0.0;
-            for &(place, rest, w, count, _, _) in &items {
+            let mut best = [vec![f64::INFINITY; m + 1], vec![f64::INFINITY; m + 1]];
+            best[0][0] = 0.0;
+            for &(place, rest, w, count, _, _, pair) in &items {
                 let mut next = best.clone();
-                for (c, &from) in best.iter().enumerate() {
-                    if !from.is_finite() {
-                        continue;
-                    }
-                    let mut cost = from;
-                    let mut cov = c;
-                    for _ in 0..count {
-                        if cov + w > m {
-                            break;
+                for (flag, costs) in best.iter().enumerate() {
+                    let to = usize::from(flag == 1 || pair);
+                    for (c, &from) in costs.iter().enumerate() {
+                        if !from.is_finite() {
+                            continue;
                         }
-                        // Placed before the UAVs covered so far: it delays each of them.
-                        cost += place * cov as f64 - if with_rest { w as f64 * rest } else { 0.0 };
-                        cov += w;
-                        next[cov] = next[cov].min(cost);
+                        let mut cost = from;
+                        let mut cov = c;
+                        for _ in 0..count {
+                            if cov + w > m {
+                                break;
+                            }
+                            // Placed before the UAVs covered so far: it delays each of them.
+                            cost +=
+                                place * cov as f64 - if with_rest { w as f64 * rest } else { 0.0 };
+                            cov += w;
+                            next[to][cov] = next[to][cov].min(cost);
+                        }
                     }
                 }
                 best = next;
             }
             best
         };
-        let near = near_loss(p, m.min(NEAR_UAVS));
+        let (near_start, near_end) = near_loss(p, m.min(NEAR_UAVS));
+        let [s0, s1] = knapsack(false);
+        let start: Vec<f64> = s0.iter().zip(&s1).map(|(a, b)| a.min(*b)).collect();
         ZoneEnds {
-            near,
-            start: knapsack(false),
+            near_start,
+            near_end,
+            start,
             end: knapsack(true),
             items: items
                 .iter()
-                .map(|&(pl, r, w, _, o, c)| (pl, r, w, o, c))
+                .map(|&(pl, r, w, _, o, c, pair)| (pl, r, w, o, c, pair))
                 .collect(),
         }
     }
 
     /// The least `Σ first starts + Σ (makespan − last end) − Σ last rests` with k UAVs at
-    /// work (+∞: k UAVs cannot all have a brick).
-    fn loss(&self, k: usize) -> f64 {
+    /// work, over the schedules whose last bricks `last` allows (+∞: none, or k UAVs cannot
+    /// all have a brick).
+    fn loss(&self, k: usize, last: Last) -> f64 {
         let mut first = f64::INFINITY;
-        let mut last = f64::INFINITY;
-        for &(place, rest, w, opens, closes) in &self.items {
+        let mut end = f64::INFINITY;
+        for &(place, rest, w, opens, closes, pair) in &self.items {
             if w > k {
                 continue;
             }
@@ -239,11 +301,26 @@ impl ZoneEnds {
                 first = first.min(delay + self.start[k - w]);
             }
             if closes {
-                last = last.min(delay - w as f64 * rest + self.end[k - w]);
+                for flag in 0..2 {
+                    if last.allows(pair || flag == 1) {
+                        end = end.min(delay - w as f64 * rest + self.end[flag][k - w]);
+                    }
+                }
             }
         }
-        let near = self.near.get(k).copied().unwrap_or(f64::NEG_INFINITY);
-        (first + last).max(near)
+        let near = match (self.near_start.get(k), self.near_end[0].get(k)) {
+            (Some(&s), Some(&e0)) => {
+                let e1 = self.near_end[1][k];
+                let e = match last {
+                    Last::Any => e0.min(e1),
+                    Last::Singles => e0,
+                    Last::SomePair => e1,
+                };
+                s + e
+            }
+            _ => f64::NEG_INFINITY,
+        };
+        (first + end).max(near)
     }
 }
 
@@ -255,9 +332,10 @@ impl ZoneEnds {
 /// head and tail. The j-th first brick then starts at max(its head, the phases of the first
 /// bricks before it), and likewise for the last ends; Smith's order no longer holds, so a
 /// dynamic programme over (UAVs covered, phases so far) finds the least cost exactly, with
-/// every group usable any number of times (a relaxation). Entry k: the least loss with k UAVs
-/// at work, for k ≤ `kmax`.
-fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
+/// every group usable any number of times (a relaxation). Entry k: the least first-start cost
+/// with k UAVs at work, and the least last-end cost by flag (index 1: some 2-UAV brick among
+/// the last bricks), for k ≤ `kmax`.
+fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
     use std::collections::BTreeMap;
     let wall = p.wall();
     let mut order: Vec<BrickId> = wall.ids().collect();
@@ -286,10 +364,12 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
         }
     }
     // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
-    let side = |end: bool| -> Vec<f64> {
-        let mut best = vec![f64::INFINITY; kmax + 1];
-        // (covered, phases so far as bits) → least cost; the first brick must wait for nothing.
-        let mut layer: BTreeMap<(usize, u64), f64> = BTreeMap::new();
+    // Per flag (a 2-UAV group used), the least cost covering c UAVs.
+    let side = |end: bool| -> [Vec<f64>; 2] {
+        let mut best = [vec![f64::INFINITY; kmax + 1], vec![f64::INFINITY; kmax + 1]];
+        // (covered, phases so far as bits, flag) → least cost; the first brick must wait for
+        // nothing.
+        let mut layer: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
             let wait = if end { t } else { h };
             if wait > 0.0 {
@@ -297,14 +377,17 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
             }
             for w in 1..=(need as usize).min(kmax) {
                 let cost = -if end { w as f64 * rest } else { 0.0 };
-                let e = layer.entry((w, place.to_bits())).or_insert(f64::INFINITY);
+                let e = layer
+                    .entry((w, place.to_bits(), need > 1))
+                    .or_insert(f64::INFINITY);
                 *e = e.min(cost);
             }
         }
         while !layer.is_empty() {
-            let mut next: BTreeMap<(usize, u64), f64> = BTreeMap::new();
-            for (&(c, o), &cost) in &layer {
-                best[c] = best[c].min(cost);
+            let mut next: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
+            for (&(c, o, flag), &cost) in &layer {
+                let f = usize::from(flag);
+                best[f][c] = best[f][c].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
                     let wait = if end { t } else { h };
@@ -314,7 +397,7 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
                         }
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
-                            .entry((c + w, (o + place).to_bits()))
+                            .entry((c + w, (o + place).to_bits(), flag || need > 1))
                             .or_insert(f64::INFINITY);
                         *e = e.min(cost + add);
                     }
@@ -324,10 +407,14 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> Vec<f64> {
         }
         best
     };
-    let (start, end) = (side(false), side(true));
-    (0..=kmax)
-        .map(|k| if k == 0 { 0.0 } else { start[k] + end[k] })
-        .collect()
+    let [s0, s1] = side(false);
+    let start: Vec<f64> = (0..=kmax)
+        .map(|k| if k == 0 { 0.0 } else { s0[k].min(s1[k]) })
+        .collect();
+    let [mut e0, mut e1] = side(true);
+    e0[0] = 0.0;
+    e1[0] = f64::INFINITY;
+    (start, [e0, e1])
 }
 
 /// The placing phases that must come before (or after) each brick, visited in `bricks` with
