@@ -662,6 +662,19 @@ proptest! {
     }
 }
 
+/// The thesis model, or for two cases of three the same with random placing and rest times
+/// (mixed cycles), for the zone-rule bound tests.
+fn zone_model(rng: &mut ChaCha8Rng, case: usize) -> TeamModel {
+    let mut model = TeamModel::thesis();
+    if case % 3 != 0 {
+        for t in &mut model.types {
+            t.place_s = f64::from(rng.gen_range(1..40));
+            t.cycle_rest_s = f64::from(rng.gen_range(0..100));
+        }
+    }
+    model
+}
+
 /// The makespan bound under the zone rule (the thesis model's), against the exhaustive optimum
 /// on tiny walls with mixed placing and rest times, orange pairs and 2–4 UAVs: the bound's
 /// first-start and last-end relaxation must never pass the optimum. At least 150 of the 300
@@ -672,13 +685,7 @@ fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
     let mut solved = 0;
     for case in 0..300 {
         let wall = random_wall(&mut rng, 6, 3);
-        let mut model = TeamModel::thesis();
-        if case % 3 != 0 {
-            for t in &mut model.types {
-                t.place_s = f64::from(rng.gen_range(1..40));
-                t.cycle_rest_s = f64::from(rng.gen_range(0..100));
-            }
-        }
+        let model = zone_model(&mut rng, case);
         let uavs = rng.gen_range(2..5);
         let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
         let exact = exhaustive_schedule(&p, &Budget::nodes(2_000_000));
@@ -720,13 +727,7 @@ fn zone_rule_bound_with_pair_waits_is_below_the_exhaustive_optimum() {
                 break w;
             }
         };
-        let mut model = TeamModel::thesis();
-        if case % 3 != 0 {
-            for t in &mut model.types {
-                t.place_s = f64::from(rng.gen_range(1..40));
-                t.cycle_rest_s = f64::from(rng.gen_range(0..100));
-            }
-        }
+        let model = zone_model(&mut rng, case);
         let uavs = rng.gen_range(2..6);
         let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
         let exact = exhaustive_schedule(&p, &Budget::nodes(1_000_000));
