@@ -85,6 +85,11 @@ pub struct CrewStats {
     pub waits: u64,
     /// Time to the first plan (`lacam`, `joint`); the rest of `elapsed` went to refinement.
     pub first_solution: Option<Duration>,
+    /// Time spent on the move graph and the goals' distance tables, from the start of the
+    /// solve (`lacam`), when they were finished.
+    pub tables: Option<Duration>,
+    /// Time spent on the guide paths after the tables (`lacam`), when they were finished.
+    pub guide: Option<Duration>,
     /// Sum of costs of the first plan, before refinement (`lacam`).
     pub first_sum_of_costs: Option<u64>,
     /// Configurations created by LaCAM.

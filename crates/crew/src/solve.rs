@@ -336,6 +336,7 @@ fn solve_lacam(
     let Some((graph, dist)) = tables else {
         return Err(tables_out_of_time(grid, goals.len()));
     };
+    stats.tables = Some(started.elapsed());
     for (r, (&s, &g)) in inst.robots.iter().zip(goals).enumerate() {
         if dist[r][s.0 as usize] == UNREACHABLE {
             return Err((
@@ -359,7 +360,11 @@ fn solve_lacam(
     );
     // Guide paths that spread the robots out, then LaCAM from the start: complete, and with
     // PIBT's corridor rules its first descent is usually already a plan.
+    let guide_started = Instant::now();
     let guide = guide_paths(&graph, &dist, &starts, &targets, GUIDE, budget);
+    if !budget.out_of_time() {
+        stats.guide = Some(guide_started.elapsed());
+    }
     let extra_until = budget
         .deadline
         .map(|d| started + d.saturating_duration_since(started).mul_f64(EXTRA.1));

@@ -455,6 +455,8 @@ pub fn crew_json(
         "stats": {
             "elapsed_ms": o.stats.elapsed.as_secs_f64() * 1e3,
             "first_solution_ms": o.stats.first_solution.map(|d| d.as_secs_f64() * 1e3),
+            "tables_ms": o.stats.tables.map(|d| d.as_secs_f64() * 1e3),
+            "guide_ms": o.stats.guide.map(|d| d.as_secs_f64() * 1e3),
             "first_sum_of_costs": o.stats.first_sum_of_costs,
             "configurations": o.stats.configurations,
             "refine_rounds": o.stats.refine_rounds,
