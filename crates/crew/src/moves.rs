@@ -64,8 +64,8 @@ impl MoveGraph {
             .unwrap_or_default()
     }
 
-    /// [`MoveGraph::distances_from`], or `None` when `stop` says so (looked at every 65 536
-    /// cells).
+    /// [`MoveGraph::distances_from`], or `None` when `stop` says so (looked at before the search
+    /// and every 65 536 cells).
     pub fn distances_from_until(
         &self,
         source: u32,
@@ -82,6 +82,11 @@ impl MoveGraph {
         queue: &mut Vec<u32>,
         stop: &(dyn Fn() -> bool + Sync),
     ) -> Option<Vec<u32>> {
+        // Also before each search: on a map of fewer than 65 536 free cells the count below
+        // never reaches a check, and a thousand tables would all be built past the deadline.
+        if stop() {
+            return None;
+        }
         let mut dist = vec![NIL; self.cells()];
         dist[source as usize] = 0;
         queue.clear();
@@ -216,5 +221,9 @@ mod tests {
         let goals: Vec<Cell> = (0..4).map(Cell).collect();
         assert!(distances_to_goals_until(&m, &goals, &|| true).is_none());
         assert!(distances_to_goals_until(&m, &goals, &|| false).is_some());
+        // A small map is stopped too (before each table).
+        let (g, free) = random_grid(20, 20, 2);
+        let m = MoveGraph::new(&g, Connectivity::Four);
+        assert!(distances_to_goals_until(&m, &free[..5], &|| true).is_none());
     }
 }
