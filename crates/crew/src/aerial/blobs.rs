@@ -246,6 +246,15 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             dist[i] = dist[i].min(m);
         }
     }
+    let dist = &dist;
+    // The 8-neighbours of pixel `i` (and `i` itself) at least `t` deep, as indices.
+    let deep = |i: usize, t: u32| {
+        let (x, y) = ((i % bw) as isize, (i / bw) as isize);
+        (-1..=1)
+            .flat_map(move |dy| (-1..=1).map(move |dx| (x + dx, y + dy)))
+            .filter(move |&(nx, ny)| at(dist, nx, ny) >= t)
+            .map(move |(nx, ny)| ny as usize * bw + nx as usize)
+    };
     let deepest = dist.iter().copied().max().unwrap_or(0);
     // At most about 64 depths are tried, so a huge blob costs O(64 × its bounding box).
     let stride = (deepest / 64).max(1) as usize;
@@ -267,17 +276,10 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             stack.push(start);
             while let Some(i) = stack.pop() {
                 sizes[id as usize - 1] += 1;
-                let (x, y) = ((i % bw) as isize, (i / bw) as isize);
-                for dy in -1..=1 {
-                    for dx in -1..=1 {
-                        let (nx, ny) = (x + dx, y + dy);
-                        if at(&dist, nx, ny) >= t {
-                            let j = ny as usize * bw + nx as usize;
-                            if label[j] == 0 {
-                                label[j] = id;
-                                stack.push(j);
-                            }
-                        }
+                for j in deep(i, t) {
+                    if label[j] == 0 {
+                        label[j] = id;
+                        stack.push(j);
                     }
                 }
             }
@@ -319,17 +321,10 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
         let mut queue: std::collections::VecDeque<usize> =
             (0..bw * bh).filter(|&i| label[i] != 0).collect();
         while let Some(i) = queue.pop_front() {
-            let (x, y) = ((i % bw) as isize, (i / bw) as isize);
-            for dy in -1..=1 {
-                for dx in -1..=1 {
-                    let (nx, ny) = (x + dx, y + dy);
-                    if at(&dist, nx, ny) >= t {
-                        let j = ny as usize * bw + nx as usize;
-                        if label[j] == 0 {
-                            label[j] = label[i];
-                            queue.push_back(j);
-                        }
-                    }
+            for j in deep(i, t) {
+                if label[j] == 0 {
+                    label[j] = label[i];
+                    queue.push_back(j);
                 }
             }
         }
