@@ -675,6 +675,30 @@ fn zone_model(rng: &mut ChaCha8Rng, case: usize) -> TeamModel {
     model
 }
 
+/// The exhaustive optimum of a makespan problem and its lower bound, asserting that the bound
+/// does not pass the optimum; `None` when the search did not finish within `nodes`.
+fn optimum_and_bound(
+    case: usize,
+    wall: &Wall,
+    model: TeamModel,
+    uavs: usize,
+    nodes: u64,
+) -> Option<(f64, f64)> {
+    let p = TeamProblem::new(wall, model, uavs, None, Objective::Makespan).unwrap();
+    let exact = exhaustive_schedule(&p, &Budget::nodes(nodes));
+    if exact.status != Status::Optimal {
+        return None;
+    }
+    let lb = bounds::makespan_lower_bound(&p);
+    assert!(
+        exact.makespan_s >= lb - 1e-6,
+        "case {case}: optimum {} below bound {lb} ({} bricks, {uavs} UAVs)",
+        exact.makespan_s,
+        wall.len()
+    );
+    Some((exact.makespan_s, lb))
+}
+
 /// The makespan bound under the zone rule (the thesis model's), against the exhaustive optimum
 /// on tiny walls with mixed placing and rest times, orange pairs and 2–4 UAVs: the bound's
 /// first-start and last-end relaxation must never pass the optimum. At least 150 of the 300
@@ -687,19 +711,9 @@ fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
         let wall = random_wall(&mut rng, 6, 3);
         let model = zone_model(&mut rng, case);
         let uavs = rng.gen_range(2..5);
-        let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
-        let exact = exhaustive_schedule(&p, &Budget::nodes(2_000_000));
-        if exact.status != Status::Optimal {
-            continue;
+        if optimum_and_bound(case, &wall, model, uavs, 2_000_000).is_some() {
+            solved += 1;
         }
-        solved += 1;
-        let lb = bounds::makespan_lower_bound(&p);
-        assert!(
-            exact.makespan_s >= lb - 1e-6,
-            "case {case}: optimum {} below bound {lb} ({} bricks, {uavs} UAVs)",
-            exact.makespan_s,
-            wall.len()
-        );
     }
     assert!(solved >= 150, "only {solved} walls solved exactly");
 }
@@ -729,20 +743,11 @@ fn zone_rule_bound_with_pair_waits_is_below_the_exhaustive_optimum() {
         };
         let model = zone_model(&mut rng, case);
         let uavs = rng.gen_range(2..6);
-        let p = TeamProblem::new(&wall, model, uavs, None, Objective::Makespan).unwrap();
-        let exact = exhaustive_schedule(&p, &Budget::nodes(1_000_000));
-        if exact.status != Status::Optimal {
+        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
             continue;
-        }
+        };
         solved += 1;
-        let lb = bounds::makespan_lower_bound(&p);
-        assert!(
-            exact.makespan_s >= lb - 1e-6,
-            "case {case}: optimum {} below bound {lb} ({} bricks, {uavs} UAVs)",
-            exact.makespan_s,
-            wall.len()
-        );
-        if exact.makespan_s <= lb + 1e-6 {
+        if optimum <= lb + 1e-6 {
             tight += 1;
         }
     }
