@@ -54,8 +54,8 @@ def parse_args(argv):
     for e in endpoints:
         if not re.match(r"^(tcp|tls|udp|quic)/.+:\d+$", e):
             bad(f"--connect {e}: not an endpoint PROTOCOL/HOST:PORT (tcp, tls, udp, quic)")
-        if a.tls_dir is not None and not e.startswith("tls/"):
-            bad(f"--connect {e}: with --tls-dir, endpoints are tls/HOST:PORT")
+        if a.tls_dir is not None and not e.startswith(("quic/", "tls/")):
+            bad(f"--connect {e}: with --tls-dir, endpoints are quic/HOST:PORT or tls/HOST:PORT")
     if not CHUNK.match(a.mission):
         bad(f"--mission {a.mission!r}: letters, digits, '_', '-', '.' only")
     if not all(CHUNK.match(c) for c in a.prefix.split("/")):

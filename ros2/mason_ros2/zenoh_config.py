@@ -19,6 +19,15 @@ def tls_files(tls_dir: str):
     return paths
 
 
+SECURE_SCHEMES = ("quic", "tls")
+
+
+def secure_protocols(endpoints: list) -> list:
+    """The secure schemes (quic before tls) that `endpoints` use, each once."""
+    used = {e.split("/", 1)[0] for e in endpoints}
+    return [s for s in SECURE_SCHEMES if s in used]
+
+
 def config_entries(endpoints: list, tls_dir: str | None) -> dict:
     """The configuration as key → JSON5 value (checked by :func:`tls_files` first)."""
     e = {
@@ -40,12 +49,12 @@ def config_entries(endpoints: list, tls_dir: str | None) -> dict:
         e[f"{tls}/enable_mtls"] = "true"
         # Peers are reached by address: the mission's authority and the names are what count.
         e[f"{tls}/verify_name_on_connect"] = "false"
-        # No listener of its own (Zenoh's default is plain tcp) and TLS links only: an agent
-        # that reached the station over a plain link, learnt by gossip, would see no
-        # certificate, and its access control would drop the station's commands (an abort once
-        # reached one agent of three this way).
+        # No listener of its own (Zenoh's default is plain tcp) and secure links only (the
+        # schemes of its endpoints, quic and/or tls): an agent that reached the station over a
+        # plain link, learnt by gossip, would see no certificate, and its access control would
+        # drop the station's commands (an abort once reached one agent of three this way).
         e["listen/endpoints"] = json.dumps([])
-        e["transport/link/protocols"] = json.dumps(["tls"])
+        e["transport/link/protocols"] = json.dumps(secure_protocols(endpoints))
     return e
 
 

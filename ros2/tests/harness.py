@@ -45,11 +45,11 @@ def launch(mason: str, out: Path, port: int, mission: str, *extra: str) -> subpr
 
 
 def bridge(port: int, mission: str, log: Path, stats: Path, tls_dir: Path | None = None) -> subprocess.Popen:
-    """The installed `mason-ros2-bridge`, connected to agent 0: over mutual TLS with the
-    station files in `tls_dir` (a launch's OUT/station-0), or over plain TCP to an
-    `--insecure` team."""
+    """The installed `mason-ros2-bridge`, connected to agent 0: over mutual TLS in QUIC (the
+    launch's default link) with the station files in `tls_dir` (a launch's OUT/station-0), or
+    over plain TCP to an `--insecure` team."""
     exe = Path(sys.executable).parent / "mason-ros2-bridge"
-    link = f"tls/127.0.0.1:{port}" if tls_dir else f"tcp/127.0.0.1:{port}"
+    link = f"quic/127.0.0.1:{port}" if tls_dir else f"tcp/127.0.0.1:{port}"
     args = [str(exe), "--connect", link, "--mission", mission, "--stats", str(stats)]
     if tls_dir:
         args += ["--tls-dir", str(tls_dir)]

@@ -156,6 +156,10 @@ def test_tls_configures_the_station_certificate(tmp_path):
     # Only TLS links, and no plain listener that an agent could reach without a certificate.
     assert json.loads(e["transport/link/protocols"]) == ["tls"]
     assert json.loads(e["listen/endpoints"]) == []
+    # The same over QUIC (the launch's default), and both when both are named.
+    assert json.loads(config_entries(["quic/127.0.0.1:7447"], str(tmp_path))["transport/link/protocols"]) == ["quic"]
+    both = config_entries(["tls/127.0.0.1:1", "quic/127.0.0.1:2"], str(tmp_path))
+    assert json.loads(both["transport/link/protocols"]) == ["quic", "tls"]
     assert "transport/link/protocols" not in config_entries(["tcp/127.0.0.1:1"], None)
     assert "transport/link/tls/root_ca_certificate" not in config_entries(["tcp/127.0.0.1:1"], None)
 
@@ -165,7 +169,8 @@ def test_tls_configures_the_station_certificate(tmp_path):
     (["--connect", "tcp/127.0.0.1:7447", "--mission", "a/*"], "--mission"),
     (["--connect", "tcp/127.0.0.1:7447", "--mission", "m", "--prefix", "x/**"], "--prefix"),
     (["--connect", "tcp/127.0.0.1:7447", "--mission", "m", "--station", "16"], "0..15"),
-    (["--connect", "tcp/127.0.0.1:7447", "--mission", "m", "--tls-dir", "/nonexistent"], "tls/HOST:PORT"),
+    (["--connect", "tcp/127.0.0.1:7447", "--mission", "m", "--tls-dir", "/nonexistent"], "quic/HOST:PORT or tls/HOST:PORT"),
+    (["--connect", "quic/127.0.0.1:7447", "--mission", "m", "--tls-dir", "/nonexistent"], "missing"),
     (["--connect", "tls/127.0.0.1:7447", "--mission", "m", "--tls-dir", "/nonexistent"], "missing"),
     (["--mission", "m"], "--connect"),
 ])

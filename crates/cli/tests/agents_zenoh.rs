@@ -156,6 +156,50 @@ fn a_killed_agent_is_declared_out_and_the_others_finish() {
         .any(|e| e["uav"] == 1 && e["t"].as_f64().unwrap() >= 250.0));
 }
 
+/// The pid of the running agent of `uav` in `mission` (from /proc).
+fn agent_pid(mission: &str, uav: usize) -> Option<u32> {
+    let want = ["agent", "--uav", &uav.to_string(), "--mission", mission];
+    std::fs::read_dir("/proc").ok()?.flatten().find_map(|e| {
+        let pid: u32 = e.file_name().to_str()?.parse().ok()?;
+        let cmdline = std::fs::read(e.path().join("cmdline")).ok()?;
+        let args: Vec<&[u8]> = cmdline.split(|&b| b == 0).collect();
+        let has = |w: &str| args.contains(&w.as_bytes());
+        let pair = args
+            .windows(2)
+            .any(|p| p[0] == b"--uav" && p[1] == uav.to_string().as_bytes());
+        (want.iter().all(|w| has(w)) && pair).then_some(pid)
+    })
+}
+
+/// An agent that dies by a signal nobody meant (here SIGILL, as Zenoh's TLS link once crashed
+/// one; a SIGSEGV sent by `kill` would be caught by Rust's stack-overflow handler) is a failed
+/// UAV for the launch, as a killed one: its death goes into the merged trace, which must not
+/// keep it in the zone or holding a brick, and the others finish the wall.
+#[test]
+fn an_agent_that_crashes_is_a_failed_uav_and_the_others_finish() {
+    let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let (team, dir, _, mission) = start_team("crash", &[]);
+    // Lead 3 s, then 2.5 s of flight at speed 100: about mission time 250 s.
+    std::thread::sleep(std::time::Duration::from_millis(5500));
+    let pid = agent_pid(&mission, 1).expect("UAV 1's agent is running");
+    let sent = Command::new("kill")
+        .args(["-ILL", &pid.to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+    let l = team_result(team, &dir);
+    assert_finished(&l);
+    let uav1 = &l.doc["agents"][1];
+    assert_eq!(uav1["exit"], "crashed: signal 4 (SIGILL)", "{uav1}");
+    let died = uav1["killed_at"].as_f64().expect("a death time");
+    assert!(l
+        .of_kind("fail")
+        .any(|e| e["uav"] == 1 && e["t"].as_f64() == Some(died)));
+    assert!(l
+        .of_kind("place")
+        .all(|e| e["uav"] != 1 || e["t"].as_f64().unwrap() < died));
+}
+
 #[test]
 fn a_cut_sends_auto_to_windows_and_back_without_sharing_the_zone() {
     let l = launch("cut", &["--coord", "auto", "--cut", "400-460"]);
@@ -252,6 +296,10 @@ fn a_python_ground_station_decodes_every_uav_s_heartbeats_and_states() {
             "3",
             "--out",
             dir.to_str().unwrap(),
+            // TLS over TCP here (QUIC, the default, in the other TLS tests): both links carry
+            // the mission's mutual TLS.
+            "--link",
+            "tls",
         ])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -352,8 +400,8 @@ fn team_result(team: std::process::Child, dir: &Path) -> Launch {
     }
 }
 
-/// Against a team over mutual TLS (the default), each stranger fails: without a certificate
-/// (plain TCP, TLS without a client certificate) and with a certificate of another mission's
+/// Against a team over mutual TLS (the default, in QUIC), each stranger fails: without a
+/// certificate (plain TCP, QUIC's TLS without a client certificate) and with a certificate of another mission's
 /// authority it hears nothing; with UAV 1's certificate it hears the team but cannot speak as
 /// UAV 2, nor with a ground station's as UAV 0. Each forged status claims every brick placed,
 /// and each rogue also puts `{}`: had one sample reached an agent, it would be counted as
@@ -392,10 +440,10 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
             false,
         ),
         (
-            "tls without a client certificate",
+            "quic without a client certificate",
             rogue(
                 &python,
-                "tls",
+                "quic",
                 port,
                 &mission,
                 "as-uav-2",
@@ -407,7 +455,7 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
             "another mission's authority",
             rogue(
                 &python,
-                "tls",
+                "quic",
                 port,
                 &mission,
                 "as-uav-2",
@@ -419,7 +467,7 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
             "UAV 1's certificate as UAV 2",
             rogue(
                 &python,
-                "tls",
+                "quic",
                 port,
                 &mission,
                 "as-uav-2",
@@ -431,7 +479,7 @@ fn strangers_cannot_join_a_tls_team_nor_speak_for_a_uav() {
             "a ground station's certificate as UAV 0",
             rogue(
                 &python,
-                "tls",
+                "quic",
                 port,
                 &mission,
                 "as-uav-0",
@@ -598,8 +646,8 @@ fn an_agent_outside_the_team_is_refused() {
 fn bad_endpoints_are_refused() {
     let o = agent(&["--uav", "0", "--connect", "tcp/127.0.0.1"]);
     assert_input_error(&o, &["--connect", "tcp/127.0.0.1", "PORT"]);
-    let o = agent(&["--uav", "0", "--listen", "quic/127.0.0.1:7447"]);
-    assert_input_error(&o, &["--listen", "quic"]);
+    let o = agent(&["--uav", "0", "--listen", "ws/127.0.0.1:7447"]);
+    assert_input_error(&o, &["--listen", "unknown protocol `ws`"]);
     let o = agent(&["--uav", "0", "--connect", "tcp/127.0.0.1:99999"]);
     assert_input_error(&o, &["99999"]);
 }

@@ -1,12 +1,13 @@
 //! Launching a team on one machine: one agent process per UAV over Zenoh on 127.0.0.1 (mutual
-//! TLS with a mission authority made in the output folder, or plain TCP with `insecure`), kills
-//! (`SIGKILL`) and restarts at given mission times, then the agents' trace files merged into
-//! one trace (with the events of the agents it killed) and checked by
+//! TLS over QUIC or TCP with a mission authority made in the output folder, or plain TCP with
+//! `insecure`), kills (`SIGKILL`) and restarts at given mission times, then the agents' trace
+//! files merged into one trace (with the events of the agents it killed, and of any that died
+//! by a signal or a panic: a crashed agent is a failed UAV) and checked by
 //! [`mason_mission::check_trace`].
 
 use crate::clock::unix_now;
 use crate::error::{FleetError, FleetResult};
-use crate::network::DEFAULT_PREFIX;
+use crate::network::{SecureLink, DEFAULT_PREFIX};
 use crate::setting::FleetSetting;
 use crate::trace::{append_death, merge};
 use mason_mission::{check_trace, CommMode, Event, EventKind, TraceError, TraceSummary};
@@ -33,7 +34,7 @@ pub struct LaunchOptions {
     pub agent_args: Vec<String>,
     /// Output folder: the agents' traces, MCAP logs and stderr.
     pub out: PathBuf,
-    /// Agent U listens on tcp/127.0.0.1:P+U (default: free ports).
+    /// Agent U listens on 127.0.0.1:P+U (default: free ports, TCP and UDP).
     pub base_port: Option<u32>,
     /// The mission id (default: a fresh one).
     pub mission: Option<String>,
@@ -47,6 +48,8 @@ pub struct LaunchOptions {
     pub restarts: Vec<(usize, f64)>,
     /// Plain TCP without authentication instead of mutual TLS.
     pub insecure: bool,
+    /// The link of mutual TLS (QUIC by default).
+    pub link: SecureLink,
     /// Ground stations to make keys for (TLS only), in `out/station-<s>`.
     pub stations: usize,
 }
@@ -62,9 +65,9 @@ pub struct AgentRun {
     pub trace: PathBuf,
     /// Its stdout and stderr.
     pub log: PathBuf,
-    /// How it ended: an exit code, `killed`, `timed out`, `interrupted`.
+    /// How it ended: an exit code, `killed`, `crashed: …`, `timed out`, `interrupted`.
     pub exit: Option<String>,
-    /// The mission time its death's events were written at, if it was killed.
+    /// The mission time its death's events were written at, if it was killed or crashed.
     pub killed_at: Option<f64>,
     child: Option<Child>,
 }
@@ -231,11 +234,21 @@ pub fn schedule(
     Ok(plan)
 }
 
+/// A port free on 127.0.0.1 for both TCP and UDP (QUIC links are UDP).
 fn free_port() -> FleetResult<u16> {
-    std::net::TcpListener::bind("127.0.0.1:0")
-        .and_then(|l| l.local_addr())
-        .map(|a| a.port())
-        .map_err(|e| FleetError::Network(format!("cannot find a free port on 127.0.0.1: {e}")))
+    let err = |e: std::io::Error| {
+        FleetError::Network(format!("cannot find a free port on 127.0.0.1: {e}"))
+    };
+    for _ in 0..64 {
+        let tcp = std::net::TcpListener::bind("127.0.0.1:0").map_err(err)?;
+        let port = tcp.local_addr().map_err(err)?.port();
+        if std::net::UdpSocket::bind(("127.0.0.1", port)).is_ok() {
+            return Ok(port);
+        }
+    }
+    Err(FleetError::Network(
+        "cannot find a port free for both TCP and UDP on 127.0.0.1".into(),
+    ))
 }
 
 fn ports(base: Option<u32>, n: usize) -> FleetResult<Vec<u16>> {
@@ -360,7 +373,11 @@ pub fn launch(
     } else {
         Some(make_authority(&opts.out, &mission, n, opts.stations)?)
     };
-    let scheme = if opts.insecure { "tcp" } else { "tls" };
+    let scheme = if opts.insecure {
+        "tcp"
+    } else {
+        opts.link.scheme()
+    };
     let start_at = unix_now() + opts.lead;
     let spawner = Spawner {
         opts,
@@ -375,7 +392,11 @@ pub fn launch(
         .map(|u| spawner.spawn(u, 1, &[]))
         .collect::<FleetResult<_>>()?;
     let security = match &authority {
-        Some(dir) => format!("mutual TLS, mission authority in {}", dir.display()),
+        Some(dir) => format!(
+            "mutual TLS {}, mission authority in {}",
+            opts.link.carrier(),
+            dir.display()
+        ),
         None => "INSECURE: plain TCP, no authentication".into(),
     };
     started(format!(
@@ -408,7 +429,7 @@ pub fn launch(
                 }
             }
         }
-        reap(&mut runs);
+        reap(&mut runs, mission_now())?;
         if runs.iter().all(|r| r.child.is_none()) && next >= plan.len() {
             break;
         }
@@ -503,19 +524,55 @@ fn kill(runs: &mut [AgentRun], u: usize, now: f64) -> FleetResult<()> {
     Ok(())
 }
 
-/// Notes the agents that have exited.
-fn reap(runs: &mut [AgentRun]) {
+/// The exit code of a Rust program that panicked.
+const PANIC_EXIT: i32 = 101;
+
+/// How an agent that did not end by itself ended (`None` if it did): killed by a signal
+/// nobody sent it here, or a panic.
+pub fn crash(status: std::process::ExitStatus) -> Option<String> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = status.signal() {
+            let name = match sig {
+                4 => " (SIGILL)",
+                6 => " (SIGABRT)",
+                7 => " (SIGBUS)",
+                8 => " (SIGFPE)",
+                9 => " (SIGKILL)",
+                11 => " (SIGSEGV)",
+                15 => " (SIGTERM)",
+                _ => "",
+            };
+            return Some(format!("crashed: signal {sig}{name}"));
+        }
+    }
+    match status.code() {
+        Some(PANIC_EXIT) => Some(format!("crashed: exit {PANIC_EXIT} (panic)")),
+        Some(_) => None,
+        None => Some(format!("crashed: {status}")),
+    }
+}
+
+/// Notes the agents that have exited. One that crashed (see [`crash`]) is a failed UAV from
+/// mission time `now` on, as if it had been killed: its death's events go into its trace,
+/// so that the merged trace does not keep it in the zone or holding a brick.
+fn reap(runs: &mut [AgentRun], now: f64) -> FleetResult<()> {
     for r in runs.iter_mut() {
         if let Some(c) = r.child.as_mut() {
             if let Ok(Some(status)) = c.try_wait() {
-                r.exit = Some(match status.code() {
-                    Some(code) => code.to_string(),
-                    None => format!("{status}"),
-                });
                 r.child = None;
+                r.exit = Some(match crash(status) {
+                    Some(why) => {
+                        r.killed_at = Some(append_death(&r.trace, r.uav, now)?);
+                        why
+                    }
+                    None => status.code().map_or(format!("{status}"), |c| c.to_string()),
+                });
             }
         }
     }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -561,6 +618,32 @@ mod tests {
         let e = schedule(&[], &[(0, 5.0)], 3).unwrap_err().to_string();
         assert!(e.contains("not killed before"), "{e}");
         assert!(schedule(&[(3, 1.0)], &[], 3).is_err());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_signal_or_a_panic_is_a_crash_and_an_exit_code_is_not() {
+        let status = |script: &str| {
+            Command::new("sh")
+                .args(["-c", script])
+                .status()
+                .expect("sh runs")
+        };
+        assert_eq!(
+            crash(status("kill -ILL $$")).as_deref(),
+            Some("crashed: signal 4 (SIGILL)")
+        );
+        assert_eq!(
+            crash(status("kill -USR1 $$")).as_deref(),
+            Some("crashed: signal 10")
+        );
+        assert_eq!(
+            crash(status("exit 101")).as_deref(),
+            Some("crashed: exit 101 (panic)")
+        );
+        for code in [0, 1, 2, 3] {
+            assert_eq!(crash(status(&format!("exit {code}"))), None, "{code}");
+        }
     }
 
     #[test]

@@ -63,13 +63,13 @@ pub use drive::{drive, Ending, LAST_WORD_REPEATS};
 pub use error::{FleetError, FleetResult};
 pub use faults::{FaultLayer, FaultStats};
 pub use launch::{
-    drops_in_log, launch, schedule, Action, AgentRun, Launch, LaunchOptions, DROPPED_LINE,
+    crash, drops_in_log, launch, schedule, Action, AgentRun, Launch, LaunchOptions, DROPPED_LINE,
 };
 pub use log::{AgentLog, Capped, JsonLines, McapAgentLog, MAX_LOG_BYTES};
 pub use mason_mission::agent::agent_seed;
 pub use network::{
-    check_chunks, check_endpoint, Network, NetworkFile, NetworkFlags, Security, DEFAULT_PREFIX,
-    MAX_KEY_CHUNK, MAX_PREFIX_CHUNKS,
+    check_chunks, check_endpoint, Network, NetworkFile, NetworkFlags, SecureLink, Security,
+    DEFAULT_PREFIX, MAX_KEY_CHUNK, MAX_PREFIX_CHUNKS, SECURE_SCHEMES,
 };
 pub use setting::{default_dead_after, least_dead_after, FleetSetting, DEAD_AFTER_HEARTBEATS};
 pub use trace::{append_death, merge, parse_trace, placed_by, read_trace, MAX_TRACE_BYTES};

@@ -28,7 +28,9 @@ pub struct Network {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Security {
     /// Zenoh TLS with mutual authentication and access control, from the member's folder of
-    /// `ca.pem`, `cert.pem` and `key.pem` (`--tls-dir`, see `mason keys`). Endpoints are `tls/`.
+    /// `ca.pem`, `cert.pem` and `key.pem` (`--tls-dir`, see `mason keys`). Endpoints are
+    /// `quic/` (TLS 1.3 inside QUIC, Mason's default, see [`SecureLink`]) or `tls/` (TLS over
+    /// TCP).
     Tls(PathBuf),
     /// Plain links (`tcp/`, `udp/`), no authentication (`--insecure`): any peer on the network
     /// can join and speak for any UAV; only the check on arrival stands.
@@ -42,6 +44,65 @@ impl Security {
             Security::Tls(_) => "mutual-tls",
             Security::Insecure => "insecure",
         }
+    }
+}
+
+/// The Zenoh link that carries a team's mutual TLS.
+///
+/// Both authenticate each peer by its certificate from the mission authority and give Zenoh's
+/// access control the certificate's common name. `Quic` is the default: Zenoh 1.10.2's `tls`
+/// link lets its reading and writing tasks take `&mut` of one rustls connection at once, a data
+/// race that crashed about 2 % of agents (SIGILL) in fault runs; its QUIC link keeps sending
+/// and receiving on separate streams of a connection that locks its own state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SecureLink {
+    /// `quic/HOST:PORT` (UDP).
+    #[default]
+    Quic,
+    /// `tls/HOST:PORT` (TCP).
+    Tls,
+}
+
+impl SecureLink {
+    /// How the TLS is carried, for people: `in QUIC` or `over TCP`.
+    pub fn carrier(self) -> &'static str {
+        match self {
+            SecureLink::Quic => "in QUIC",
+            SecureLink::Tls => "over TCP",
+        }
+    }
+
+    /// The endpoint scheme: `quic` or `tls`.
+    pub fn scheme(self) -> &'static str {
+        match self {
+            SecureLink::Quic => "quic",
+            SecureLink::Tls => "tls",
+        }
+    }
+}
+
+/// The schemes of links that carry mutual TLS.
+pub const SECURE_SCHEMES: [&str; 2] = ["quic", "tls"];
+
+/// The scheme of an endpoint (`quic` of `quic/127.0.0.1:7447`).
+fn scheme(e: &str) -> &str {
+    e.split_once('/').map_or("", |(p, _)| p)
+}
+
+impl Network {
+    /// With TLS, the secure schemes of this agent's endpoints, each once (`quic` before
+    /// `tls`): the only links its session accepts and opens.
+    pub fn secure_protocols(&self) -> Vec<String> {
+        SECURE_SCHEMES
+            .iter()
+            .filter(|s| {
+                self.listen
+                    .iter()
+                    .chain(&self.connect)
+                    .any(|e| scheme(e) == **s)
+            })
+            .map(|s| s.to_string())
+            .collect()
     }
 }
 
@@ -87,7 +148,7 @@ impl Network {
     /// The network of a file's settings (if any) with the flags on top: `mission`, `prefix`
     /// and `tls_dir` override the file's, `listen` and `connect` add to its lists. Every value
     /// is checked; errors name the flag (and the file). One of `tls_dir` and `insecure` is
-    /// needed, and the endpoints must match it (`tls/`, or `tcp/` and `udp/`).
+    /// needed, and the endpoints must match it (`quic/` and `tls/`, or `tcp/` and `udp/`).
     pub fn resolve(file: Option<&Path>, flags: &NetworkFlags) -> FleetResult<Network> {
         let from_file: NetworkFile = match file {
             Some(p) => mason_io::read_toml(p)?,
@@ -141,12 +202,12 @@ impl Network {
             for e in list {
                 let flag = shown(flag);
                 check_endpoint(&flag, e, listen)?;
-                let tls = e.starts_with("tls/");
+                let tls = SECURE_SCHEMES.contains(&scheme(e));
                 if tls != matches!(security, Security::Tls(_)) {
                     let why = if tls {
-                        "a tls/ endpoint needs --tls-dir, not --insecure"
+                        "a quic/ or tls/ endpoint needs --tls-dir, not --insecure"
                     } else {
-                        "plain links need --insecure; with --tls-dir use tls/HOST:PORT"
+                        "plain links need --insecure; with --tls-dir use quic/HOST:PORT or tls/HOST:PORT"
                     };
                     return Err(FleetError::bad(format!("{flag} `{e}`: {why}")));
                 }
@@ -162,7 +223,7 @@ impl Network {
     }
 }
 
-/// Checks a Zenoh endpoint `proto/host:port` (tcp, udp or tls; port 0 only to listen).
+/// Checks a Zenoh endpoint `proto/host:port` (tcp, udp, quic or tls; port 0 only to listen).
 pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
     if e.chars().count() > MAX_ENDPOINT {
         let head: String = e.chars().take(80).collect();
@@ -174,9 +235,9 @@ pub fn check_endpoint(flag: &str, e: &str, listen: bool) -> FleetResult<()> {
     let (proto, addr) = e
         .split_once('/')
         .ok_or_else(|| bad("expected PROTO/HOST:PORT, e.g. tcp/127.0.0.1:7447"))?;
-    if !["tcp", "udp", "tls"].contains(&proto) {
+    if !["tcp", "udp", "quic", "tls"].contains(&proto) {
         return Err(bad(&format!(
-            "unknown protocol `{proto}` (Mason speaks tls, and tcp and udp with --insecure)"
+            "unknown protocol `{proto}` (Mason speaks quic and tls, and tcp and udp with --insecure)"
         )));
     }
     let addr = addr.split(['?', '#']).next().unwrap_or_default();
@@ -245,9 +306,11 @@ mod tests {
     fn endpoints_are_checked() {
         assert!(check_endpoint("--listen", "tcp/127.0.0.1:0", true).is_ok());
         assert!(check_endpoint("--connect", "tcp/[::1]:7447", false).is_ok());
+        assert!(check_endpoint("--connect", "quic/1.2.3.4:5", false).is_ok());
         for bad in [
             "127.0.0.1:7447",
-            "quic/1.2.3.4:5",
+            "ws/1.2.3.4:5",
+            "quic/1.2.3.4",
             "tcp/127.0.0.1",
             "tcp/:7447",
             "tcp/h:99999",
@@ -307,6 +370,27 @@ mod tests {
         };
         let n = Network::resolve(None, &tls).unwrap();
         assert_eq!(n.security, Security::Tls("keys/uav-0".into()));
+        assert_eq!(n.secure_protocols(), ["tls"]);
+        // QUIC carries the same mutual TLS; an agent accepts and opens the schemes it names.
+        let quic = NetworkFlags {
+            listen: vec!["quic/127.0.0.1:7448".into()],
+            ..tls.clone()
+        };
+        let n = Network::resolve(None, &quic).unwrap();
+        assert_eq!(n.secure_protocols(), ["quic", "tls"]);
+        let quic_insecure = NetworkFlags {
+            tls_dir: None,
+            insecure: true,
+            connect: vec![],
+            ..quic
+        };
+        let e = Network::resolve(None, &quic_insecure)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("quic/127.0.0.1:7448") && e.contains("needs --tls-dir"),
+            "{e}"
+        );
         let both = NetworkFlags {
             insecure: true,
             ..tls.clone()

@@ -1,7 +1,8 @@
 //! The Zenoh transport of an agent (feature `zenoh`): a peer-mode session with
 //! multicast scouting off and explicit listen/connect endpoints.
 //!
-//! By default the links are TLS with mutual authentication: every member shows a certificate
+//! By default the links are QUIC (TLS 1.3) with mutual authentication (`tls/` links over TCP
+//! carry the same; see [`crate::network::SecureLink`] for why QUIC is the default): every member shows a certificate
 //! of the mission authority ([`crate::authority`]), checked before the session opens, and a
 //! peer without one cannot join. On top, Zenoh's access control ([`access_control`]) lets in,
 //! from the session of UAV *i* (the common name `uav-i` of its certificate), only puts on
@@ -138,12 +139,15 @@ pub fn config(net: &Network, me: usize, uavs: usize) -> FleetResult<zenoh::Confi
         set(&format!("{tls}/enable_mtls"), "true".into())?;
         // Peers are reached by address: what matters is the authority and the common name.
         set(&format!("{tls}/verify_name_on_connect"), "false".into())?;
-        // TLS links only, accepted and opened: gossip tells an agent of every peer's
-        // locators, and a link opened to a plain `tcp/` one (a station's default listener)
-        // carries no certificate, so the access control below, which knows subjects by their
-        // certificates' names, would drop that peer's commands (an abort once reached one
-        // agent of three this way).
-        set("transport/link/protocols", json_list(&["tls".to_string()]))?;
+        // Secure links only (the schemes of this agent's endpoints), accepted and opened:
+        // gossip tells an agent of every peer's locators, and a link opened to a plain `tcp/`
+        // one (a station's default listener) carries no certificate, so the access control
+        // below, which knows subjects by their certificates' names, would drop that peer's
+        // commands (an abort once reached one agent of three this way).
+        set(
+            "transport/link/protocols",
+            json_list(&net.secure_protocols()),
+        )?;
         let base = format!("{}/{}", net.prefix, net.mission);
         set(
             "access_control",
@@ -152,6 +156,9 @@ pub fn config(net: &Network, me: usize, uavs: usize) -> FleetResult<zenoh::Confi
     }
     Ok(c)
 }
+
+/// How long [`ZenohLink::close`] waits for Zenoh to close the session.
+pub const CLOSE_GRACE: std::time::Duration = std::time::Duration::from_millis(500);
 
 impl ZenohLink {
     /// Opens the session for UAV `me` of a team of `uavs`, after checking its TLS files
@@ -243,7 +250,10 @@ impl ZenohLink {
         self.publishers.get(key)
     }
 
-    /// Closes the session (pending messages are flushed).
+    /// Closes the session (pending messages are flushed), waiting at most [`CLOSE_GRACE`]:
+    /// over QUIC a peer that has already gone without its goodbye reaching us (its process
+    /// ended before its endpoint sent it) holds Zenoh's close until its own 10 s timeout. The
+    /// team has heard this agent's last words by then; what is cut short is only the goodbye.
     pub fn close(self) {
         let ZenohLink {
             session,
@@ -255,7 +265,16 @@ impl ZenohLink {
         drop(scene);
         drop(_subscriber);
         drop(publishers);
-        let _ = session.close().wait();
+        let (done, closed) = mpsc::channel();
+        let closer = std::thread::Builder::new()
+            .name("zenoh-close".into())
+            .spawn(move || {
+                let _ = session.close().wait();
+                let _ = done.send(());
+            });
+        if closer.is_ok() {
+            let _ = closed.recv_timeout(CLOSE_GRACE);
+        }
     }
 }
 
@@ -297,15 +316,20 @@ mod tests {
         }
     }
 
-    /// A mutual-TLS team accepts and opens TLS links only, so that no peer learnt by gossip
-    /// is reached over a plain link without a certificate (where the access control, which
-    /// knows its subjects by their certificates, would drop a station's commands).
+    /// A mutual-TLS team accepts and opens its secure links only, so that no peer learnt by
+    /// gossip is reached over a plain link without a certificate (where the access control,
+    /// which knows its subjects by their certificates, would drop a station's commands).
     #[test]
-    fn a_tls_team_opens_and_accepts_tls_links_only() {
+    fn a_tls_team_opens_and_accepts_secure_links_only() {
+        let protocols = |c: &zenoh::Config| -> Vec<String> {
+            serde_json::from_str(&c.get_json("transport/link/protocols").unwrap()).unwrap()
+        };
         let tls = config(&network(Security::Tls("keys/uav-0".into())), 0, 3).unwrap();
-        let protocols: Vec<String> =
-            serde_json::from_str(&tls.get_json("transport/link/protocols").unwrap()).unwrap();
-        assert_eq!(protocols, ["tls"]);
+        assert_eq!(protocols(&tls), ["tls"]);
+        let mut net = network(Security::Tls("keys/uav-0".into()));
+        net.listen = vec!["quic/127.0.0.1:7447".into()];
+        net.connect = vec!["quic/127.0.0.1:7448".into()];
+        assert_eq!(protocols(&config(&net, 0, 3).unwrap()), ["quic"]);
         assert!(tls
             .get_json("access_control/enabled")
             .unwrap()

@@ -174,7 +174,8 @@ pub struct AgentArgs {
     /// agent waits
     #[arg(long, allow_negative_numbers = true)]
     pub start_at: Option<f64>,
-    /// Zenoh endpoint to listen on, e.g. tcp/127.0.0.1:7447; repeatable
+    /// Zenoh endpoint to listen on, e.g. quic/127.0.0.1:7447 (tls/ also carries mutual TLS;
+    /// tcp/ and udp/ need --insecure); repeatable
     #[arg(long)]
     pub listen: Vec<String>,
     /// Zenoh endpoint of a teammate to connect to; repeatable
@@ -188,7 +189,8 @@ pub struct AgentArgs {
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// This UAV's folder of TLS files from its mission authority: ca.pem, cert.pem, key.pem
-    /// (made by `mason keys`, or `mason launch` in OUT/uav-<i>); endpoints are tls/HOST:PORT
+    /// (made by `mason keys`, or `mason launch` in OUT/uav-<i>); endpoints are quic/HOST:PORT
+    /// (TLS 1.3 in QUIC, as `mason launch` uses) or tls/HOST:PORT (TLS over TCP)
     #[arg(long)]
     pub tls_dir: Option<PathBuf>,
     /// Plain links (tcp/, udp/) without authentication, for a trusted bench: any peer on the

@@ -27,7 +27,8 @@ pub struct LaunchArgs {
     /// Output folder: the agents' traces and logs, and the merged trace (trace.json)
     #[arg(long, default_value = "mason-out/launch")]
     pub out: PathBuf,
-    /// Agent U listens on tcp/127.0.0.1:P+U (default: free ports)
+    /// Agent U listens on 127.0.0.1:P+U (quic/, tls/ or, with --insecure, tcp/; default: free
+    /// ports)
     #[arg(long, allow_negative_numbers = true)]
     pub base_port: Option<u32>,
     /// The mission id (default: a fresh one)
@@ -45,12 +46,26 @@ pub struct LaunchArgs {
     pub rosbag: Option<PathBuf>,
     /// Plain TCP without authentication, for a trusted bench (by default the launch makes a
     /// mission authority in OUT/authority and one TLS set per UAV in OUT/uav-<i>, and the
-    /// agents talk over mutual TLS with access control)
+    /// agents talk over mutual TLS, in QUIC, with access control)
     #[arg(long)]
     pub insecure: bool,
+    /// The link that carries mutual TLS: quic (TLS 1.3 in QUIC over UDP, the default) or tls
+    /// (TLS over TCP; Zenoh 1.10.2's TLS link has a data race that can crash an agent when a
+    /// peer goes away, see the README)
+    #[arg(long, value_enum, default_value_t = Link::Quic, conflicts_with = "insecure")]
+    pub link: Link,
     /// Ground stations to make TLS files for, in OUT/station-<s>
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     pub stations: usize,
+}
+
+/// `--link`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Link {
+    /// TLS 1.3 inside QUIC (UDP)
+    Quic,
+    /// TLS over TCP
+    Tls,
 }
 
 /// Parses `U@T` values of `flag` for a team of `uavs`.
@@ -87,6 +102,10 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
         kills: at_times("--kill", &a.kill, n)?,
         restarts: at_times("--restart", &a.restart, n)?,
         insecure: a.insecure,
+        link: match a.link {
+            Link::Quic => mason_fleet::SecureLink::Quic,
+            Link::Tls => mason_fleet::SecureLink::Tls,
+        },
         stations: a.stations,
     };
     let interrupted = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
@@ -162,7 +181,11 @@ pub fn run(a: LaunchArgs, quiet: bool) -> CliResult<()> {
             .unwrap_or("passed (zone, precedence, every brick accounted for)")
     );
     match &done.authority {
-        Some(dir) => println!("security: mutual TLS, mission authority {}", dir.display()),
+        Some(dir) => println!(
+            "security: mutual TLS {}, mission authority {}",
+            opts.link.carrier(),
+            dir.display()
+        ),
         None => println!("security: INSECURE (plain TCP, no authentication)"),
     }
     println!(
