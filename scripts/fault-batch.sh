@@ -4,20 +4,23 @@
 # 60 s network cut under `auto`, and message loss + duplication + reordering, each with its own
 # seed and fault time. Prints one line per run and a tally:
 #   violations = merged traces that fail check_trace (launch exit 3): must be 0;
-#   unfinished = safe runs that left bricks (launch exit 1).
-# Usage: scripts/fault-batch.sh [N=50] [OUT=target/fault-batch]
-# Needs `cargo build --release --features zenoh` first.
+#   unfinished = safe runs that left bricks (launch exit 1);
+#   crashed = agents that died by a signal or a panic (launch counts each as a failed UAV).
+# Usage: [MASON=path/to/mason] scripts/fault-batch.sh [N=50] [OUT=target/fault-batch]
+# Needs `cargo build --release --features zenoh` first (or MASON=target/debug/mason).
+# Extra `mason launch` options go in LAUNCH_ARGS, e.g. LAUNCH_ARGS="--link tls".
 set -uo pipefail
 cd "$(dirname "$0")/.."
 n="${1:-50}"
 out="${2:-target/fault-batch}"
-mason=target/release/mason
+mason="${MASON:-target/release/mason}"
+read -r -a extra <<<"${LAUNCH_ARGS:-}"
 if [ ! -x "$mason" ]; then
   echo "build it first: cargo build --release --features zenoh" >&2
   exit 2
 fi
 mkdir -p "$out"
-ok=0 unfinished=0 violations=0 other=0
+ok=0 unfinished=0 violations=0 other=0 crashed=0
 for i in $(seq 1 "$n"); do
   seed=$((i + 100))
   case $((i % 3)) in
@@ -29,10 +32,13 @@ for i in $(seq 1 "$n"); do
   rm -rf "$dir"
   start=$(date +%s.%N)
   "$mason" launch builtin:mbzirc --uavs 3 --speed 100 --coord auto --seed "$seed" \
-    --out "$dir" "${fault[@]}" >"$dir.txt" 2>&1
+    --out "$dir" "${fault[@]}" "${extra[@]}" >"$dir.txt" 2>&1
   code=$?
   wall=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
   placed=$(grep -o "bricks placed: [0-9]*/[0-9]*" "$dir.txt" | head -1)
+  crashes=$(grep -c "crashed:" "$dir.txt")
+  crashed=$((crashed + crashes))
+  [ "$crashes" -gt 0 ] && placed="$placed  CRASHED: $crashes"
   case $code in
     0) ok=$((ok + 1)) ;;
     1) unfinished=$((unfinished + 1)) ;;
@@ -41,5 +47,5 @@ for i in $(seq 1 "$n"); do
   esac
   printf 'run %2d  seed %3d  %-30s exit %d  %s  %.1f s\n' "$i" "$seed" "$what" "$code" "$placed" "$wall"
 done
-echo "runs $n: finished $ok, unfinished $unfinished, check_trace violations $violations, other $other"
+echo "runs $n: finished $ok, unfinished $unfinished, check_trace violations $violations, other $other; agents crashed $crashed"
 [ "$violations" -eq 0 ] && [ "$other" -eq 0 ]

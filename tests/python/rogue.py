@@ -15,7 +15,7 @@ PREFIX/MISSION/** and, during SECONDS, carries out ATTACK, one of:
 - `flood`: 10 000 samples a second (copies of the last message heard, or `{}` before any) on
   UAV 1's heartbeat key.
 
-With CA (the authority's certificate) the link is TLS; with CERT and KEY too, the rogue shows
+With CA (the authority's certificate) the link is TLS (`quic/` or `tls/` endpoints); with CERT and KEY too, the rogue shows
 that certificate (mutual TLS); CERT and KEY may be `-` for none. Prints one line of JSON:
 `{"heard": samples heard from others, "sent": samples put}`. The test that runs it decides
 from the team's outcome and its drop counters whether the attack got in.
