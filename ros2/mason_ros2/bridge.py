@@ -96,6 +96,7 @@ class Bridge:
         self.lock = threading.Lock()
         self.inbox: queue.Queue = queue.Queue()
         self.stop = threading.Event()
+        self.spinner: threading.Thread | None = None
         self.station = Station(a.prefix, a.mission, a.station)
         self.delays: list[float] = []
         self.max_backlog = 0
@@ -178,8 +179,8 @@ class Bridge:
         self.delays.append(time.monotonic() - arrived)
 
     def run(self) -> None:
-        spinner = threading.Thread(target=self.spin, daemon=True)
-        spinner.start()
+        self.spinner = threading.Thread(target=self.spin, daemon=True)
+        self.spinner.start()
         last_ask = 0.0
         while not self.stop.is_set():
             if self.team.bricks is None and time.monotonic() - last_ask > SCENE_RETRY_S:
@@ -206,6 +207,11 @@ class Bridge:
 
     def close(self) -> dict:
         self.stop.set()
+        # The ROS 2 spinner must be out of the executor before it is shut down: a spin_once
+        # still running while the node is destroyed once ended the process in C++'s
+        # std::terminate ("terminate called without an active exception", SIGABRT).
+        if self.spinner is not None:
+            self.spinner.join(timeout=5.0)
         try:
             self.sub.undeclare()
             self.command_pub.undeclare()
