@@ -106,6 +106,10 @@ pub struct Classifier {
     gain: [f64; 3],
     robot: Hue,
     goal: Hue,
+    /// The floor's brightness (its brightest channel) and chromaticity (channels over their
+    /// sum), before white balance.
+    floor_bright: f64,
+    floor_chromaticity: [f64; 3],
 }
 
 /// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
@@ -122,16 +126,60 @@ const LIT_OBSTACLE: (f64, f64) = (0.85, MARK_COLOUR.0);
 const HUE_BAND: (f64, f64) = (25.0, 35.0);
 /// Hues this much beyond a band cannot be told apart from it.
 const HUE_DOUBT: f64 = 10.0;
+/// A mark by its colour before white balance differs from the floor's chromaticity by at
+/// least this much in one channel.
+const RAW_APART: f64 = 0.06;
 
 impl Classifier {
     /// A classifier for a floor whose median colour (0–255 per channel) is `floor`.
     pub fn new(floor: [f64; 3], robot: Hue, goal: Hue) -> Classifier {
         let bright = floor.iter().copied().fold(0.0, f64::max).max(1.0);
         let gain = floor.map(|c| 1.0 / c.max(bright * 0.05));
-        Classifier { gain, robot, goal }
+        let sum = floor.iter().sum::<f64>().max(1.0);
+        Classifier {
+            gain,
+            robot,
+            goal,
+            floor_bright: bright,
+            floor_chromaticity: floor.map(|c| c / sum),
+        }
     }
 
-    /// The class of one pixel.
+    /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:
+    /// a clear colour (as a mark's, relative to the lit floor) within a mark's hue band and
+    /// at least [`RAW_APART`] in chromaticity from the floor's. A floor of a clear colour,
+    /// beige say, turns a pale mark's balanced hue (a pale green goal on it becomes cyan);
+    /// see [`super::tinted`].
+    pub fn raw_mark(&self, p: [u8; 3]) -> Option<Class> {
+        let rgb = p.map(f64::from);
+        let (max, min) = (
+            rgb[0].max(rgb[1]).max(rgb[2]),
+            rgb[0].min(rgb[1]).min(rgb[2]),
+        );
+        let chroma = max - min;
+        let sum = rgb.iter().sum::<f64>();
+        if max <= 0.0 || chroma < MARK_COLOUR.1 * self.floor_bright || chroma < MARK_COLOUR.0 * max
+        {
+            return None;
+        }
+        let apart = (0..3)
+            .map(|c| (rgb[c] / sum - self.floor_chromaticity[c]).abs())
+            .fold(0.0, f64::max);
+        if apart < RAW_APART {
+            return None;
+        }
+        let (hue, _) = hue_saturation(rgb);
+        let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
+        if dr <= HUE_BAND.0 && dr < dg {
+            Some(Class::Robot)
+        } else if dg <= HUE_BAND.1 {
+            Some(Class::Goal)
+        } else {
+            None
+        }
+    }
+
+    /// The class of one pixel by its colour after white balance.
     pub fn classify(&self, p: [u8; 3]) -> Class {
         let rgb = [
             f64::from(p[0]) * self.gain[0],

@@ -8,7 +8,10 @@
 //! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
 //!    and each cell's obstacle coverage, in one pass over the [`pixels`]; a cell the window
 //!    count leaves in doubt is judged on its [`cover`] in finer bins, against what the
-//!    leaning tops of the obstacles next to it would cover;
+//!    leaning tops of the obstacles next to it would cover; a blob that fills whole cells is
+//!    an obstacle whatever its colour ([`shelves`]), and a colour that cannot be told inside
+//!    a robot, a goal or an obstacle is part of it ([`enclosed`]); a blob that fills no cell
+//!    and has a mark's colour before white balance is that mark ([`tinted`]);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
@@ -41,9 +44,12 @@
 pub mod blobs;
 pub mod colour;
 pub mod cover;
+pub mod enclosed;
 pub mod homography;
 pub mod lines;
 pub mod pixels;
+pub mod shelves;
+pub mod tinted;
 
 use crate::error::{CrewError, Location};
 use crate::grid::{Cell, Grid};
@@ -471,8 +477,19 @@ pub fn read_aerial_image(
         config.goal_colour,
     );
     let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
-    let (mut classes, coverage) =
-        pixels::classify(img, &classifier, &image_to_floor, (gw, gh), nadir);
+    let px = cell_size_px(&floor_to_image, (fw, fh));
+    let mut classes = pixels::classify(
+        img,
+        &classifier,
+        &image_to_floor,
+        (gw, gh),
+        pixels::denoise_radius(px),
+    );
+    let width = img.width() as usize;
+    tinted::recover(&mut classes, img, &classifier, &image_to_floor, (gw, gh));
+    enclosed::settle(&mut classes, width);
+    shelves::absorb(&mut classes, width, &image_to_floor, (gw, gh));
+    let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
             .apply((
@@ -507,7 +524,6 @@ pub fn read_aerial_image(
             && y < i64::from(gh)
             && sure[(y * i64::from(gw) + x) as usize]
     };
-    let width = img.width() as usize;
     // The fits, on all cores (each cell's alone: the result does not depend on the cores).
     let fits: Vec<Option<cover::Fit>> = {
         use rayon::prelude::*;
@@ -580,7 +596,6 @@ pub fn read_aerial_image(
         *b = true;
     }
     let grid = Grid::new(gw, gh, blocked);
-    let px = cell_size_px(&floor_to_image, (fw, fh));
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let robots = marks(
         blobs::find(&mut classes, width, Class::Robot as u8),

@@ -1,0 +1,306 @@
+//! Obstacles by their shape, whatever their colour.
+//!
+//! A shelf's colour may lie near the goals' (dark green, teal) or between a mark's and
+//! another's (amber, yellow under warm light), so some or all of its pixels read as goal or
+//! as a colour that cannot be told. Its shape tells what it is: it stands on whole cells and
+//! fills them, while a goal is a mark inside one cell, and all goals of a view are alike.
+//!
+//! So every 8-connected blob of goal, unsure and obstacle pixels that holds some goal or
+//! unsure pixels is judged as a whole. It is an obstacle when it fills (at least [`FILLED`]
+//! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
+//! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
+//! two cells only when each fills its own, and are then twice the median). Its pixels become
+//! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
+//! by a colour between (its goal pixels that make a blob of a goal's size on their own).
+//! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
+//! refused as before.
+//!
+//! Limit: a goal touching such a blob (blur can join them when cells are under 12 px) is
+//! taken as part of it; when the view has as many goals as robots the reading is then
+//! refused ("fewer goals than robots").
+//!
+//! Cost: O(pixels) to label the blobs and, when a blob is large, one more O(pixels) pass for
+//! the cells' pixel counts.
+
+use super::blobs;
+use super::colour::Class;
+use super::homography::Homography;
+use super::pixels::OUTSIDE;
+
+/// The middle of a cell, along each axis, whose pixels a blob must fill.
+pub const INNER: (f64, f64) = (0.1, 0.9);
+/// The share of those pixels that fills it.
+pub const FILLED: f64 = 0.85;
+/// An obstacle blob is at least this many times the median goal.
+pub const LARGER: f64 = 2.5;
+/// A goal joined to an obstacle blob has at least this share of its pixels outside the
+/// cells the blob fills.
+pub const GOAL_OUTSIDE: f64 = 0.8;
+
+/// The 8-connected blobs of goal and unsure pixels, as lists of pixel indices, in row-major
+/// order of their first pixel.
+fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
+    let height = classes.len() / width.max(1);
+    let part = |c: u8| c == Class::Goal as u8 || c == Class::Unsure as u8;
+    let mut seen = vec![false; classes.len()];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..classes.len() {
+        if seen[start] || !part(classes[start]) {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut pixels = Vec::new();
+        while let Some(i) = stack.pop() {
+            pixels.push(i);
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    let j = ny * width + nx;
+                    if !seen[j] && part(classes[j]) {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        out.push(pixels);
+    }
+    out
+}
+
+/// The cell (index) under pixel `i`, if any.
+fn cell_of(
+    i: usize,
+    width: usize,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+) -> Option<usize> {
+    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+    let (u, v) = image_to_floor.apply((x, y))?;
+    (u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h))
+        .then(|| v.floor() as usize * w as usize + u.floor() as usize)
+}
+
+/// The cell (index) whose middle holds pixel `i`, if any.
+pub(crate) fn inner_cell(
+    i: usize,
+    width: usize,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+) -> Option<usize> {
+    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+    let (u, v) = image_to_floor.apply((x, y))?;
+    if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
+        return None;
+    }
+    let (cu, cv) = (u.floor(), v.floor());
+    let inside = |f: f64| (INNER.0..=INNER.1).contains(&f);
+    (inside(u - cu) && inside(v - cv)).then(|| cv as usize * w as usize + cu as usize)
+}
+
+/// The cells a blob fills (given every cell's count of middle pixels and of obstacle pixels
+/// among them), when it fills two side by side; else none.
+fn filled_cells(
+    pixels: &[usize],
+    width: usize,
+    image_to_floor: &Homography,
+    floor: (u32, u32),
+    middle: &[u32],
+    obstacle: &[u32],
+) -> Vec<usize> {
+    let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
+    for &i in pixels {
+        if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
+            *held.entry(c).or_insert(0) += 1;
+        }
+    }
+    // The obstacle pixels in the middles of those cells fill them too.
+    let filled: Vec<usize> = held
+        .iter()
+        .filter(|&(&c, &n)| {
+            middle[c] > 0 && f64::from(n + obstacle[c]) >= FILLED * f64::from(middle[c])
+        })
+        .map(|(&c, _)| c)
+        .collect();
+    let w = floor.0 as usize;
+    let side_by_side = filled.iter().any(|&c| {
+        (c % w + 1 < w && filled.binary_search(&(c + 1)).is_ok())
+            || filled.binary_search(&(c + w)).is_ok()
+    });
+    if side_by_side {
+        filled
+    } else {
+        Vec::new()
+    }
+}
+
+/// Turns the blobs that are obstacles by their shape (see the module's comment) into
+/// obstacle pixels; returns how many blobs it turned.
+pub fn absorb(
+    classes: &mut [u8],
+    width: usize,
+    image_to_floor: &Homography,
+    floor: (u32, u32),
+) -> usize {
+    let blobs_found = mixed_blobs(classes, width);
+    // Only a blob at least two cells large can fill two.
+    let cells = f64::from(floor.0) * f64::from(floor.1);
+    let inside = classes.iter().filter(|&&c| c != OUTSIDE).count() as f64;
+    let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
+    let large: Vec<&Vec<usize>> = blobs_found
+        .iter()
+        .filter(|b| b.len() >= two_cells)
+        .collect();
+    if large.is_empty() {
+        return 0;
+    }
+    let mut middle = vec![0u32; floor.0 as usize * floor.1 as usize];
+    let mut obstacle = middle.clone();
+    for (i, &c) in classes.iter().enumerate() {
+        if c != OUTSIDE {
+            if let Some(cell) = inner_cell(i, width, image_to_floor, floor) {
+                middle[cell] += 1;
+                if c == Class::Obstacle as u8 {
+                    obstacle[cell] += 1;
+                }
+            }
+        }
+    }
+    let shaped: Vec<(&Vec<usize>, Vec<usize>)> = large
+        .into_iter()
+        .map(|b| {
+            (
+                b,
+                filled_cells(b, width, image_to_floor, floor, &middle, &obstacle),
+            )
+        })
+        .filter(|(_, cells)| !cells.is_empty())
+        .collect();
+    if shaped.is_empty() {
+        return 0;
+    }
+    // The median goal among the goal pixels outside those blobs.
+    let mut goals_only: Vec<u8> = classes.to_vec();
+    for (b, _) in &shaped {
+        for &i in b.iter() {
+            goals_only[i] = OUTSIDE;
+        }
+    }
+    let median = blobs::sort(blobs::find(&mut goals_only, width, Class::Goal as u8)).median_area;
+    let mut turned = 0;
+    for (b, cells) in shaped {
+        if (b.len() as f64) < LARGER * median as f64 {
+            continue;
+        }
+        let in_filled = |i: usize| {
+            cell_of(i, width, image_to_floor, floor)
+                .is_some_and(|c| cells.binary_search(&c).is_ok())
+        };
+        let goals = goals_within(classes, width, b, median, &in_filled);
+        for &i in b {
+            if !goals.contains(&i) {
+                classes[i] = Class::Obstacle as u8;
+            }
+        }
+        turned += 1;
+    }
+    turned
+}
+
+/// The pixels of the goals within a blob: its goal pixels that make, on their own, a blob
+/// of a goal's size ([`blobs::SMALL`] to [`blobs::MERGED`] medians), at least
+/// [`GOAL_OUTSIDE`] of it outside the cells the blob fills, joined to the rest by pixels of a
+/// colour between (blur mixes a goal's green with a shelf's yellow).
+fn goals_within(
+    classes: &[u8],
+    width: usize,
+    blob: &[usize],
+    median: usize,
+    in_filled: &dyn Fn(usize) -> bool,
+) -> std::collections::BTreeSet<usize> {
+    let mut own: Vec<u8> = vec![OUTSIDE; classes.len()];
+    for &i in blob {
+        own[i] = classes[i];
+    }
+    let size = |a: usize| a as f64 / median.max(1) as f64;
+    blobs::find(&mut own, width, Class::Goal as u8)
+        .into_iter()
+        .filter(|g| (blobs::SMALL..=blobs::MERGED).contains(&size(g.area())))
+        .map(|g| {
+            g.pixels
+                .into_iter()
+                .map(|(x, y)| y as usize * width + x as usize)
+                .collect::<Vec<usize>>()
+        })
+        .filter(|g| {
+            let outside = g.iter().filter(|&&i| !in_filled(i)).count();
+            outside as f64 >= GOAL_OUTSIDE * g.len() as f64
+        })
+        .flatten()
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 4 × 2-cell floor, 10 px per cell, straight down.
+    fn floor() -> (Homography, Vec<u8>) {
+        let to_image = Homography::floor_to_image(
+            4.0,
+            2.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 20.0), (0.0, 20.0)],
+        )
+        .unwrap();
+        (
+            to_image.inverse().unwrap(),
+            vec![Class::Floor as u8; 40 * 20],
+        )
+    }
+
+    fn paint(classes: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize), c: Class) {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                classes[y * 40 + x] = c as u8;
+            }
+        }
+    }
+
+    #[test]
+    fn a_goal_coloured_shelf_over_two_cells_is_an_obstacle() {
+        let (to_floor, mut classes) = floor();
+        // Goals 4 px wide in cells (3, 0) and (3, 1); a shelf over cells (0, 0) and (1, 0),
+        // goal-coloured with some unsure pixels.
+        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, (1, 1, 19, 9), Class::Goal);
+        paint(&mut classes, (5, 2, 7, 4), Class::Unsure);
+        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn goals_filling_one_cell_each_stay_goals() {
+        let (to_floor, mut classes) = floor();
+        // One goal per cell, each filling its cell, touching the next: twice the median.
+        paint(&mut classes, (0, 0, 10, 10), Class::Goal);
+        paint(&mut classes, (10, 0, 20, 10), Class::Goal);
+        paint(&mut classes, (21, 11, 30, 20), Class::Goal);
+        paint(&mut classes, (0, 11, 10, 20), Class::Goal);
+        let before = classes.clone();
+        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 0);
+        assert_eq!(classes, before);
+    }
+
+    #[test]
+    fn a_blob_filling_one_cell_is_not_judged() {
+        let (to_floor, mut classes) = floor();
+        paint(&mut classes, (0, 0, 10, 10), Class::Unsure);
+        let before = classes.clone();
+        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 0);
+        assert_eq!(classes, before);
+    }
+}
