@@ -115,7 +115,7 @@ pub struct Sorted {
 /// The smallest blob that can be a robot or a goal, in pixels.
 pub const MIN_AREA: usize = 6;
 /// A blob larger than this many medians is several touching.
-pub const MERGED: f64 = 1.7;
+const MERGED: f64 = 1.7;
 /// A blob smaller than this share of the median is a piece (joined to a blob next to it) or
 /// noise.
 const PIECE: f64 = 0.4;

@@ -121,6 +121,12 @@ const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
 /// Brightness (relative to the lit floor) at which a pixel is no shadow, and the saturation
 /// that then suffices for an obstacle (pale shelves), with the chroma above: a mark's.
 const LIT_OBSTACLE: (f64, f64) = (0.85, MARK_COLOUR.0);
+/// A shadow lit by the sky alone: at most this bright (relative to the lit floor) and this
+/// saturated, of a hue in [`SKY_HUES`] (a clear blue or cyan obstacle is more saturated, and
+/// its lit top brighter).
+const SKY_SHADOW: (f64, f64) = (0.7, 0.45);
+/// The hues of the sky's light, in degrees (cyan to blue).
+const SKY_HUES: (f64, f64) = (180.0, 260.0);
 /// Half-width of the robots' and the goals' hue bands, in degrees (robots are a clear colour;
 /// goals are paint or tape on the floor, whose green varies more).
 const HUE_BAND: (f64, f64) = (25.0, 35.0);
@@ -203,6 +209,13 @@ impl Classifier {
             || (max >= LIT_OBSTACLE.0 && clear((LIT_OBSTACLE.1, OBSTACLE_COLOUR.1))))
         {
             Class::Floor
+        } else if max < SKY_SHADOW.0
+            && chroma < SKY_SHADOW.1 * max
+            && (SKY_HUES.0..=SKY_HUES.1).contains(&hue)
+        {
+            // Floor in a shadow, lit by the sky alone: darker and bluish after white
+            // balance on the sunlit floor.
+            Class::Floor
         } else if dr <= HUE_BAND.0 + HUE_DOUBT || dg <= HUE_BAND.1 + HUE_DOUBT {
             Class::Unsure
         } else {
@@ -240,6 +253,17 @@ mod tests {
         assert_eq!(c.classify([150, 175, 205]), Class::Obstacle);
         // The same tint in a shadow (two thirds as bright): floor.
         assert_eq!(c.classify([75, 88, 103]), Class::Floor);
+    }
+
+    #[test]
+    fn a_shadow_lit_by_the_sky_is_floor_and_a_blue_shelf_an_obstacle() {
+        let c = Classifier::new([150.0, 150.0, 150.0], Hue::RED, Hue::GREEN);
+        // Half as bright as the lit floor and bluish (saturation 0.33): the sky's light.
+        assert_eq!(c.classify([54, 60, 80]), Class::Floor);
+        // A blue shelf's shaded side: as dark, far more saturated.
+        assert_eq!(c.classify([20, 30, 80]), Class::Obstacle);
+        // A dark magenta, of no sky hue: an obstacle.
+        assert_eq!(c.classify([70, 30, 70]), Class::Obstacle);
     }
 
     #[test]

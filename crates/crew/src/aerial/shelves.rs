@@ -11,7 +11,8 @@
 //! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
-//! by a colour between (its goal pixels that make a blob of a goal's size on their own).
+//! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
+//! mostly outside the cells it fills).
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
@@ -37,11 +38,12 @@ pub const LARGER: f64 = 2.5;
 /// cells the blob fills.
 pub const GOAL_OUTSIDE: f64 = 0.8;
 
-/// The 8-connected blobs of goal and unsure pixels, as lists of pixel indices, in row-major
-/// order of their first pixel.
+/// The 8-connected blobs of goal, unsure and obstacle pixels that hold some goal or unsure
+/// pixels, as lists of pixel indices, in row-major order of their first pixel.
 fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
     let height = classes.len() / width.max(1);
-    let part = |c: u8| c == Class::Goal as u8 || c == Class::Unsure as u8;
+    let part =
+        |c: u8| c == Class::Goal as u8 || c == Class::Unsure as u8 || c == Class::Obstacle as u8;
     let mut seen = vec![false; classes.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();
@@ -52,8 +54,10 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
         seen[start] = true;
         stack.push(start);
         let mut pixels = Vec::new();
+        let mut mixed = false;
         while let Some(i) = stack.pop() {
             pixels.push(i);
+            mixed |= classes[i] != Class::Obstacle as u8;
             let (x, y) = (i % width, i / width);
             for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
@@ -65,7 +69,9 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
                 }
             }
         }
-        out.push(pixels);
+        if mixed {
+            out.push(pixels);
+        }
     }
     out
 }
@@ -104,6 +110,7 @@ pub(crate) fn inner_cell(
 /// among them), when it fills two side by side; else none.
 fn filled_cells(
     pixels: &[usize],
+    classes: &[u8],
     width: usize,
     image_to_floor: &Homography,
     floor: (u32, u32),
@@ -113,10 +120,10 @@ fn filled_cells(
     let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
     for &i in pixels {
         if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
-            *held.entry(c).or_insert(0) += 1;
+            *held.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
         }
     }
-    // The obstacle pixels in the middles of those cells fill them too.
+    // The obstacle pixels in the middles of those cells (the blob's own too) fill them.
     let filled: Vec<usize> = held
         .iter()
         .filter(|&(&c, &n)| {
@@ -173,7 +180,7 @@ pub fn absorb(
         .map(|b| {
             (
                 b,
-                filled_cells(b, width, image_to_floor, floor, &middle, &obstacle),
+                filled_cells(b, classes, width, image_to_floor, floor, &middle, &obstacle),
             )
         })
         .filter(|(_, cells)| !cells.is_empty())
@@ -198,7 +205,7 @@ pub fn absorb(
             cell_of(i, width, image_to_floor, floor)
                 .is_some_and(|c| cells.binary_search(&c).is_ok())
         };
-        let goals = goals_within(classes, width, b, median, &in_filled);
+        let goals = goals_within(classes, width, b, &in_filled);
         for &i in b {
             if !goals.contains(&i) {
                 classes[i] = Class::Obstacle as u8;
@@ -210,24 +217,20 @@ pub fn absorb(
 }
 
 /// The pixels of the goals within a blob: its goal pixels that make, on their own, a blob
-/// of a goal's size ([`blobs::SMALL`] to [`blobs::MERGED`] medians), at least
-/// [`GOAL_OUTSIDE`] of it outside the cells the blob fills, joined to the rest by pixels of a
-/// colour between (blur mixes a goal's green with a shelf's yellow).
+/// with at least [`GOAL_OUTSIDE`] of it outside the cells the blob fills (a goal joined to a
+/// shelf by pixels of a colour between: blur mixes a goal's green with a shelf's yellow).
 fn goals_within(
     classes: &[u8],
     width: usize,
     blob: &[usize],
-    median: usize,
     in_filled: &dyn Fn(usize) -> bool,
 ) -> std::collections::BTreeSet<usize> {
     let mut own: Vec<u8> = vec![OUTSIDE; classes.len()];
     for &i in blob {
         own[i] = classes[i];
     }
-    let size = |a: usize| a as f64 / median.max(1) as f64;
     blobs::find(&mut own, width, Class::Goal as u8)
         .into_iter()
-        .filter(|g| (blobs::SMALL..=blobs::MERGED).contains(&size(g.area())))
         .map(|g| {
             g.pixels
                 .into_iter()
@@ -280,6 +283,21 @@ mod tests {
         assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_goal_joined_to_a_shelf_by_a_colour_between_stays_a_goal() {
+        let (to_floor, mut classes) = floor();
+        // A yellow (unsure) shelf over cells (0, 0) and (1, 0); a goal in cell (1, 1) joined
+        // to it by a pixel of a colour between; goals in cells (3, 0) and (3, 1).
+        paint(&mut classes, (1, 1, 19, 9), Class::Unsure);
+        paint(&mut classes, (13, 10, 17, 14), Class::Goal);
+        paint(&mut classes, (15, 9, 16, 10), Class::Unsure);
+        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
+        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[12 * 40 + 15], Class::Goal as u8);
     }
 
     #[test]
