@@ -46,6 +46,15 @@ FAMILIES = {
               floors=((0.55, 0.58, 0.52), (0.82, 0.80, 0.78), (0.50, 0.42, 0.35)),
               shelf_colours=((0.05, 0.10, 0.45), (0.40, 0.20, 0.70), (0.90, 0.75, 0.15), (0.05, 0.40, 0.45)),
               tiles=1 / 3, shelf_inset=0.03, warm=0.2, camera_height=(50, 160)),
+    # E: held out (rendered after the reader of issue #29's second round was finished, scored
+    # once). Dome, yawed-box and box-with-a-dome robots, square, cross and ellipse goals, warm
+    # grey, dark slate and light sand floors tiled every quarter cell, orange, navy, olive and
+    # lilac shelves from 0.3 to 2.0 high inset 0.04 cell, warmer and cooler light, and a
+    # camera from 45 to 170 cells per 24 high.
+    "E": dict(robot_shapes=("dome", "rotbox", "boxdome"), goal_shapes=("square", "cross", "ellipse"),
+              floors=((0.66, 0.60, 0.55), (0.32, 0.35, 0.40), (0.85, 0.80, 0.68)),
+              shelf_colours=((0.90, 0.45, 0.10), (0.08, 0.12, 0.35), (0.45, 0.50, 0.15), (0.55, 0.45, 0.80)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.04, warm=0.3, camera_height=(45, 170)),
 }
 
 
@@ -93,7 +102,7 @@ def pick_layout(rng, w, h, n_robots, fam, robot_size, goal_size):
         if blocked[max(0, y - 1):y + sh + 1, max(0, x - 1):x + sw + 1].any():
             continue
         blocked[y:y + sh, x:x + sw] = True
-        shelves.append(dict(x=x, y=y, w=sw, h=sh, height=float(rng.uniform(0.4, 1.6)),
+        shelves.append(dict(x=x, y=y, w=sw, h=sh, height=float(rng.uniform(*fam.get("shelf_height", (0.4, 1.6)))),
                             colour=fam["shelf_colours"][int(rng.integers(len(fam["shelf_colours"])))]))
     free = [(x, y) for y in range(h) for x in range(w) if not blocked[y, x]]
     order = rng.permutation(len(free))
@@ -249,6 +258,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
             # A box of the same footprint area as the cylinder, turned about its axis.
             side = r * math.sqrt(math.pi)
             objs[f"robot{i}"] = box(cx, cy, 0, side, side, hgt, mat, yaw=float(rng.uniform(0, 90)))
+        elif robot["shape"] == "boxdome":
+            # A box with a dome (half its width) on top.
+            objs[f"robot{i}"] = box(cx, cy, 0, 2 * r, 2 * r, hgt, mat)
+            objs[f"robot{i}top"] = {"type": "sphere", "center": [cx, cy, hgt], "radius": 0.5 * r, "bsdf": mat}
         elif robot["shape"] == "puck":
             objs[f"robot{i}"] = {"type": "cylinder", "p0": [cx, cy, 0], "p1": [cx, cy, hgt], "radius": r, "bsdf": mat}
             objs[f"robot{i}top"] = {"type": "disk", "to_world": T.translate([cx, cy, hgt]).scale([r, r, 1]), "bsdf": mat}
@@ -272,6 +285,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 2 * r, z, mat)
         elif goal["shape"] == "diamond":
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r / math.sqrt(2), 2 * r / math.sqrt(2), z, mat, yaw=45.0)
+        elif goal["shape"] == "ellipse":
+            # A disc squashed to 0.6 across, turned.
+            to_world = T.translate([cx, cy, z]).rotate([0, 0, 1], float(rng.uniform(0, 180))).scale([r, max(0.6 * r, 1.75 / cell_px), 1])
+            objs[f"goal{i}"] = {"type": "disk", "to_world": to_world, "bsdf": mat}
         elif goal["shape"] == "cross":
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 0.7 * r, z, mat)
             objs[f"goal{i}b"] = box(cx, cy, 0, 0.7 * r, 2 * r, z, mat)
