@@ -486,9 +486,10 @@ pub fn read_aerial_image(
         pixels::denoise_radius(px),
     );
     let width = img.width() as usize;
-    tinted::recover(&mut classes, img, &classifier, &image_to_floor, (gw, gh));
+    let maps = (&floor_to_image, &image_to_floor);
+    tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     enclosed::settle(&mut classes, width);
-    shelves::absorb(&mut classes, width, &image_to_floor, (gw, gh));
+    shelves::absorb(&mut classes, width, maps, (gw, gh));
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image

@@ -20,8 +20,8 @@
 //! taken as part of it; when the view has as many goals as robots the reading is then
 //! refused ("fewer goals than robots").
 //!
-//! Cost: O(pixels) to label the blobs and, when a blob is large, one more O(pixels) pass for
-//! the cells' pixel counts.
+//! Cost: O(pixels) to label the blobs, and O(pixels of the cells they touch) for the cells'
+//! pixel counts when a blob is large.
 
 use super::blobs;
 use super::colour::Class;
@@ -106,17 +106,74 @@ pub(crate) fn inner_cell(
     (inside(u - cu) && inside(v - cv)).then(|| cv as usize * w as usize + cu as usize)
 }
 
-/// The cells a blob fills (given every cell's count of middle pixels and of obstacle pixels
-/// among them), when it fills two side by side; else none.
+/// The pixels of the floor in the middle of a cell, and the obstacle pixels among them,
+/// counted over the cell's bounding box in the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Middle {
+    /// Pixels whose centre lies in the middle of the cell.
+    pub pixels: u32,
+    /// Obstacle pixels among them.
+    pub obstacle: u32,
+}
+
+/// The [`Middle`] of `cell`, its counts remembered in `known`.
+pub(crate) fn middle(
+    known: &mut std::collections::BTreeMap<usize, Middle>,
+    classes: &[u8],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    floor: (u32, u32),
+    cell: usize,
+) -> Middle {
+    if let Some(&m) = known.get(&cell) {
+        return m;
+    }
+    let w = floor.0 as usize;
+    let (fx, fy) = ((cell % w) as f64, (cell / w) as f64);
+    let height = classes.len() / width.max(1);
+    let mut out = Middle::default();
+    let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        .map(|(a, b)| floor_to_image.apply((fx + a, fy + b)));
+    if corners.iter().all(Option::is_some) {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+        for (x, y) in corners.into_iter().flatten() {
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+        let (x0, x1) = (
+            clamp(x0.floor() - 1.0, width),
+            clamp(x1.ceil() + 1.0, width),
+        );
+        let (y0, y1) = (
+            clamp(y0.floor() - 1.0, height),
+            clamp(y1.ceil() + 1.0, height),
+        );
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let i = y * width + x;
+                let c = classes[i];
+                if c != OUTSIDE && inner_cell(i, width, image_to_floor, floor) == Some(cell) {
+                    out.pixels += 1;
+                    out.obstacle += u32::from(c == Class::Obstacle as u8);
+                }
+            }
+        }
+    }
+    known.insert(cell, out);
+    out
+}
+
+/// The cells a blob fills (the middles' counts remembered in `known`), when it fills two
+/// side by side; else none.
 fn filled_cells(
     pixels: &[usize],
     classes: &[u8],
     width: usize,
-    image_to_floor: &Homography,
+    maps: (&Homography, &Homography),
     floor: (u32, u32),
-    middle: &[u32],
-    obstacle: &[u32],
+    known: &mut std::collections::BTreeMap<usize, Middle>,
 ) -> Vec<usize> {
+    let image_to_floor = maps.1;
     let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
     for &i in pixels {
         if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
@@ -127,7 +184,8 @@ fn filled_cells(
     let filled: Vec<usize> = held
         .iter()
         .filter(|&(&c, &n)| {
-            middle[c] > 0 && f64::from(n + obstacle[c]) >= FILLED * f64::from(middle[c])
+            let m = middle(known, classes, width, maps, floor, c);
+            m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
         })
         .map(|(&c, _)| c)
         .collect();
@@ -148,7 +206,7 @@ fn filled_cells(
 pub fn absorb(
     classes: &mut [u8],
     width: usize,
-    image_to_floor: &Homography,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
     floor: (u32, u32),
 ) -> usize {
     let blobs_found = mixed_blobs(classes, width);
@@ -163,26 +221,11 @@ pub fn absorb(
     if large.is_empty() {
         return 0;
     }
-    let mut middle = vec![0u32; floor.0 as usize * floor.1 as usize];
-    let mut obstacle = middle.clone();
-    for (i, &c) in classes.iter().enumerate() {
-        if c != OUTSIDE {
-            if let Some(cell) = inner_cell(i, width, image_to_floor, floor) {
-                middle[cell] += 1;
-                if c == Class::Obstacle as u8 {
-                    obstacle[cell] += 1;
-                }
-            }
-        }
-    }
+    let mut known = std::collections::BTreeMap::new();
+    let maps = (floor_to_image, image_to_floor);
     let shaped: Vec<(&Vec<usize>, Vec<usize>)> = large
         .into_iter()
-        .map(|b| {
-            (
-                b,
-                filled_cells(b, classes, width, image_to_floor, floor, &middle, &obstacle),
-            )
-        })
+        .map(|b| (b, filled_cells(b, classes, width, maps, floor, &mut known)))
         .filter(|(_, cells)| !cells.is_empty())
         .collect();
     if shaped.is_empty() {
@@ -207,7 +250,7 @@ pub fn absorb(
         };
         let goals = goals_within(classes, width, b, &in_filled);
         for &i in b {
-            if !goals.contains(&i) {
+            if goals.binary_search(&i).is_err() {
                 classes[i] = Class::Obstacle as u8;
             }
         }
@@ -224,33 +267,55 @@ fn goals_within(
     width: usize,
     blob: &[usize],
     in_filled: &dyn Fn(usize) -> bool,
-) -> std::collections::BTreeSet<usize> {
-    let mut own: Vec<u8> = vec![OUTSIDE; classes.len()];
-    for &i in blob {
-        own[i] = classes[i];
+) -> Vec<usize> {
+    // The blob's goal pixels, sorted, split into 8-connected pieces among themselves.
+    let mut goal: Vec<usize> = blob
+        .iter()
+        .copied()
+        .filter(|&i| classes[i] == Class::Goal as u8)
+        .collect();
+    goal.sort_unstable();
+    let height = classes.len() / width.max(1);
+    let mut seen = vec![false; goal.len()];
+    let mut kept = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..goal.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(k) = stack.pop() {
+            let i = goal[k];
+            piece.push(i);
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    if let Ok(n) = goal.binary_search(&(ny * width + nx)) {
+                        if !seen[n] {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
+        if outside as f64 >= GOAL_OUTSIDE * piece.len() as f64 {
+            kept.extend(piece);
+        }
     }
-    blobs::find(&mut own, width, Class::Goal as u8)
-        .into_iter()
-        .map(|g| {
-            g.pixels
-                .into_iter()
-                .map(|(x, y)| y as usize * width + x as usize)
-                .collect::<Vec<usize>>()
-        })
-        .filter(|g| {
-            let outside = g.iter().filter(|&&i| !in_filled(i)).count();
-            outside as f64 >= GOAL_OUTSIDE * g.len() as f64
-        })
-        .flatten()
-        .collect()
+    kept.sort_unstable();
+    kept
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A 4 × 2-cell floor, 10 px per cell, straight down.
-    fn floor() -> (Homography, Vec<u8>) {
+    /// A 4 × 2-cell floor, 10 px per cell, straight down: floor → image, image → floor.
+    fn floor() -> (Homography, Homography, Vec<u8>) {
         let to_image = Homography::floor_to_image(
             4.0,
             2.0,
@@ -258,6 +323,7 @@ mod tests {
         )
         .unwrap();
         (
+            to_image,
             to_image.inverse().unwrap(),
             vec![Class::Floor as u8; 40 * 20],
         )
@@ -273,21 +339,21 @@ mod tests {
 
     #[test]
     fn a_goal_coloured_shelf_over_two_cells_is_an_obstacle() {
-        let (to_floor, mut classes) = floor();
+        let (to_image, to_floor, mut classes) = floor();
         // Goals 4 px wide in cells (3, 0) and (3, 1); a shelf over cells (0, 0) and (1, 0),
         // goal-coloured with some unsure pixels.
         paint(&mut classes, (33, 3, 37, 7), Class::Goal);
         paint(&mut classes, (33, 13, 37, 17), Class::Goal);
         paint(&mut classes, (1, 1, 19, 9), Class::Goal);
         paint(&mut classes, (5, 2, 7, 4), Class::Unsure);
-        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 1);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
     }
 
     #[test]
     fn a_goal_joined_to_a_shelf_by_a_colour_between_stays_a_goal() {
-        let (to_floor, mut classes) = floor();
+        let (to_image, to_floor, mut classes) = floor();
         // A yellow (unsure) shelf over cells (0, 0) and (1, 0); a goal in cell (1, 1) joined
         // to it by a pixel of a colour between; goals in cells (3, 0) and (3, 1).
         paint(&mut classes, (1, 1, 19, 9), Class::Unsure);
@@ -295,30 +361,30 @@ mod tests {
         paint(&mut classes, (15, 9, 16, 10), Class::Unsure);
         paint(&mut classes, (33, 3, 37, 7), Class::Goal);
         paint(&mut classes, (33, 13, 37, 17), Class::Goal);
-        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 1);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[12 * 40 + 15], Class::Goal as u8);
     }
 
     #[test]
     fn goals_filling_one_cell_each_stay_goals() {
-        let (to_floor, mut classes) = floor();
+        let (to_image, to_floor, mut classes) = floor();
         // One goal per cell, each filling its cell, touching the next: twice the median.
         paint(&mut classes, (0, 0, 10, 10), Class::Goal);
         paint(&mut classes, (10, 0, 20, 10), Class::Goal);
         paint(&mut classes, (21, 11, 30, 20), Class::Goal);
         paint(&mut classes, (0, 11, 10, 20), Class::Goal);
         let before = classes.clone();
-        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 0);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
         assert_eq!(classes, before);
     }
 
     #[test]
     fn a_blob_filling_one_cell_is_not_judged() {
-        let (to_floor, mut classes) = floor();
+        let (to_image, to_floor, mut classes) = floor();
         paint(&mut classes, (0, 0, 10, 10), Class::Unsure);
         let before = classes.clone();
-        assert_eq!(absorb(&mut classes, 40, &to_floor, (4, 2)), 0);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
         assert_eq!(classes, before);
     }
 }

@@ -16,8 +16,7 @@
 use super::blobs;
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
-use super::pixels::OUTSIDE;
-use super::shelves::{inner_cell, FILLED};
+use super::shelves::{inner_cell, middle, FILLED};
 use image::RgbImage;
 
 /// The least share of a blob's pixels of one mark's colour before white balance.
@@ -29,7 +28,7 @@ pub fn recover(
     classes: &mut [u8],
     img: &RgbImage,
     classifier: &Classifier,
-    image_to_floor: &Homography,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
     floor: (u32, u32),
 ) -> usize {
     let width = img.width() as usize;
@@ -38,7 +37,10 @@ pub fn recover(
         let i = (y as usize * width + x as usize) * 3;
         [raw[i], raw[i + 1], raw[i + 2]]
     };
-    let mut middle: Option<Vec<u32>> = None;
+    // The pixels of the cells' middles (only their count, which turning blobs into marks
+    // does not change).
+    let mut known = std::collections::BTreeMap::new();
+    let maps = (floor_to_image, image_to_floor);
     let mut turned = 0;
     for blob in blobs::find(classes, width, Class::Obstacle as u8) {
         let (mut robot, mut goal) = (0usize, 0usize);
@@ -57,17 +59,6 @@ pub fn recover(
         if (n as f64) < MOSTLY * blob.area() as f64 {
             continue;
         }
-        let middle = middle.get_or_insert_with(|| {
-            let mut counts = vec![0u32; floor.0 as usize * floor.1 as usize];
-            for (i, &c) in classes.iter().enumerate() {
-                if c != OUTSIDE {
-                    if let Some(cell) = inner_cell(i, width, image_to_floor, floor) {
-                        counts[cell] += 1;
-                    }
-                }
-            }
-            counts
-        });
         let mut held = std::collections::BTreeMap::<usize, u32>::new();
         for &(x, y) in &blob.pixels {
             let i = y as usize * width + x as usize;
@@ -75,9 +66,10 @@ pub fn recover(
                 *held.entry(cell).or_insert(0) += 1;
             }
         }
-        let fills = held
-            .iter()
-            .any(|(&c, &n)| middle[c] > 0 && f64::from(n) >= FILLED * f64::from(middle[c]));
+        let fills = held.iter().any(|(&c, &n)| {
+            let m = middle(&mut known, classes, width, maps, floor, c);
+            m.pixels > 0 && f64::from(n) >= FILLED * f64::from(m.pixels)
+        });
         if fills {
             continue;
         }
@@ -112,20 +104,25 @@ mod tests {
                 img.put_pixel(x, y, image::Rgb(pale_green));
             }
         }
-        let to_floor = Homography::floor_to_image(
+        let to_image = Homography::floor_to_image(
             4.0,
             2.0,
             [(0.0, 0.0), (40.0, 0.0), (40.0, 20.0), (0.0, 20.0)],
         )
-        .unwrap()
-        .inverse()
         .unwrap();
+        let to_floor = to_image.inverse().unwrap();
         let classifier = Classifier::new(beige.map(f64::from), Hue::RED, Hue::GREEN);
         // After white balance the pale green is cyan: an obstacle's colour.
         assert_eq!(classifier.classify(pale_green), Class::Obstacle);
         let mut classes = pixels::classify(&img, &classifier, &to_floor, (4, 2), 0);
         assert_eq!(
-            recover(&mut classes, &img, &classifier, &to_floor, (4, 2)),
+            recover(
+                &mut classes,
+                &img,
+                &classifier,
+                (&to_image, &to_floor),
+                (4, 2)
+            ),
             1
         );
         assert_eq!(classes[15 * 40 + 35], Class::Goal as u8);
