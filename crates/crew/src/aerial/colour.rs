@@ -153,7 +153,7 @@ impl Classifier {
 
     /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:
     /// a clear colour (as a mark's, relative to the lit floor) within a mark's hue band and
-    /// at least [`RAW_APART`] in chromaticity from the floor's. A floor of a clear colour,
+    /// at least `RAW_APART` (0.06) in chromaticity from the floor's. A floor of a clear colour,
     /// beige say, turns a pale mark's balanced hue (a pale green goal on it becomes cyan);
     /// see [`super::tinted`].
     pub fn raw_mark(&self, p: [u8; 3]) -> Option<Class> {
