@@ -55,6 +55,18 @@ FAMILIES = {
               floors=((0.66, 0.60, 0.55), (0.32, 0.35, 0.40), (0.85, 0.80, 0.68)),
               shelf_colours=((0.90, 0.45, 0.10), (0.08, 0.12, 0.35), (0.45, 0.50, 0.15), (0.55, 0.45, 0.80)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.04, warm=0.3, camera_height=(45, 170)),
+    # F: held out (rendered before the floor-consistency check of issue #29's third round was
+    # finished, scored once with the final reader). Cylinder, box and dome robots, disc, ring
+    # and cross goals, cool grey, tan and dark warm-grey floors tiled every half cell, shelves
+    # of colours near the floors' (pale blue-grey, dark tan, sage, cream, dark brown) from 0.3
+    # to 1.8 high inset 0.05 cell, a lower sun (20-60 degrees up) of varying strength, warmer
+    # and cooler light, and a camera from 45 to 170 cells per 24 high.
+    "F": dict(robot_shapes=("cylinder", "box", "dome"), goal_shapes=("disc", "ring", "cross"),
+              floors=((0.60, 0.62, 0.66), (0.78, 0.70, 0.60), (0.42, 0.40, 0.36)),
+              shelf_colours=((0.72, 0.74, 0.80), (0.60, 0.50, 0.38), (0.55, 0.60, 0.50), (0.88, 0.84, 0.74),
+                             (0.28, 0.26, 0.23)),
+              shelf_height=(0.3, 1.8), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 170),
+              sun_elevation=(20, 60), sun_power=(2.2, 3.6)),
 }
 
 
@@ -344,11 +356,13 @@ def render_one(args, seed, out_dir):
     tex = floor_texture(rng, w, h, tex_px, base, lines, fam.get("tiles"))
     tex_path = os.path.join(out_dir, f".floor-{args.family}{seed}.png")
     Image.fromarray((tex * 255).astype(np.uint8)).save(tex_path)
-    elev = math.radians(rng.uniform(35, 80))
+    elev = math.radians(rng.uniform(*fam.get("sun_elevation", (35, 80))))
     az = rng.uniform(0, 2 * math.pi)
     warm = rng.uniform(-fam.get("warm", 0.15), fam.get("warm", 0.15))
+    # Families before F: a sun of strength 3, drawing nothing (their scenes stay as rendered).
+    power = float(rng.uniform(*fam["sun_power"])) if "sun_power" in fam else 3.0
     light = dict(sun_dir=[math.cos(elev) * math.cos(az), math.cos(elev) * math.sin(az), math.sin(elev)],
-                 sun=[3.0 * (1 + warm), 3.0, 3.0 * (1 - warm)],
+                 sun=[power * (1 + warm), power, power * (1 - warm)],
                  sky=[0.35 * (1 - warm / 2), 0.38, 0.42 * (1 + warm / 2)],
                  soft=float(rng.uniform(1.0, 6.0)) if rng.random() < 0.5 else 0.0)
     cam = camera(rng, w, h, cell_px, args.tilt, fam.get("camera_height", (60, 140)))
