@@ -185,6 +185,12 @@ impl Classifier {
         }
     }
 
+    /// A pixel's colour after white balance on the floor: the lit floor's median is 1 in
+    /// every channel.
+    pub fn balanced(&self, p: [u8; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|c| f64::from(p[c]) * self.gain[c])
+    }
+
     /// The class of one pixel by its colour after white balance.
     pub fn classify(&self, p: [u8; 3]) -> Class {
         let rgb = [

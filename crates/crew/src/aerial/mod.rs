@@ -47,6 +47,7 @@ pub mod cover;
 pub mod enclosed;
 pub mod homography;
 pub mod lines;
+pub mod looks;
 pub mod pixels;
 pub mod shelves;
 pub mod tinted;
@@ -595,6 +596,29 @@ pub fn read_aerial_image(
             ));
         }
         *b = true;
+    }
+    // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
+    // the floor's is refused there, not read as free.
+    let near_mark = looks::near_marks(&classes, width, (px / 8.0).round().max(2.0) as usize);
+    for (i, _) in blocked.iter().enumerate().filter(|(_, b)| !**b) {
+        let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+        let look = looks::look(
+            img,
+            &classes,
+            &classifier,
+            &floor_to_image,
+            &image_to_floor,
+            nadir,
+            &near_mark,
+            (x, y),
+        );
+        if let Some(why) = look.odd() {
+            return Err(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!("cell ({x}, {y}) would be free but does not look like the floor: {why}"),
+            ));
+        }
     }
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));

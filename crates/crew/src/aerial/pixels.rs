@@ -43,7 +43,7 @@ impl Coverage {
 
 /// The counted window of a cell along one axis (fractions of the side), for a cell from `lo`
 /// to `lo + 1` and the nadir at `nadir` on that axis.
-fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
+pub(super) fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
     match nadir {
         Some(n) if n < lo => (0.4, 0.95),
         Some(n) if n > lo + 1.0 => (0.05, 0.6),
