@@ -18,6 +18,7 @@
 //!
 //! A darker cell (a shadow) is not judged by its colour: a shadow's tint depends on the light.
 
+use super::blobs;
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
 use super::pixels::window;
@@ -157,17 +158,27 @@ pub fn look(
     out
 }
 
-/// Pixels within `r` (a square) of a robot's or a goal's pixel.
-pub fn near_marks(classes: &[u8], width: usize, r: usize) -> Vec<bool> {
+/// Pixels within `r` (a square) of a pixel of a robot's or a goal's blob of at least
+/// [`blobs::MIN_AREA`] pixels (smaller specks of a mark's colour are noise, on a shelf too).
+pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
     let width = width.max(1);
     let height = classes.len() / width;
-    let mark = |c: u8| c == Class::Robot as u8 || c == Class::Goal as u8;
+    let mut marked = vec![false; classes.len()];
+    for class in [Class::Robot, Class::Goal] {
+        for b in blobs::find(classes, width, class as u8) {
+            if b.area() >= blobs::MIN_AREA {
+                for (x, y) in b.pixels {
+                    marked[y as usize * width + x as usize] = true;
+                }
+            }
+        }
+    }
     // Along rows, then along columns.
     let mut rows = vec![false; classes.len()];
     for y in 0..height {
         let row = y * width;
         for x in 0..width {
-            if mark(classes[row + x]) {
+            if marked[row + x] {
                 for v in &mut rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)] {
                     *v = true;
                 }
@@ -228,11 +239,23 @@ mod tests {
     fn near_marks_is_a_square_around_each_mark_pixel() {
         let (w, h) = (9, 7);
         let mut classes = vec![Class::Floor as u8; w * h];
-        classes[3 * w + 4] = Class::Robot as u8;
-        let near = near_marks(&classes, w, 2);
+        // A robot of 6 pixels (the smallest blob that is one) and a speck of 2.
+        for k in [
+            3 * w + 4,
+            3 * w + 3,
+            3 * w + 5,
+            2 * w + 4,
+            4 * w + 4,
+            4 * w + 5,
+        ] {
+            classes[k] = Class::Robot as u8;
+        }
+        classes[6 * w] = Class::Goal as u8;
+        classes[6 * w + 1] = Class::Goal as u8;
+        let near = near_marks(&mut classes, w, 2);
         for y in 0..h {
             for x in 0..w {
-                let want = (2..=6).contains(&x) && (1..=5).contains(&y);
+                let want = (1..=7).contains(&x) && (0..=6).contains(&y);
                 assert_eq!(near[y * w + x], want, "({x}, {y})");
             }
         }

@@ -599,7 +599,7 @@ pub fn read_aerial_image(
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free.
-    let near_mark = looks::near_marks(&classes, width, (px / 8.0).round().max(2.0) as usize);
+    let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
     for (i, _) in blocked.iter().enumerate().filter(|(_, b)| !**b) {
         let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
         let look = looks::look(
