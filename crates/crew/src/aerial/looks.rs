@@ -240,15 +240,9 @@ mod tests {
         let (w, h) = (9, 7);
         let mut classes = vec![Class::Floor as u8; w * h];
         // A robot of 6 pixels (the smallest blob that is one) and a speck of 2.
-        for k in [
-            3 * w + 4,
-            3 * w + 3,
-            3 * w + 5,
-            2 * w + 4,
-            4 * w + 4,
-            4 * w + 5,
-        ] {
-            classes[k] = Class::Robot as u8;
+        let robot = [(4, 3), (3, 3), (5, 3), (4, 2), (4, 4), (5, 4)];
+        for (x, y) in robot {
+            classes[y * w + x] = Class::Robot as u8;
         }
         classes[6 * w] = Class::Goal as u8;
         classes[6 * w + 1] = Class::Goal as u8;
@@ -257,7 +251,7 @@ mod tests {
             for x in 0..w {
                 let want = robot
                     .iter()
-                    .any(|&(rx, ry)| rx.abs_diff(x) <= 2 && ry.abs_diff(y) <= 2);
+                    .any(|&(rx, ry): &(usize, usize)| rx.abs_diff(x) <= 2 && ry.abs_diff(y) <= 2);
                 assert_eq!(near[y * w + x], want, "({x}, {y})");
             }
         }

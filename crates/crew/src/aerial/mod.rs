@@ -598,7 +598,9 @@ pub fn read_aerial_image(
         *b = true;
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
-    // the floor's is refused there, not read as free.
+    // the floor's is refused there, not read as free (after the robots' and goals' own
+    // reasons to refuse, which say more).
+    let mut not_floor = None;
     let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
     for (i, _) in blocked.iter().enumerate().filter(|(_, b)| !**b) {
         let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
@@ -613,11 +615,12 @@ pub fn read_aerial_image(
             (x, y),
         );
         if let Some(why) = look.odd() {
-            return Err(at_pixel(
+            not_floor = Some(at_pixel(
                 source,
                 cell_centre_px(i),
                 format!("cell ({x}, {y}) would be free but does not look like the floor: {why}"),
             ));
+            break;
         }
     }
     let grid = Grid::new(gw, gh, blocked);
@@ -704,6 +707,9 @@ pub fn read_aerial_image(
                 format!("two {kind} on cell ({x}, {y})"),
             ));
         }
+    }
+    if let Some(e) = not_floor {
+        return Err(e);
     }
     Ok(AerialReading {
         grid,
