@@ -600,29 +600,37 @@ pub fn read_aerial_image(
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
     // reasons to refuse, which say more).
-    let mut not_floor = None;
     let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
-    for (i, _) in blocked.iter().enumerate().filter(|(_, b)| !**b) {
-        let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-        let look = looks::look(
-            img,
-            &classes,
-            &classifier,
-            &floor_to_image,
-            &image_to_floor,
-            nadir,
-            &near_mark,
-            (x, y),
-        );
-        if let Some(why) = look.odd() {
-            not_floor = Some(at_pixel(
-                source,
-                cell_centre_px(i),
-                format!("cell ({x}, {y}) would be free but does not look like the floor: {why}"),
-            ));
-            break;
-        }
-    }
+    // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
+    // result does not depend on the cores.
+    let not_floor = {
+        use rayon::prelude::*;
+        (0..cells)
+            .into_par_iter()
+            .filter(|&i| !blocked[i])
+            .find_map_first(|i| {
+                let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+                let look = looks::look(
+                    img,
+                    &classes,
+                    &classifier,
+                    &floor_to_image,
+                    &image_to_floor,
+                    nadir,
+                    &near_mark,
+                    (x, y),
+                );
+                look.odd().map(|why| {
+                    at_pixel(
+                        source,
+                        cell_centre_px(i),
+                        format!(
+                            "cell ({x}, {y}) would be free but does not look like the floor: {why}"
+                        ),
+                    )
+                })
+            })
+    };
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let robots = marks(
