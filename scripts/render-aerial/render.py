@@ -46,6 +46,27 @@ FAMILIES = {
               floors=((0.55, 0.58, 0.52), (0.82, 0.80, 0.78), (0.50, 0.42, 0.35)),
               shelf_colours=((0.05, 0.10, 0.45), (0.40, 0.20, 0.70), (0.90, 0.75, 0.15), (0.05, 0.40, 0.45)),
               tiles=1 / 3, shelf_inset=0.03, warm=0.2, camera_height=(50, 160)),
+    # E: held out (rendered after the reader of issue #29's second round was finished, scored
+    # once). Dome, yawed-box and box-with-a-dome robots, square, cross and ellipse goals, warm
+    # grey, dark slate and light sand floors tiled every quarter cell, orange, navy, olive and
+    # lilac shelves from 0.3 to 2.0 high inset 0.04 cell, warmer and cooler light, and a
+    # camera from 45 to 170 cells per 24 high.
+    "E": dict(robot_shapes=("dome", "rotbox", "boxdome"), goal_shapes=("square", "cross", "ellipse"),
+              floors=((0.66, 0.60, 0.55), (0.32, 0.35, 0.40), (0.85, 0.80, 0.68)),
+              shelf_colours=((0.90, 0.45, 0.10), (0.08, 0.12, 0.35), (0.45, 0.50, 0.15), (0.55, 0.45, 0.80)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.04, warm=0.3, camera_height=(45, 170)),
+    # F: held out (rendered before the floor-consistency check of issue #29's third round was
+    # finished, scored once with the final reader). Cylinder, box and dome robots, disc, ring
+    # and cross goals, cool grey, tan and dark warm-grey floors tiled every half cell, shelves
+    # of colours near the floors' (pale blue-grey, dark tan, sage, cream, dark brown) from 0.3
+    # to 1.8 high inset 0.05 cell, a lower sun (20-60 degrees up) of varying strength, warmer
+    # and cooler light, and a camera from 45 to 170 cells per 24 high.
+    "F": dict(robot_shapes=("cylinder", "box", "dome"), goal_shapes=("disc", "ring", "cross"),
+              floors=((0.60, 0.62, 0.66), (0.78, 0.70, 0.60), (0.42, 0.40, 0.36)),
+              shelf_colours=((0.72, 0.74, 0.80), (0.60, 0.50, 0.38), (0.55, 0.60, 0.50), (0.88, 0.84, 0.74),
+                             (0.28, 0.26, 0.23)),
+              shelf_height=(0.3, 1.8), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 170),
+              sun_elevation=(20, 60), sun_power=(2.2, 3.6)),
 }
 
 
@@ -93,7 +114,7 @@ def pick_layout(rng, w, h, n_robots, fam, robot_size, goal_size):
         if blocked[max(0, y - 1):y + sh + 1, max(0, x - 1):x + sw + 1].any():
             continue
         blocked[y:y + sh, x:x + sw] = True
-        shelves.append(dict(x=x, y=y, w=sw, h=sh, height=float(rng.uniform(0.4, 1.6)),
+        shelves.append(dict(x=x, y=y, w=sw, h=sh, height=float(rng.uniform(*fam.get("shelf_height", (0.4, 1.6)))),
                             colour=fam["shelf_colours"][int(rng.integers(len(fam["shelf_colours"])))]))
     free = [(x, y) for y in range(h) for x in range(w) if not blocked[y, x]]
     order = rng.permutation(len(free))
@@ -249,6 +270,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
             # A box of the same footprint area as the cylinder, turned about its axis.
             side = r * math.sqrt(math.pi)
             objs[f"robot{i}"] = box(cx, cy, 0, side, side, hgt, mat, yaw=float(rng.uniform(0, 90)))
+        elif robot["shape"] == "boxdome":
+            # A box with a dome (half its width) on top.
+            objs[f"robot{i}"] = box(cx, cy, 0, 2 * r, 2 * r, hgt, mat)
+            objs[f"robot{i}top"] = {"type": "sphere", "center": [cx, cy, hgt], "radius": 0.5 * r, "bsdf": mat}
         elif robot["shape"] == "puck":
             objs[f"robot{i}"] = {"type": "cylinder", "p0": [cx, cy, 0], "p1": [cx, cy, hgt], "radius": r, "bsdf": mat}
             objs[f"robot{i}top"] = {"type": "disk", "to_world": T.translate([cx, cy, hgt]).scale([r, r, 1]), "bsdf": mat}
@@ -272,6 +297,10 @@ def scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals, 
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 2 * r, z, mat)
         elif goal["shape"] == "diamond":
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r / math.sqrt(2), 2 * r / math.sqrt(2), z, mat, yaw=45.0)
+        elif goal["shape"] == "ellipse":
+            # A disc squashed to 0.6 across, turned.
+            to_world = T.translate([cx, cy, z]).rotate([0, 0, 1], float(rng.uniform(0, 180))).scale([r, max(0.6 * r, 1.75 / cell_px), 1])
+            objs[f"goal{i}"] = {"type": "disk", "to_world": to_world, "bsdf": mat}
         elif goal["shape"] == "cross":
             objs[f"goal{i}"] = box(cx, cy, 0, 2 * r, 0.7 * r, z, mat)
             objs[f"goal{i}b"] = box(cx, cy, 0, 0.7 * r, 2 * r, z, mat)
@@ -327,11 +356,13 @@ def render_one(args, seed, out_dir):
     tex = floor_texture(rng, w, h, tex_px, base, lines, fam.get("tiles"))
     tex_path = os.path.join(out_dir, f".floor-{args.family}{seed}.png")
     Image.fromarray((tex * 255).astype(np.uint8)).save(tex_path)
-    elev = math.radians(rng.uniform(35, 80))
+    elev = math.radians(rng.uniform(*fam.get("sun_elevation", (35, 80))))
     az = rng.uniform(0, 2 * math.pi)
     warm = rng.uniform(-fam.get("warm", 0.15), fam.get("warm", 0.15))
+    # Families before F: a sun of strength 3, drawing nothing (their scenes stay as rendered).
+    power = float(rng.uniform(*fam["sun_power"])) if "sun_power" in fam else 3.0
     light = dict(sun_dir=[math.cos(elev) * math.cos(az), math.cos(elev) * math.sin(az), math.sin(elev)],
-                 sun=[3.0 * (1 + warm), 3.0, 3.0 * (1 - warm)],
+                 sun=[power * (1 + warm), power, power * (1 - warm)],
                  sky=[0.35 * (1 - warm / 2), 0.38, 0.42 * (1 + warm / 2)],
                  soft=float(rng.uniform(1.0, 6.0)) if rng.random() < 0.5 else 0.0)
     cam = camera(rng, w, h, cell_px, args.tilt, fam.get("camera_height", (60, 140)))

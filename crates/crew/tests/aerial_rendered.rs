@@ -87,6 +87,21 @@ fn rendered_views_read_exactly() {
     }
 }
 
+/// Views the reader of issue #29's first round refused and its second round reads exactly:
+/// B0027, a dark-green shelf whose colour lies just beyond the goals' band (a colour that
+/// cannot be told), read by its shape; C0160, a magenta shelf whose shaded edge reads as a
+/// colour that cannot be told; D0015 and D0046, yellow shelves (a colour that cannot be
+/// told, 3 140 px in D0046) read by their shape.
+#[test]
+fn shelves_of_a_colour_near_a_mark_s_read_by_their_shape() {
+    for name in ["B0027", "C0160", "D0015", "D0046"] {
+        let (image, truth) = scene(name);
+        let r = read_aerial(&image, name, &config(&truth, true))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_exact(name, &r, &truth);
+    }
+}
+
 /// A straight-down view with lines painted on its floor gives its grid without --grid.
 #[test]
 fn painted_lines_give_the_grid_of_a_rendered_view() {

@@ -106,6 +106,10 @@ pub struct Classifier {
     gain: [f64; 3],
     robot: Hue,
     goal: Hue,
+    /// The floor's brightness (its brightest channel) and chromaticity (channels over their
+    /// sum), before white balance.
+    floor_bright: f64,
+    floor_chromaticity: [f64; 3],
 }
 
 /// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
@@ -117,21 +121,77 @@ const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
 /// Brightness (relative to the lit floor) at which a pixel is no shadow, and the saturation
 /// that then suffices for an obstacle (pale shelves), with the chroma above: a mark's.
 const LIT_OBSTACLE: (f64, f64) = (0.85, MARK_COLOUR.0);
+/// A shadow lit by the sky alone: at most this bright (relative to the lit floor) and this
+/// saturated, of a hue in [`SKY_HUES`] (a clear blue or cyan obstacle is more saturated, and
+/// its lit top brighter).
+const SKY_SHADOW: (f64, f64) = (0.7, 0.45);
+/// The hues of the sky's light, in degrees (cyan to blue).
+const SKY_HUES: (f64, f64) = (180.0, 260.0);
 /// Half-width of the robots' and the goals' hue bands, in degrees (robots are a clear colour;
 /// goals are paint or tape on the floor, whose green varies more).
 const HUE_BAND: (f64, f64) = (25.0, 35.0);
 /// Hues this much beyond a band cannot be told apart from it.
 const HUE_DOUBT: f64 = 10.0;
+/// A mark by its colour before white balance differs from the floor's chromaticity by at
+/// least this much in one channel.
+const RAW_APART: f64 = 0.06;
 
 impl Classifier {
     /// A classifier for a floor whose median colour (0–255 per channel) is `floor`.
     pub fn new(floor: [f64; 3], robot: Hue, goal: Hue) -> Classifier {
         let bright = floor.iter().copied().fold(0.0, f64::max).max(1.0);
         let gain = floor.map(|c| 1.0 / c.max(bright * 0.05));
-        Classifier { gain, robot, goal }
+        let sum = floor.iter().sum::<f64>().max(1.0);
+        Classifier {
+            gain,
+            robot,
+            goal,
+            floor_bright: bright,
+            floor_chromaticity: floor.map(|c| c / sum),
+        }
     }
 
-    /// The class of one pixel.
+    /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:
+    /// a clear colour (as a mark's, relative to the lit floor) within a mark's hue band and
+    /// at least `RAW_APART` (0.06) in chromaticity from the floor's. A floor of a clear colour,
+    /// beige say, turns a pale mark's balanced hue (a pale green goal on it becomes cyan);
+    /// see [`super::tinted`].
+    pub fn raw_mark(&self, p: [u8; 3]) -> Option<Class> {
+        let rgb = p.map(f64::from);
+        let (max, min) = (
+            rgb[0].max(rgb[1]).max(rgb[2]),
+            rgb[0].min(rgb[1]).min(rgb[2]),
+        );
+        let chroma = max - min;
+        let sum = rgb.iter().sum::<f64>();
+        if max <= 0.0 || chroma < MARK_COLOUR.1 * self.floor_bright || chroma < MARK_COLOUR.0 * max
+        {
+            return None;
+        }
+        let apart = (0..3)
+            .map(|c| (rgb[c] / sum - self.floor_chromaticity[c]).abs())
+            .fold(0.0, f64::max);
+        if apart < RAW_APART {
+            return None;
+        }
+        let (hue, _) = hue_saturation(rgb);
+        let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
+        if dr <= HUE_BAND.0 && dr < dg {
+            Some(Class::Robot)
+        } else if dg <= HUE_BAND.1 {
+            Some(Class::Goal)
+        } else {
+            None
+        }
+    }
+
+    /// A pixel's colour after white balance on the floor: the lit floor's median is 1 in
+    /// every channel.
+    pub fn balanced(&self, p: [u8; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|c| f64::from(p[c]) * self.gain[c])
+    }
+
+    /// The class of one pixel by its colour after white balance.
     pub fn classify(&self, p: [u8; 3]) -> Class {
         let rgb = [
             f64::from(p[0]) * self.gain[0],
@@ -154,6 +214,13 @@ impl Classifier {
         } else if !(clear(OBSTACLE_COLOUR)
             || (max >= LIT_OBSTACLE.0 && clear((LIT_OBSTACLE.1, OBSTACLE_COLOUR.1))))
         {
+            Class::Floor
+        } else if max < SKY_SHADOW.0
+            && chroma < SKY_SHADOW.1 * max
+            && (SKY_HUES.0..=SKY_HUES.1).contains(&hue)
+        {
+            // Floor in a shadow, lit by the sky alone: darker and bluish after white
+            // balance on the sunlit floor.
             Class::Floor
         } else if dr <= HUE_BAND.0 + HUE_DOUBT || dg <= HUE_BAND.1 + HUE_DOUBT {
             Class::Unsure
@@ -192,6 +259,17 @@ mod tests {
         assert_eq!(c.classify([150, 175, 205]), Class::Obstacle);
         // The same tint in a shadow (two thirds as bright): floor.
         assert_eq!(c.classify([75, 88, 103]), Class::Floor);
+    }
+
+    #[test]
+    fn a_shadow_lit_by_the_sky_is_floor_and_a_blue_shelf_an_obstacle() {
+        let c = Classifier::new([150.0, 150.0, 150.0], Hue::RED, Hue::GREEN);
+        // Half as bright as the lit floor and bluish (saturation 0.33): the sky's light.
+        assert_eq!(c.classify([54, 60, 80]), Class::Floor);
+        // A blue shelf's shaded side: as dark, far more saturated.
+        assert_eq!(c.classify([20, 30, 80]), Class::Obstacle);
+        // A dark magenta, of no sky hue: an obstacle.
+        assert_eq!(c.classify([70, 30, 70]), Class::Obstacle);
     }
 
     #[test]

@@ -8,7 +8,12 @@
 //! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
 //!    and each cell's obstacle coverage, in one pass over the [`pixels`]; a cell the window
 //!    count leaves in doubt is judged on its [`cover`] in finer bins, against what the
-//!    leaning tops of the obstacles next to it would cover;
+//!    leaning tops of the obstacles next to it would cover; a blob that fills whole cells is
+//!    an obstacle whatever its colour ([`shelves`]), and a colour that cannot be told inside
+//!    a robot, a goal or an obstacle is part of it ([`enclosed`]); a blob that fills no cell
+//!    and has a mark's colour before white balance is that mark ([`tinted`]); every free
+//!    cell must look like the floor (no brighter than its texture and light allow, not tinted
+//!    where lit: [`looks`]);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
@@ -16,8 +21,9 @@
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
 //! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
 //! colour between the robots' or goals' and another, a cell half covered that no leaning top
-//! explains, a grid that does not fit the image. Cost: one pass over the pixels (O(pixels),
-//! on all cores) plus O(cells), O(pixels of the covered cells) and O(blob pixels).
+//! explains, a free cell that does not look like the floor, a grid that does not fit the
+//! image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
+//! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks.
 //!
 //! ```
 //! use mason_crew::aerial::{read_aerial, AerialConfig};
@@ -41,9 +47,13 @@
 pub mod blobs;
 pub mod colour;
 pub mod cover;
+pub mod enclosed;
 pub mod homography;
 pub mod lines;
+pub mod looks;
 pub mod pixels;
+pub mod shelves;
+pub mod tinted;
 
 use crate::error::{CrewError, Location};
 use crate::grid::{Cell, Grid};
@@ -471,8 +481,20 @@ pub fn read_aerial_image(
         config.goal_colour,
     );
     let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
-    let (mut classes, coverage) =
-        pixels::classify(img, &classifier, &image_to_floor, (gw, gh), nadir);
+    let px = cell_size_px(&floor_to_image, (fw, fh));
+    let mut classes = pixels::classify(
+        img,
+        &classifier,
+        &image_to_floor,
+        (gw, gh),
+        pixels::denoise_radius(px),
+    );
+    let width = img.width() as usize;
+    let maps = (&floor_to_image, &image_to_floor);
+    tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
+    enclosed::settle(&mut classes, width);
+    shelves::absorb(&mut classes, width, maps, (gw, gh));
+    let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
             .apply((
@@ -507,7 +529,6 @@ pub fn read_aerial_image(
             && y < i64::from(gh)
             && sure[(y * i64::from(gw) + x) as usize]
     };
-    let width = img.width() as usize;
     // The fits, on all cores (each cell's alone: the result does not depend on the cores).
     let fits: Vec<Option<cover::Fit>> = {
         use rayon::prelude::*;
@@ -579,8 +600,41 @@ pub fn read_aerial_image(
         }
         *b = true;
     }
+    // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
+    // the floor's is refused there, not read as free (after the robots' and goals' own
+    // reasons to refuse, which say more).
+    let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
+    // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
+    // result does not depend on the cores.
+    let not_floor = {
+        use rayon::prelude::*;
+        (0..cells)
+            .into_par_iter()
+            .filter(|&i| !blocked[i])
+            .find_map_first(|i| {
+                let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+                let look = looks::look(
+                    img,
+                    &classes,
+                    &classifier,
+                    &floor_to_image,
+                    &image_to_floor,
+                    nadir,
+                    &near_mark,
+                    (x, y),
+                );
+                look.odd().map(|why| {
+                    at_pixel(
+                        source,
+                        cell_centre_px(i),
+                        format!(
+                            "cell ({x}, {y}) would be free but does not look like the floor: {why}"
+                        ),
+                    )
+                })
+            })
+    };
     let grid = Grid::new(gw, gh, blocked);
-    let px = cell_size_px(&floor_to_image, (fw, fh));
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let robots = marks(
         blobs::find(&mut classes, width, Class::Robot as u8),
@@ -664,6 +718,9 @@ pub fn read_aerial_image(
                 format!("two {kind} on cell ({x}, {y})"),
             ));
         }
+    }
+    if let Some(e) = not_floor {
+        return Err(e);
     }
     Ok(AerialReading {
         grid,

@@ -1,5 +1,10 @@
-//! One pass over the image: every pixel's class, and how much of each cell's floor an
-//! obstacle covers.
+//! Two passes over the image: every pixel's class, and (once [`super::shelves`] has judged
+//! the large blobs) how much of each cell's floor an obstacle covers.
+//!
+//! A pixel is classified by its own colour when that is a robot's or a goal's (marks keep
+//! their every pixel, a sliver of a robot under a leaning top too), and otherwise by its
+//! colour averaged over a small square (noise and JPEG blocks average out, so a shelf or a
+//! shadow reads as one colour, not as speckle).
 //!
 //! A pixel belongs to the cell under its centre on the floor, through the inverse homography.
 //! Under a perspective camera a tall obstacle's top leans away from the nadir (the point under
@@ -38,7 +43,7 @@ impl Coverage {
 
 /// The counted window of a cell along one axis (fractions of the side), for a cell from `lo`
 /// to `lo + 1` and the nadir at `nadir` on that axis.
-fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
+pub(super) fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
     match nadir {
         Some(n) if n < lo => (0.4, 0.95),
         Some(n) if n > lo + 1.0 => (0.05, 0.6),
@@ -47,19 +52,126 @@ fn window(lo: f64, nadir: Option<f64>) -> (f64, f64) {
 }
 const BAND_ROWS: usize = 32;
 
-/// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) and counts the cells'
-/// coverage, for a floor of `w` × `h` cells seen through `image_to_floor`.
+/// The radius (pixels) of the square over which a pixel's colour is averaged before it is
+/// classified, for cells `cell_px` wide: 0 under 12 px per cell (the smallest marks are 3.5
+/// px wide), then one more every 12 px, at most 3.
+pub fn denoise_radius(cell_px: f64) -> usize {
+    ((cell_px / 12.0).floor().max(0.0) as usize).min(3)
+}
+
+/// The mean colour of every pixel of row `y` over the (2r + 1)² square around it (clipped to
+/// the image), into `out` (3 values a pixel); `cols` is scratch space of the same length.
+fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]) {
+    let (width, height) = (img.width() as usize, img.height() as usize);
+    let raw = img.as_raw();
+    let (y0, y1) = (y.saturating_sub(r), (y + r).min(height - 1));
+    cols.fill(0);
+    for yy in y0..=y1 {
+        let row = &raw[yy * width * 3..(yy + 1) * width * 3];
+        for (c, &v) in cols.iter_mut().zip(row) {
+            *c += u32::from(v);
+        }
+    }
+    let rows = (y1 - y0 + 1) as u32;
+    let mut sum = [0u32; 3];
+    let mut count = 0u32;
+    // The window [x - r, x + r] slides along the row.
+    for x in 0..width + r {
+        if x < width {
+            for c in 0..3 {
+                sum[c] += cols[3 * x + c];
+            }
+            count += rows;
+        }
+        if x > 2 * r {
+            let gone = x - 2 * r - 1;
+            for c in 0..3 {
+                sum[c] -= cols[3 * gone + c];
+            }
+            count -= rows;
+        }
+        if x >= r {
+            let at = x - r;
+            for c in 0..3 {
+                out[3 * at + c] = ((sum[c] + count / 2) / count) as u8;
+            }
+        }
+    }
+}
+
+/// Calls `visit(k, (u, v))` for every pixel `k` of row `y` inside the `w` × `h` floor, with
+/// its point on the floor.
+fn floor_row(
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+    width: usize,
+    y: usize,
+    mut visit: impl FnMut(usize, (f64, f64)),
+) {
+    let m = image_to_floor.0;
+    let y = y as f64 + 0.5;
+    // The homography's numerators and denominator are linear along a row.
+    let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
+    for k in 0..width {
+        let x = k as f64 + 0.5;
+        let d = m[6] * x + bd;
+        if d.abs() < 1e-12 {
+            continue;
+        }
+        let (u, v) = ((m[0] * x + bu) / d, (m[3] * x + bv) / d);
+        if u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h) {
+            visit(k, (u, v));
+        }
+    }
+}
+
+/// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) of a floor of `w` × `h`
+/// cells seen through `image_to_floor`, colours other than marks averaged over a square of
+/// radius `radius` (see [`denoise_radius`]).
 pub fn classify(
     img: &RgbImage,
     classifier: &Classifier,
     image_to_floor: &Homography,
-    (w, h): (u32, u32),
-    nadir: Option<(f64, f64)>,
-) -> (Vec<u8>, Coverage) {
+    floor: (u32, u32),
+    radius: usize,
+) -> Vec<u8> {
     let width = img.width() as usize;
-    let cells = w as usize * h as usize;
     let raw = img.as_raw();
     let mut classes = vec![OUTSIDE; raw.len() / 3];
+    classes
+        .par_chunks_mut(width * BAND_ROWS)
+        .enumerate()
+        .for_each(|(band, out)| {
+            let mut cols = vec![0u32; width * 3];
+            let mut mean = vec![0u8; width * 3];
+            for (row, line) in out.chunks_mut(width).enumerate() {
+                let y = band * BAND_ROWS + row;
+                if radius > 0 {
+                    mean_row(img, y, radius, &mut cols, &mut mean);
+                }
+                let own = &raw[y * width * 3..(y + 1) * width * 3];
+                floor_row(image_to_floor, floor, width, y, |k, _| {
+                    let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
+                    line[k] = match classifier.classify(colour(own)) {
+                        mark @ (Class::Robot | Class::Goal) => mark,
+                        c if radius == 0 => c,
+                        _ => classifier.classify(colour(&mean)),
+                    } as u8;
+                });
+            }
+        });
+    classes
+}
+
+/// Counts each cell's coverage (see the module's comment) from the pixels' classes.
+pub fn coverage(
+    classes: &[u8],
+    width: usize,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+    nadir: Option<(f64, f64)>,
+) -> Coverage {
+    let cells = w as usize * h as usize;
     // The counted window of every column and every row of cells.
     let windows = |n: u32, at: Option<f64>| -> Vec<(f64, f64)> {
         (0..n).map(|k| window(f64::from(k), at)).collect()
@@ -68,47 +180,31 @@ pub fn classify(
         windows(w, nadir.map(|n| n.0)),
         windows(h, nadir.map(|n| n.1)),
     );
-    let m = image_to_floor.0;
     let counts: Vec<Coverage> = classes
-        .par_chunks_mut(width * BAND_ROWS)
+        .par_chunks(width * BAND_ROWS)
         .enumerate()
         .map(|(band, out)| {
             let mut cov = Coverage {
                 obstacle: vec![0; cells],
                 floor: vec![0; cells],
             };
-            for (row, line) in out.chunks_mut(width).enumerate() {
-                let y = (band * BAND_ROWS + row) as f64 + 0.5;
-                // The homography's numerators and denominator are linear along a row.
-                let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
-                let start = (band * BAND_ROWS + row) * width;
-                for (k, class) in line.iter_mut().enumerate() {
-                    let x = k as f64 + 0.5;
-                    let d = m[6] * x + bd;
-                    if d.abs() < 1e-12 {
-                        continue;
-                    }
-                    let (u, v) = ((m[0] * x + bu) / d, (m[3] * x + bv) / d);
-                    if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
-                        continue;
-                    }
-                    let i = start + k;
-                    let c = classifier.classify([raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]]);
-                    *class = c as u8;
+            for (row, line) in out.chunks(width).enumerate() {
+                let y = band * BAND_ROWS + row;
+                floor_row(image_to_floor, (w, h), width, y, |k, (u, v)| {
                     // u and v are non-negative here: the casts truncate toward zero = floor.
                     let (cu, cv) = (u as usize, v as usize);
                     let (fu, fv) = (u - cu as f64, v - cv as f64);
                     let (ou, ov) = (wu[cu], wv[cv]);
                     if fu < ou.0 || fu > ou.1 || fv < ov.0 || fv > ov.1 {
-                        continue;
+                        return;
                     }
                     let cell = cv * w as usize + cu;
-                    match c {
-                        Class::Obstacle => cov.obstacle[cell] += 1,
-                        Class::Unsure => {}
+                    match line[k] {
+                        c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
+                        c if c == Class::Unsure as u8 || c == OUTSIDE => {}
                         _ => cov.floor[cell] += 1,
                     }
-                }
+                });
             }
             cov
         })
@@ -123,5 +219,5 @@ pub fn classify(
             total.floor[i] += c.floor[i];
         }
     }
-    (classes, total)
+    total
 }

@@ -1,0 +1,259 @@
+//! Does a free cell look like the floor?
+//!
+//! A cell is read as free when no obstacle colour covers it, so a shelf whose colour after
+//! white balance is nearly grey (a pale colour on a floor of a similar hue: lilac on slate,
+//! olive on sand) would read as free floor. Every free cell is therefore compared with the lit
+//! floor, which after white balance is grey at brightness 1 (the floor's median colour): its
+//! texture and uneven light vary that a little, a shadow only darkens it (grey, or tinted by
+//! the sky's light), and painted lines lie along the cell's border. A free cell is refused,
+//! never guessed, when the floor pixels of its middle (the window that a neighbour's leaning
+//! top cannot reach, see [`super::pixels`], without a band of [`BORDER`] along the border
+//! where lines are painted, and without the pixels near a robot or goal: a mark's blurred
+//! edge, shadow and reflection) are
+//! - brighter than the lit floor can be: a median more than [`BRIGHTER`] times the lit
+//!   floor's, or
+//! - lit (a median at least [`LIT`] times the lit floor's: no shadow) but tinted: their
+//!   colour's saturation after white balance over [`TINTED`], or
+//! - mostly (over [`UNSURE`]) of a colour that cannot be told.
+//!
+//! A darker cell (a shadow) is not judged by its colour: a shadow's tint depends on the light.
+
+use super::blobs;
+use super::colour::{Class, Classifier};
+use super::homography::Homography;
+use super::pixels::window;
+use image::RgbImage;
+
+/// The brightest a free cell's floor may be, relative to the lit floor's median.
+pub const BRIGHTER: f64 = 1.35;
+/// At least this bright (relative to the lit floor) a cell is lit, not in a shadow.
+pub const LIT: f64 = 0.85;
+/// The largest saturation after white balance of a lit free cell (the lit floor is grey).
+pub const TINTED: f64 = 0.17;
+/// The largest share of a free cell's middle of a colour that cannot be told.
+pub const UNSURE: f64 = 0.6;
+/// The band along a cell's border (each side, in cells) that is not judged: painted lines (up
+/// to 0.1 cell wide, twice as wide inside the floor's edge) and their blur.
+pub const BORDER: f64 = 0.15;
+/// The fewest pixels a cell's middle must show to be judged.
+pub const MIN_PIXELS: usize = 12;
+
+/// How a free cell's middle looks after white balance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Look {
+    /// The median brightness (brightest channel) of its floor pixels, 1 for the lit floor;
+    /// `None` when fewer than [`MIN_PIXELS`] show floor.
+    pub bright: Option<f64>,
+    /// The saturation of the mean colour of its floor pixels between the first and third
+    /// quartile of brightness (texture and specks left out).
+    pub saturation: f64,
+    /// The pixels of a colour that cannot be told, and all the pixels judged (not near a mark).
+    pub unsure: (usize, usize),
+}
+
+impl Look {
+    /// Why the cell does not look like the floor, if it does not.
+    pub fn odd(&self) -> Option<String> {
+        let (unsure, all) = self.unsure;
+        match self.bright {
+            Some(b) if b > BRIGHTER => Some(format!(
+                "{b:.2} times as bright as the lit floor (its texture and uneven light make floor at most {BRIGHTER:.2} times as bright)"
+            )),
+            Some(b) if b >= LIT && self.saturation > TINTED => Some(format!(
+                "lit ({b:.2} times as bright as the lit floor, no shadow) but tinted (saturation {:.2} after white balance on the floor, the lit floor's at most {TINTED:.2})",
+                self.saturation
+            )),
+            _ if all >= MIN_PIXELS && unsure as f64 > UNSURE * all as f64 => Some(format!(
+                "{:.0} % of its middle is a colour that cannot be told (at most {:.0} %)",
+                100.0 * unsure as f64 / all as f64,
+                100.0 * UNSURE
+            )),
+            _ => None,
+        }
+    }
+}
+
+/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark` from
+/// [`near_marks`].
+#[allow(clippy::too_many_arguments)]
+pub fn look(
+    img: &RgbImage,
+    classes: &[u8],
+    classifier: &Classifier,
+    floor_to_image: &Homography,
+    image_to_floor: &Homography,
+    nadir: Option<(f64, f64)>,
+    near_mark: &[bool],
+    (cx, cy): (u32, u32),
+) -> Look {
+    let width = img.width() as usize;
+    let height = img.height() as usize;
+    let (fx, fy) = (f64::from(cx), f64::from(cy));
+    let inside = |(lo, hi): (f64, f64)| (lo.max(BORDER), hi.min(1.0 - BORDER));
+    let (wu, wv) = (
+        inside(window(fx, nadir.map(|n| n.0))),
+        inside(window(fy, nadir.map(|n| n.1))),
+    );
+    let mut out = Look {
+        bright: None,
+        saturation: 0.0,
+        unsure: (0, 0),
+    };
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+    for c in [
+        (fx, fy),
+        (fx + 1.0, fy),
+        (fx + 1.0, fy + 1.0),
+        (fx, fy + 1.0),
+    ] {
+        let Some((x, y)) = floor_to_image.apply(c) else {
+            return out;
+        };
+        (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+    }
+    let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+    let (x0, x1) = (clamp(x0.floor(), width), clamp(x1.ceil() + 1.0, width));
+    let (y0, y1) = (clamp(y0.floor(), height), clamp(y1.ceil() + 1.0, height));
+    // Floor pixels: (brightness, colour) after white balance.
+    let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
+    for y in y0..y1 {
+        for x in x0..x1 {
+            if near_mark[y * width + x] {
+                continue;
+            }
+            let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+                continue;
+            };
+            let (du, dv) = (u - fx, v - fy);
+            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 {
+                continue;
+            }
+            out.unsure.1 += 1;
+            match classes[y * width + x] {
+                c if c == Class::Unsure as u8 => out.unsure.0 += 1,
+                c if c == Class::Floor as u8 => {
+                    let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
+                    seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
+                }
+                _ => {}
+            }
+        }
+    }
+    if seen.len() < MIN_PIXELS {
+        return out;
+    }
+    seen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let n = seen.len();
+    out.bright = Some(seen[n / 2].0);
+    let middle = &seen[n / 4..3 * n / 4];
+    let mut mean = [0.0; 3];
+    for (_, rgb) in middle {
+        for c in 0..3 {
+            mean[c] += rgb[c] / middle.len() as f64;
+        }
+    }
+    let max = mean[0].max(mean[1]).max(mean[2]);
+    let min = mean[0].min(mean[1]).min(mean[2]);
+    out.saturation = if max > 0.0 { (max - min) / max } else { 0.0 };
+    out
+}
+
+/// Pixels within `r` (a square) of a pixel of a robot's or a goal's blob of at least
+/// [`blobs::MIN_AREA`] pixels (smaller specks of a mark's colour are noise, on a shelf too).
+pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
+    let width = width.max(1);
+    let height = classes.len() / width;
+    let mut marked = vec![false; classes.len()];
+    for class in [Class::Robot, Class::Goal] {
+        for b in blobs::find(classes, width, class as u8) {
+            if b.area() >= blobs::MIN_AREA {
+                for (x, y) in b.pixels {
+                    marked[y as usize * width + x as usize] = true;
+                }
+            }
+        }
+    }
+    // Along rows, then along columns.
+    let mut rows = vec![false; classes.len()];
+    for y in 0..height {
+        let row = y * width;
+        for x in 0..width {
+            if marked[row + x] {
+                for v in &mut rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)] {
+                    *v = true;
+                }
+            }
+        }
+    }
+    let mut out = vec![false; classes.len()];
+    for x in 0..width {
+        let mut reach = 0usize; // rows below y still within r of a marked row
+        for y in 0..height {
+            if rows[y * width + x] {
+                for yy in y.saturating_sub(r)..y {
+                    out[yy * width + x] = true;
+                }
+                reach = r + 1;
+            }
+            if reach > 0 {
+                out[y * width + x] = true;
+                reach -= 1;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lit(bright: f64, saturation: f64) -> Look {
+        Look {
+            bright: Some(bright),
+            saturation,
+            unsure: (0, 100),
+        }
+    }
+
+    #[test]
+    fn lit_grey_floor_and_shadows_look_like_floor() {
+        for (b, s) in [(1.0, 0.02), (1.3, 0.1), (0.4, 0.4), (0.8, 0.3)] {
+            assert_eq!(lit(b, s).odd(), None);
+        }
+    }
+
+    #[test]
+    fn a_bright_a_lit_tinted_or_an_unsure_cell_does_not() {
+        assert!(lit(1.8, 0.0).odd().unwrap().contains("1.80 times"));
+        assert!(lit(0.95, 0.25).odd().unwrap().contains("tinted"));
+        let unsure = Look {
+            bright: None,
+            saturation: 0.0,
+            unsure: (70, 100),
+        };
+        assert!(unsure.odd().unwrap().contains("70 %"));
+    }
+
+    #[test]
+    fn near_marks_is_a_square_around_each_mark_pixel() {
+        let (w, h) = (9, 7);
+        let mut classes = vec![Class::Floor as u8; w * h];
+        // A robot of 6 pixels (the smallest blob that is one) and a speck of 2.
+        let robot = [(4, 3), (3, 3), (5, 3), (4, 2), (4, 4), (5, 4)];
+        for (x, y) in robot {
+            classes[y * w + x] = Class::Robot as u8;
+        }
+        classes[6 * w] = Class::Goal as u8;
+        classes[6 * w + 1] = Class::Goal as u8;
+        let near = near_marks(&mut classes, w, 2);
+        for y in 0..h {
+            for x in 0..w {
+                let want = robot
+                    .iter()
+                    .any(|&(rx, ry): &(usize, usize)| rx.abs_diff(x) <= 2 && ry.abs_diff(y) <= 2);
+                assert_eq!(near[y * w + x], want, "({x}, {y})");
+            }
+        }
+    }
+}

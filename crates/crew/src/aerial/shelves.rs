@@ -1,0 +1,390 @@
+//! Obstacles by their shape, whatever their colour.
+//!
+//! A shelf's colour may lie near the goals' (dark green, teal) or between a mark's and
+//! another's (amber, yellow under warm light), so some or all of its pixels read as goal or
+//! as a colour that cannot be told. Its shape tells what it is: it stands on whole cells and
+//! fills them, while a goal is a mark inside one cell, and all goals of a view are alike.
+//!
+//! So every 8-connected blob of goal, unsure and obstacle pixels that holds some goal or
+//! unsure pixels is judged as a whole. It is an obstacle when it fills (at least [`FILLED`]
+//! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
+//! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
+//! two cells only when each fills its own, and are then twice the median). Its pixels become
+//! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
+//! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
+//! mostly outside the cells it fills).
+//! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
+//! refused as before.
+//!
+//! Limit: a goal touching such a blob (blur can join them when cells are under 12 px) is
+//! taken as part of it; when the view has as many goals as robots the reading is then
+//! refused ("fewer goals than robots").
+//!
+//! Cost: O(pixels) to label the blobs, and O(pixels of the cells they touch) for the cells'
+//! pixel counts when a blob is large.
+
+use super::blobs;
+use super::colour::Class;
+use super::homography::Homography;
+use super::pixels::OUTSIDE;
+
+/// The middle of a cell, along each axis, whose pixels a blob must fill.
+pub const INNER: (f64, f64) = (0.1, 0.9);
+/// The share of those pixels that fills it.
+pub const FILLED: f64 = 0.85;
+/// An obstacle blob is at least this many times the median goal.
+pub const LARGER: f64 = 2.5;
+/// A goal joined to an obstacle blob has at least this share of its pixels outside the
+/// cells the blob fills.
+pub const GOAL_OUTSIDE: f64 = 0.8;
+
+/// The 8-connected blobs of goal, unsure and obstacle pixels that hold some goal or unsure
+/// pixels, as lists of pixel indices, in row-major order of their first pixel.
+fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
+    let height = classes.len() / width.max(1);
+    let part =
+        |c: u8| c == Class::Goal as u8 || c == Class::Unsure as u8 || c == Class::Obstacle as u8;
+    let mut seen = vec![false; classes.len()];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..classes.len() {
+        if seen[start] || !part(classes[start]) {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut pixels = Vec::new();
+        let mut mixed = false;
+        while let Some(i) = stack.pop() {
+            pixels.push(i);
+            mixed |= classes[i] != Class::Obstacle as u8;
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    let j = ny * width + nx;
+                    if !seen[j] && part(classes[j]) {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        if mixed {
+            out.push(pixels);
+        }
+    }
+    out
+}
+
+/// The cell (index) under pixel `i`, if any.
+fn cell_of(
+    i: usize,
+    width: usize,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+) -> Option<usize> {
+    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+    let (u, v) = image_to_floor.apply((x, y))?;
+    (u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h))
+        .then(|| v.floor() as usize * w as usize + u.floor() as usize)
+}
+
+/// The cell (index) whose middle holds pixel `i`, if any.
+pub(crate) fn inner_cell(
+    i: usize,
+    width: usize,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+) -> Option<usize> {
+    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+    let (u, v) = image_to_floor.apply((x, y))?;
+    if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
+        return None;
+    }
+    let (cu, cv) = (u.floor(), v.floor());
+    let inside = |f: f64| (INNER.0..=INNER.1).contains(&f);
+    (inside(u - cu) && inside(v - cv)).then(|| cv as usize * w as usize + cu as usize)
+}
+
+/// The pixels of the floor in the middle of a cell, and the obstacle pixels among them,
+/// counted over the cell's bounding box in the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Middle {
+    /// Pixels whose centre lies in the middle of the cell.
+    pub pixels: u32,
+    /// Obstacle pixels among them.
+    pub obstacle: u32,
+}
+
+/// The [`Middle`] of `cell`, its counts remembered in `known`.
+pub(crate) fn middle(
+    known: &mut std::collections::BTreeMap<usize, Middle>,
+    classes: &[u8],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    floor: (u32, u32),
+    cell: usize,
+) -> Middle {
+    if let Some(&m) = known.get(&cell) {
+        return m;
+    }
+    let w = floor.0 as usize;
+    let (fx, fy) = ((cell % w) as f64, (cell / w) as f64);
+    let height = classes.len() / width.max(1);
+    let mut out = Middle::default();
+    let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        .map(|(a, b)| floor_to_image.apply((fx + a, fy + b)));
+    if corners.iter().all(Option::is_some) {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+        for (x, y) in corners.into_iter().flatten() {
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+        let (x0, x1) = (
+            clamp(x0.floor() - 1.0, width),
+            clamp(x1.ceil() + 1.0, width),
+        );
+        let (y0, y1) = (
+            clamp(y0.floor() - 1.0, height),
+            clamp(y1.ceil() + 1.0, height),
+        );
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let i = y * width + x;
+                let c = classes[i];
+                if c != OUTSIDE && inner_cell(i, width, image_to_floor, floor) == Some(cell) {
+                    out.pixels += 1;
+                    out.obstacle += u32::from(c == Class::Obstacle as u8);
+                }
+            }
+        }
+    }
+    known.insert(cell, out);
+    out
+}
+
+/// The cells a blob fills (the middles' counts remembered in `known`), when it fills two
+/// side by side; else none.
+fn filled_cells(
+    pixels: &[usize],
+    classes: &[u8],
+    width: usize,
+    maps: (&Homography, &Homography),
+    floor: (u32, u32),
+    known: &mut std::collections::BTreeMap<usize, Middle>,
+) -> Vec<usize> {
+    let image_to_floor = maps.1;
+    let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
+    for &i in pixels {
+        if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
+            *held.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
+        }
+    }
+    // The obstacle pixels in the middles of those cells (the blob's own too) fill them.
+    let filled: Vec<usize> = held
+        .iter()
+        .filter(|&(&c, &n)| {
+            let m = middle(known, classes, width, maps, floor, c);
+            m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
+        })
+        .map(|(&c, _)| c)
+        .collect();
+    let w = floor.0 as usize;
+    let side_by_side = filled.iter().any(|&c| {
+        (c % w + 1 < w && filled.binary_search(&(c + 1)).is_ok())
+            || filled.binary_search(&(c + w)).is_ok()
+    });
+    if side_by_side {
+        filled
+    } else {
+        Vec::new()
+    }
+}
+
+/// Turns the blobs that are obstacles by their shape (see the module's comment) into
+/// obstacle pixels; returns how many blobs it turned.
+pub fn absorb(
+    classes: &mut [u8],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    floor: (u32, u32),
+) -> usize {
+    let blobs_found = mixed_blobs(classes, width);
+    // Only a blob at least two cells large can fill two.
+    let cells = f64::from(floor.0) * f64::from(floor.1);
+    let inside = classes.iter().filter(|&&c| c != OUTSIDE).count() as f64;
+    let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
+    let large: Vec<&Vec<usize>> = blobs_found
+        .iter()
+        .filter(|b| b.len() >= two_cells)
+        .collect();
+    if large.is_empty() {
+        return 0;
+    }
+    let mut known = std::collections::BTreeMap::new();
+    let maps = (floor_to_image, image_to_floor);
+    let shaped: Vec<(&Vec<usize>, Vec<usize>)> = large
+        .into_iter()
+        .map(|b| (b, filled_cells(b, classes, width, maps, floor, &mut known)))
+        .filter(|(_, cells)| !cells.is_empty())
+        .collect();
+    if shaped.is_empty() {
+        return 0;
+    }
+    // The median goal among the goal pixels outside those blobs.
+    let mut goals_only: Vec<u8> = classes.to_vec();
+    for (b, _) in &shaped {
+        for &i in b.iter() {
+            goals_only[i] = OUTSIDE;
+        }
+    }
+    let median = blobs::sort(blobs::find(&mut goals_only, width, Class::Goal as u8)).median_area;
+    let mut turned = 0;
+    for (b, cells) in shaped {
+        if (b.len() as f64) < LARGER * median as f64 {
+            continue;
+        }
+        let in_filled = |i: usize| {
+            cell_of(i, width, image_to_floor, floor)
+                .is_some_and(|c| cells.binary_search(&c).is_ok())
+        };
+        let goals = goals_within(classes, width, b, &in_filled);
+        for &i in b {
+            if goals.binary_search(&i).is_err() {
+                classes[i] = Class::Obstacle as u8;
+            }
+        }
+        turned += 1;
+    }
+    turned
+}
+
+/// The pixels of the goals within a blob: its goal pixels that make, on their own, a blob
+/// with at least [`GOAL_OUTSIDE`] of it outside the cells the blob fills (a goal joined to a
+/// shelf by pixels of a colour between: blur mixes a goal's green with a shelf's yellow).
+fn goals_within(
+    classes: &[u8],
+    width: usize,
+    blob: &[usize],
+    in_filled: &dyn Fn(usize) -> bool,
+) -> Vec<usize> {
+    // The blob's goal pixels, sorted, split into 8-connected pieces among themselves.
+    let mut goal: Vec<usize> = blob
+        .iter()
+        .copied()
+        .filter(|&i| classes[i] == Class::Goal as u8)
+        .collect();
+    goal.sort_unstable();
+    let height = classes.len() / width.max(1);
+    let mut seen = vec![false; goal.len()];
+    let mut kept = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..goal.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(k) = stack.pop() {
+            let i = goal[k];
+            piece.push(i);
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    if let Ok(n) = goal.binary_search(&(ny * width + nx)) {
+                        if !seen[n] {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
+        if outside as f64 >= GOAL_OUTSIDE * piece.len() as f64 {
+            kept.extend(piece);
+        }
+    }
+    kept.sort_unstable();
+    kept
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 4 × 2-cell floor, 10 px per cell, straight down: floor → image, image → floor.
+    fn floor() -> (Homography, Homography, Vec<u8>) {
+        let to_image = Homography::floor_to_image(
+            4.0,
+            2.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 20.0), (0.0, 20.0)],
+        )
+        .unwrap();
+        (
+            to_image,
+            to_image.inverse().unwrap(),
+            vec![Class::Floor as u8; 40 * 20],
+        )
+    }
+
+    fn paint(classes: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize), c: Class) {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                classes[y * 40 + x] = c as u8;
+            }
+        }
+    }
+
+    #[test]
+    fn a_goal_coloured_shelf_over_two_cells_is_an_obstacle() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals 4 px wide in cells (3, 0) and (3, 1); a shelf over cells (0, 0) and (1, 0),
+        // goal-coloured with some unsure pixels.
+        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, (1, 1, 19, 9), Class::Goal);
+        paint(&mut classes, (5, 2, 7, 4), Class::Unsure);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_goal_joined_to_a_shelf_by_a_colour_between_stays_a_goal() {
+        let (to_image, to_floor, mut classes) = floor();
+        // A yellow (unsure) shelf over cells (0, 0) and (1, 0); a goal in cell (1, 1) joined
+        // to it by a pixel of a colour between; goals in cells (3, 0) and (3, 1).
+        paint(&mut classes, (1, 1, 19, 9), Class::Unsure);
+        paint(&mut classes, (13, 10, 17, 14), Class::Goal);
+        paint(&mut classes, (15, 9, 16, 10), Class::Unsure);
+        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[12 * 40 + 15], Class::Goal as u8);
+    }
+
+    #[test]
+    fn goals_filling_one_cell_each_stay_goals() {
+        let (to_image, to_floor, mut classes) = floor();
+        // One goal per cell, each filling its cell, touching the next: twice the median.
+        paint(&mut classes, (0, 0, 10, 10), Class::Goal);
+        paint(&mut classes, (10, 0, 20, 10), Class::Goal);
+        paint(&mut classes, (21, 11, 30, 20), Class::Goal);
+        paint(&mut classes, (0, 11, 10, 20), Class::Goal);
+        let before = classes.clone();
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(classes, before);
+    }
+
+    #[test]
+    fn a_blob_filling_one_cell_is_not_judged() {
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, (0, 0, 10, 10), Class::Unsure);
+        let before = classes.clone();
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(classes, before);
+    }
+}
