@@ -8,7 +8,9 @@
 //!     less the most rest the m last bricks can leave out, plus (zone rule) the UAVs' first
 //!     starts and last ends, spread over m UAVs: their least sum is found exactly for a
 //!     relaxation (`ZoneEnds`, and for teams up to 16 with the bricks under and on each
-//!     first and last brick, `near_loss`); with 2-UAV bricks, unless one of them is some
+//!     first and last brick, `near_loss`, where a UAV's last brick also leaves the bricks it
+//!     carries to the other UAVs and a 2-UAV brick that is the last of one UAV only lets its
+//!     partner go on after its rest); with 2-UAV bricks, unless one of them is some
 //!     UAV's last brick, the last of them leaves its two UAVs free at once and one waits at
 //!     least the shortest placing phase for the other's next brick (`pair_wait`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
@@ -328,9 +330,14 @@ impl ZoneEnds {
 /// no earlier than the placing phases of all the bricks under it (they place one after another
 /// before it), and ends no later than the makespan less those of all the bricks on it. Per
 /// brick these are bounded below by `head` = max(Σ supports' p, max over supports (p + head))
-/// and `tail` likewise upwards; a group of bricks with the same times takes its members' least
-/// head and tail. The j-th first brick then starts at max(its head, the phases of the first
-/// bricks before it), and likewise for the last ends; Smith's order no longer holds, so a
+/// and `tail` likewise upwards. A last brick's tail depends on how many of its UAVs (w) it is
+/// the last of: the bricks it carries start after it and none of those w UAVs places anything
+/// after its last brick, so the other m − w place them ([`others_tail`]); and a 2-UAV brick
+/// that is the last of one UAV only has a partner that places another brick after its rest,
+/// so the makespan is at least its rest and the shortest placing phase after its end. A group
+/// of bricks with the same times takes its members' least head and, per w, least tail. The
+/// j-th first brick then starts at max(its head, the phases of the first bricks before it),
+/// and likewise for the last ends; Smith's order no longer holds, so a
 /// dynamic programme over (UAVs covered, phases so far) finds the least cost exactly, with
 /// every group usable any number of times (a relaxation). Entry k: the least first-start cost
 /// with k UAVs at work, and the least last-end cost by flag (index 1: some 2-UAV brick among
@@ -346,19 +353,34 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
             carried[s.index()].push(b);
         }
     }
+    let shortest = wall
+        .ids()
+        .map(|b| p.place_s(b))
+        .fold(f64::INFINITY, f64::min);
     let head = waits(p, order.iter().copied(), |b| wall.supports(b));
     let tail = waits(p, order.iter().rev().copied(), |b| {
         carried[b.index()].as_slice()
     });
-    // Groups (place, rest, need) with their least head and tail.
-    let mut groups: Vec<(f64, f64, u32, f64, f64)> = Vec::new();
+    // Groups (place, rest, need) with their least head, and their least tail as the last
+    // brick of 1 or of 2 UAVs.
+    let mut groups: Vec<(f64, f64, u32, f64, [f64; 2])> = Vec::new();
     for b in wall.ids() {
         let key = (p.place_s(b), p.rest_s(b), p.need(b));
-        let (h, t) = (head[b.index()], tail[b.index()]);
+        let h = head[b.index()];
+        let t = [1, 2].map(|w| {
+            // A UAV of `b` for which it is not the last brick places another after its rest.
+            let partner = match (w as u32) < p.need(b) {
+                true => p.rest_s(b) + shortest,
+                false => 0.0,
+            };
+            tail[b.index()]
+                .max(others_tail(p, &carried[b.index()], w))
+                .max(partner)
+        });
         match groups.iter_mut().find(|g| (g.0, g.1, g.2) == key) {
             Some(g) => {
                 g.3 = g.3.min(h);
-                g.4 = g.4.min(t);
+                g.4 = [g.4[0].min(t[0]), g.4[1].min(t[1])];
             }
             None => groups.push((key.0, key.1, key.2, h, t)),
         }
@@ -371,11 +393,11 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
         // nothing.
         let mut layer: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
-            let wait = if end { t } else { h };
-            if wait > 0.0 {
-                continue;
-            }
             for w in 1..=(need as usize).min(kmax) {
+                let wait = if end { t[w - 1] } else { h };
+                if wait > 0.0 {
+                    continue;
+                }
                 let cost = -if end { w as f64 * rest } else { 0.0 };
                 let e = layer
                     .entry((w, place.to_bits(), need > 1))
@@ -390,11 +412,11 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
                 best[f][c] = best[f][c].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
-                    let wait = if end { t } else { h };
                     for w in 1..=(need as usize) {
                         if c + w > kmax {
                             break;
                         }
+                        let wait = if end { t[w - 1] } else { h };
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
                             .entry((c + w, (o + place).to_bits(), flag || need > 1))
@@ -415,6 +437,31 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
     e0[0] = 0.0;
     e1[0] = f64::INFINITY;
     (start, [e0, e1])
+}
+
+/// How long after a brick ends the bricks it carries take at least when that brick is the
+/// last of `w` of its UAVs: they start after it, and none of those w UAVs places anything
+/// after its last brick, so the other m − w UAVs place them all (+∞ if they cannot: too few
+/// for a 2-UAV brick, or none). Some UAV starts ⌈S/(m − w)⌉ of them (S: their UAV-cycles), a
+/// cycle apart at least, and the last ends a placing phase after its start.
+fn others_tail(p: &TeamProblem<'_>, carried: &[BrickId], w: usize) -> f64 {
+    if carried.is_empty() {
+        return 0.0;
+    }
+    let others = p.uavs().saturating_sub(w);
+    let slots: usize = carried.iter().map(|&c| p.need(c) as usize).sum();
+    if carried.iter().any(|&c| p.need(c) as usize > others) {
+        return f64::INFINITY;
+    }
+    let cycle = carried
+        .iter()
+        .map(|&c| p.place_s(c) + p.rest_s(c))
+        .fold(f64::INFINITY, f64::min);
+    let place = carried
+        .iter()
+        .map(|&c| p.place_s(c))
+        .fold(f64::INFINITY, f64::min);
+    (slots.div_ceil(others) - 1) as f64 * cycle + place
 }
 
 /// The placing phases that must come before (or after) each brick, visited in `bricks` with
