@@ -97,12 +97,15 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
                 if let Some(e) = &ends {
                     let steps = zone_stagger(k, pairs, first_pair) + zone_stagger(k, pairs, true);
                     // With 2-UAV bricks, either one of them is some UAV's last brick, or the
-                    // last of them leaves its UAVs to wait (`pair_wait`).
+                    // last of them leaves its UAVs to wait (`pair_wait`, and `chain_waits`).
                     let zone_loss = if pairs && k >= 2 {
-                        e.loss(k, Last::SomePair)
-                            .min(e.loss(k, Last::Singles) + pair_wait(shortest))
+                        e.loss(k, Last::SomePair, Some(shortest)).min(e.loss(
+                            k,
+                            Last::Singles,
+                            Some(shortest),
+                        ))
                     } else {
-                        e.loss(k, Last::Any)
+                        e.loss(k, Last::Any, None)
                     };
                     loss = (loss + steps as f64 * shortest).max(zone_loss);
                 }
@@ -178,9 +181,37 @@ struct ZoneEnds {
     items: Vec<(f64, f64, usize, bool, bool, bool)>,
     /// For k ≤ [`NEAR_UAVS`]: the same least first-start and last-end costs where each brick
     /// also waits for the bricks under it and is waited for by the bricks on it
-    /// ([`near_loss`]); −∞ above.
-    near_start: Vec<f64>,
-    near_end: [Vec<f64>; 2],
+    /// ([`near_loss`]), by the number of 2-UAV bricks among the first (last) bricks; −∞ above.
+    near_start: Vec<PairCounts>,
+    near_end: Vec<PairCounts>,
+}
+
+/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks: index c
+/// for exactly c, the last index for [`PAIR_CAP`] or more.
+type PairCounts = [f64; PAIR_CAP + 1];
+
+/// [`near_loss`] counts the 2-UAV bricks among the first (last) bricks up to this many.
+const PAIR_CAP: usize = 3;
+
+/// The pair splits [`ZoneEnds::loss`] counts when f 2-UAV bricks are among the UAVs' first
+/// bricks and l among their last (either count at [`PAIR_CAP`] meaning that many or more), in
+/// a schedule with 2-UAV bricks.
+///
+/// Chain the 2-UAV bricks: one follows another when it is the next brick of both UAVs of the
+/// other (the same crew, back to back). A chain's first brick has no such predecessor, so each
+/// 2-UAV brick that is the first brick of one of its UAVs or both starts a chain of its own:
+/// there are at least max(1, f) chains. A chain's last brick is, for its two UAVs, the last
+/// brick of one or both of them, or both go on to two different bricks (else the next would
+/// continue the chain). At most l chains end the first way, so at least max(1, f) − l end the
+/// second, and after each of those, as in [`pair_wait`], the two UAVs are free at the same
+/// moment and the later of their two next bricks starts a placing phase later: one UAV waits
+/// at least the shortest placing phase, between two of its bricks (waits after different
+/// 2-UAV bricks are different stretches of time).
+fn chain_waits(f: usize, l: usize) -> usize {
+    if l >= PAIR_CAP {
+        return 0;
+    }
+    f.max(1).saturating_sub(l)
 }
 
 /// Which UAVs' last bricks [`ZoneEnds::loss`] allows.
@@ -290,8 +321,11 @@ impl ZoneEnds {
 
     /// The least `Σ first starts + Σ (makespan − last end) − Σ last rests` with k UAVs at
     /// work, over the schedules whose last bricks `last` allows (+∞: none, or k UAVs cannot
-    /// all have a brick).
-    fn loss(&self, k: usize, last: Last) -> f64 {
+    /// all have a brick), plus, in a schedule with 2-UAV bricks (`shortest`: the shortest
+    /// placing phase), the waits after 2-UAV bricks whose UAVs part: one ([`pair_wait`]) when
+    /// no 2-UAV brick is a last brick, and where the bricks under and on each first and last
+    /// brick count, one per [`chain_waits`].
+    fn loss(&self, k: usize, last: Last, shortest: Option<f64>) -> f64 {
         let mut first = f64::INFINITY;
         let mut end = f64::INFINITY;
         for &(place, rest, w, opens, closes, pair) in &self.items {
@@ -310,15 +344,22 @@ impl ZoneEnds {
                 }
             }
         }
-        let near = match (self.near_start.get(k), self.near_end[0].get(k)) {
-            (Some(&s), Some(&e0)) => {
-                let e1 = self.near_end[1][k];
-                let e = match last {
-                    Last::Any => e0.min(e1),
-                    Last::Singles => e0,
-                    Last::SomePair => e1,
-                };
-                s + e
+        if let (Last::Singles, Some(s)) = (last, shortest) {
+            end += pair_wait(s);
+        }
+        let near = match (self.near_start.get(k), self.near_end.get(k)) {
+            (Some(starts), Some(ends)) => {
+                let mut least = f64::INFINITY;
+                for (l, &e) in ends.iter().enumerate() {
+                    if !last.allows(l > 0) {
+                        continue;
+                    }
+                    for (f, &s) in starts.iter().enumerate() {
+                        let waits = shortest.map_or(0.0, |p| chain_waits(f, l) as f64 * p);
+                        least = least.min(s + e + waits);
+                    }
+                }
+                least
             }
             _ => f64::NEG_INFINITY,
         };
@@ -342,7 +383,7 @@ impl ZoneEnds {
 /// every group usable any number of times (a relaxation). Entry k: the least first-start cost
 /// with k UAVs at work, and the least last-end cost by flag (index 1: some 2-UAV brick among
 /// the last bricks), for k ≤ `kmax`.
-fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
+fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCounts>) {
     use std::collections::BTreeMap;
     let wall = p.wall();
     let mut order: Vec<BrickId> = wall.ids().collect();
@@ -386,12 +427,14 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
         }
     }
     // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
-    // Per flag (a 2-UAV group used), the least cost covering c UAVs.
-    let side = |end: bool| -> [Vec<f64>; 2] {
-        let mut best = [vec![f64::INFINITY; kmax + 1], vec![f64::INFINITY; kmax + 1]];
-        // (covered, phases so far as bits, flag) → least cost; the first brick must wait for
-        // nothing.
-        let mut layer: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
+    // Per 2-UAV bricks used (up to PAIR_CAP), the least cost covering c UAVs.
+    let side = |end: bool| -> Vec<PairCounts> {
+        let mut best = vec![[f64::INFINITY; PAIR_CAP + 1]; kmax + 1];
+        best[0][0] = 0.0;
+        let count = |n: usize, need: u32| (n + usize::from(need > 1)).min(PAIR_CAP);
+        // (covered, phases so far as bits, 2-UAV bricks) → least cost; the first brick must
+        // wait for nothing.
+        let mut layer: BTreeMap<(usize, u64, usize), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
             for w in 1..=(need as usize).min(kmax) {
                 let wait = if end { t[w - 1] } else { h };
@@ -400,16 +443,15 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
                 }
                 let cost = -if end { w as f64 * rest } else { 0.0 };
                 let e = layer
-                    .entry((w, place.to_bits(), need > 1))
+                    .entry((w, place.to_bits(), count(0, need)))
                     .or_insert(f64::INFINITY);
                 *e = e.min(cost);
             }
         }
         while !layer.is_empty() {
-            let mut next: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
-            for (&(c, o, flag), &cost) in &layer {
-                let f = usize::from(flag);
-                best[f][c] = best[f][c].min(cost);
+            let mut next: BTreeMap<(usize, u64, usize), f64> = BTreeMap::new();
+            for (&(c, o, pairs), &cost) in &layer {
+                best[c][pairs] = best[c][pairs].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
                     for w in 1..=(need as usize) {
@@ -419,7 +461,7 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
                         let wait = if end { t[w - 1] } else { h };
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
-                            .entry((c + w, (o + place).to_bits(), flag || need > 1))
+                            .entry((c + w, (o + place).to_bits(), count(pairs, need)))
                             .or_insert(f64::INFINITY);
                         *e = e.min(cost + add);
                     }
@@ -429,14 +471,7 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
         }
         best
     };
-    let [s0, s1] = side(false);
-    let start: Vec<f64> = (0..=kmax)
-        .map(|k| if k == 0 { 0.0 } else { s0[k].min(s1[k]) })
-        .collect();
-    let [mut e0, mut e1] = side(true);
-    e0[0] = 0.0;
-    e1[0] = f64::INFINITY;
-    (start, [e0, e1])
+    (side(false), side(true))
 }
 
 /// How long after a brick ends the bricks it carries take at least when that brick is the
