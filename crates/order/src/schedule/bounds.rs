@@ -109,7 +109,12 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
                     };
                     loss = (loss + steps as f64 * shortest).max(zone_loss);
                 }
-                bound = bound.min((work + loss) / k as f64);
+                let mut at_k = (work + loss) / k as f64;
+                if ends.is_some() && pairs && k <= NEAR_UAVS {
+                    // `chain_waits` leaves these schedules out of the loss.
+                    at_k = at_k.min(only_pairs_bound(p, work, k));
+                }
+                bound = bound.min(at_k);
             }
             bound
         }
@@ -184,34 +189,73 @@ struct ZoneEnds {
     /// ([`near_loss`]), by the number of 2-UAV bricks among the first (last) bricks; −∞ above.
     near_start: Vec<PairCounts>,
     near_end: Vec<PairCounts>,
+    /// The wall's 2-UAV bricks.
+    pair_bricks: usize,
 }
 
-/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks: index c
-/// for exactly c, the last index for [`PAIR_CAP`] or more.
-type PairCounts = [f64; PAIR_CAP + 1];
+/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks (index c
+/// for exactly c, the last index for [`PAIR_CAP`] or more), and then by whether one of them is
+/// the first (last) brick of both its UAVs (index 1).
+type PairCounts = [[f64; 2]; PAIR_CAP + 1];
 
 /// [`near_loss`] counts the 2-UAV bricks among the first (last) bricks up to this many.
 const PAIR_CAP: usize = 3;
 
-/// The pair splits [`ZoneEnds::loss`] counts when f 2-UAV bricks are among the UAVs' first
-/// bricks and l among their last (either count at [`PAIR_CAP`] meaning that many or more), in
-/// a schedule with 2-UAV bricks.
+/// The pair splits [`ZoneEnds::loss`] counts when, of the q 2-UAV bricks, f are among the
+/// UAVs' first bricks and l among their last (either count at [`PAIR_CAP`] meaning that many
+/// or more; `first_both`, `last_both`: one of them is the first, or the last, brick of both
+/// its UAVs). `None`: only schedules in which some UAV places the 2-UAV bricks and nothing
+/// else have these counts; [`only_pairs_bound`] covers those.
 ///
 /// Chain the 2-UAV bricks: one follows another when it is the next brick of both UAVs of the
-/// other (the same crew, back to back). A chain's first brick has no such predecessor, so each
-/// 2-UAV brick that is the first brick of one of its UAVs or both starts a chain of its own:
-/// there are at least max(1, f) chains. A chain's last brick is, for its two UAVs, the last
-/// brick of one or both of them, or both go on to two different bricks (else the next would
-/// continue the chain). At most l chains end the first way, so at least max(1, f) − l end the
-/// second, and after each of those, as in [`pair_wait`], the two UAVs are free at the same
-/// moment and the later of their two next bricks starts a placing phase later: one UAV waits
-/// at least the shortest placing phase, between two of its bricks (waits after different
-/// 2-UAV bricks are different stretches of time).
-fn chain_waits(f: usize, l: usize) -> usize {
-    if l >= PAIR_CAP {
-        return 0;
+/// other (the same crew, back to back). A 2-UAV brick that is the first brick of one of its
+/// UAVs has no such predecessor, so it starts a chain of its own: there are c ≥ max(1, f)
+/// chains. A chain's last brick is the last brick of one of its UAVs or both, or both UAVs go
+/// on to two different bricks (else the next would continue the chain); a 2-UAV brick that is
+/// some UAV's last ends its chain, so at most l chains end the first way and at least c − l the
+/// second. After each of those, as in [`pair_wait`], the two UAVs are free at the same moment
+/// and the later of their two next bricks starts a placing phase later: one UAV waits at least
+/// the shortest placing phase, between two of its bricks (waits after different 2-UAV bricks
+/// are different stretches of time). With c ≥ 2 (q ≥ 2) that is max(2, f) − l splits. With
+/// c = 1 every 2-UAV brick is in one chain, only its first can be a first brick and only its
+/// last a last brick (f, l ≤ 1): 1 − l splits when f or l is 0. When both are 1 and one UAV
+/// has its first and its last brick in the chain, that UAV places the 2-UAV bricks and nothing
+/// else; otherwise the chain's first is the first of one UAV only and its last the last of the
+/// other only (no 2-UAV brick is the first or the last of both its UAVs), and nothing splits.
+fn chain_waits(
+    q: usize,
+    (f, first_both): (usize, bool),
+    (l, last_both): (usize, bool),
+) -> Option<usize> {
+    let many = (q >= 2).then(|| match l >= PAIR_CAP {
+        true => 0,
+        false => f.max(2).saturating_sub(l),
+    });
+    let one = match (f, l) {
+        (0, 0) | (0, 1) | (1, 0) => Some(1 - l),
+        (1, 1) if !first_both && !last_both => Some(0),
+        _ => None,
+    };
+    match (many, one) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
     }
-    f.max(1).saturating_sub(l)
+}
+
+/// The makespan bound over the schedules in which some UAV places every 2-UAV brick and
+/// nothing else (see [`chain_waits`]), with k UAVs at work: that UAV's time aside, the other
+/// k − 1 UAVs work the rest of W, less the rests their last bricks can leave out.
+fn only_pairs_bound(p: &TeamProblem<'_>, work: f64, k: usize) -> f64 {
+    if k < 2 {
+        return f64::INFINITY;
+    }
+    let pairs: f64 = p
+        .wall()
+        .ids()
+        .filter(|&b| p.need(b) == 2)
+        .map(|b| p.place_s(b) + p.rest_s(b))
+        .sum();
+    (work - pairs - last_rests(p, k - 1)) / (k - 1) as f64
 }
 
 /// Which UAVs' last bricks [`ZoneEnds::loss`] allows.
@@ -310,6 +354,7 @@ impl ZoneEnds {
         ZoneEnds {
             near_start,
             near_end,
+            pair_bricks: wall.ids().filter(|&b| p.need(b) == 2).count(),
             start,
             end: knapsack(true),
             items: items
@@ -350,13 +395,24 @@ impl ZoneEnds {
         let near = match (self.near_start.get(k), self.near_end.get(k)) {
             (Some(starts), Some(ends)) => {
                 let mut least = f64::INFINITY;
-                for (l, &e) in ends.iter().enumerate() {
+                for (l, e) in ends.iter().enumerate() {
                     if !last.allows(l > 0) {
                         continue;
                     }
-                    for (f, &s) in starts.iter().enumerate() {
-                        let waits = shortest.map_or(0.0, |p| chain_waits(f, l) as f64 * p);
-                        least = least.min(s + e + waits);
+                    for (f, s) in starts.iter().enumerate() {
+                        for (fb, lb) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                            let waits = match shortest {
+                                Some(p) => {
+                                    let q = self.pair_bricks;
+                                    match chain_waits(q, (f, fb == 1), (l, lb == 1)) {
+                                        Some(n) => n as f64 * p,
+                                        None => continue,
+                                    }
+                                }
+                                None => 0.0,
+                            };
+                            least = least.min(s[fb] + e[lb] + waits);
+                        }
                     }
                 }
                 least
@@ -429,12 +485,12 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
     // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
     // Per 2-UAV bricks used (up to PAIR_CAP), the least cost covering c UAVs.
     let side = |end: bool| -> Vec<PairCounts> {
-        let mut best = vec![[f64::INFINITY; PAIR_CAP + 1]; kmax + 1];
-        best[0][0] = 0.0;
+        let mut best = vec![[[f64::INFINITY; 2]; PAIR_CAP + 1]; kmax + 1];
+        best[0][0][0] = 0.0;
         let count = |n: usize, need: u32| (n + usize::from(need > 1)).min(PAIR_CAP);
-        // (covered, phases so far as bits, 2-UAV bricks) → least cost; the first brick must
-        // wait for nothing.
-        let mut layer: BTreeMap<(usize, u64, usize), f64> = BTreeMap::new();
+        // (covered, phases so far as bits, 2-UAV bricks, one of them for both its UAVs) →
+        // least cost; the first brick must wait for nothing.
+        let mut layer: BTreeMap<(usize, u64, usize, bool), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
             for w in 1..=(need as usize).min(kmax) {
                 let wait = if end { t[w - 1] } else { h };
@@ -443,15 +499,16 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
                 }
                 let cost = -if end { w as f64 * rest } else { 0.0 };
                 let e = layer
-                    .entry((w, place.to_bits(), count(0, need)))
+                    .entry((w, place.to_bits(), count(0, need), w == 2))
                     .or_insert(f64::INFINITY);
                 *e = e.min(cost);
             }
         }
         while !layer.is_empty() {
-            let mut next: BTreeMap<(usize, u64, usize), f64> = BTreeMap::new();
-            for (&(c, o, pairs), &cost) in &layer {
-                best[c][pairs] = best[c][pairs].min(cost);
+            let mut next: BTreeMap<(usize, u64, usize, bool), f64> = BTreeMap::new();
+            for (&(c, o, pairs, both), &cost) in &layer {
+                let b = usize::from(both);
+                best[c][pairs][b] = best[c][pairs][b].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
                     for w in 1..=(need as usize) {
@@ -461,7 +518,12 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
                         let wait = if end { t[w - 1] } else { h };
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
-                            .entry((c + w, (o + place).to_bits(), count(pairs, need)))
+                            .entry((
+                                c + w,
+                                (o + place).to_bits(),
+                                count(pairs, need),
+                                both || w == 2,
+                            ))
                             .or_insert(f64::INFINITY);
                         *e = e.min(cost + add);
                     }
