@@ -193,58 +193,50 @@ struct ZoneEnds {
     pair_bricks: usize,
 }
 
-/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks (index c
-/// for exactly c, the last index for [`PAIR_CAP`] or more), and then by whether one of them is
-/// the first (last) brick of both its UAVs (index 1).
-type PairCounts = [[f64; 2]; PAIR_CAP + 1];
+/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks that are
+/// the first (last) brick of one of their UAVs only, then of both (index c for exactly c, the
+/// last index for [`PAIR_CAP`] or more).
+type PairCounts = [[f64; PAIR_CAP + 1]; PAIR_CAP + 1];
 
 /// [`near_loss`] counts the 2-UAV bricks among the first (last) bricks up to this many.
 const PAIR_CAP: usize = 3;
 
-/// The pair splits [`ZoneEnds::loss`] counts when, of the q 2-UAV bricks, f are among the
-/// UAVs' first bricks and l among their last (either count at [`PAIR_CAP`] meaning that many
-/// or more; `first_both`, `last_both`: one of them is the first, or the last, brick of both
-/// its UAVs). `None`: only schedules in which some UAV places the 2-UAV bricks and nothing
-/// else have these counts; [`only_pairs_bound`] covers those.
+/// The pair splits [`ZoneEnds::loss`] counts when, among the UAVs' first bricks, `first` =
+/// (f1, f2) 2-UAV bricks are the first brick of one of their UAVs only (f1) or of both (f2),
+/// and likewise `last` = (l1, l2) among their last bricks (a count at [`PAIR_CAP`] meaning that
+/// many or more), in a schedule with 2-UAV bricks in which no UAV places only 2-UAV bricks
+/// ([`only_pairs_bound`] covers those).
 ///
 /// Chain the 2-UAV bricks: one follows another when it is the next brick of both UAVs of the
-/// other (the same crew, back to back). A 2-UAV brick that is the first brick of one of its
-/// UAVs has no such predecessor, so it starts a chain of its own: there are c ≥ max(1, f)
-/// chains. A chain's last brick is the last brick of one of its UAVs or both, or both UAVs go
-/// on to two different bricks (else the next would continue the chain); a 2-UAV brick that is
-/// some UAV's last ends its chain, so at most l chains end the first way and at least c − l the
-/// second. After each of those, as in [`pair_wait`], the two UAVs are free at the same moment
+/// other (the same crew, back to back). A 2-UAV brick that is some UAV's first brick has no
+/// such predecessor, so it starts a chain of its own (f = f1 + f2 chains start so), and one
+/// that is some UAV's last brick ends its chain (l = l1 + l2 chains end so). Every other chain
+/// ends with its two UAVs going on to two different bricks (else the next brick would continue
+/// it), and after each of those, as in [`pair_wait`], the two UAVs are free at the same moment
 /// and the later of their two next bricks starts a placing phase later: one UAV waits at least
 /// the shortest placing phase, between two of its bricks (waits after different 2-UAV bricks
-/// are different stretches of time). With c ≥ 2 (q ≥ 2) that is max(2, f) − l splits. With
-/// c = 1 every 2-UAV brick is in one chain, only its first can be a first brick and only its
-/// last a last brick (f, l ≤ 1): 1 − l splits when f or l is 0. When both are 1 and one UAV
-/// has its first and its last brick in the chain, that UAV places the 2-UAV bricks and nothing
-/// else; otherwise the chain's first is the first of one UAV only and its last the last of the
-/// other only (no 2-UAV brick is the first or the last of both its UAVs), and nothing splits.
-fn chain_waits(
-    q: usize,
-    (f, first_both): (usize, bool),
-    (l, last_both): (usize, bool),
-) -> Option<usize> {
-    let many = (q >= 2).then(|| match l >= PAIR_CAP {
-        true => 0,
-        false => f.max(2).saturating_sub(l),
-    });
-    let one = match (f, l) {
-        (0, 0) | (0, 1) | (1, 0) => Some(1 - l),
-        (1, 1) if !first_both && !last_both => Some(0),
-        _ => None,
-    };
-    match (many, one) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
+/// are different stretches of time). With c chains, x of which both start on a first brick
+/// and end on a last one, c ≥ max(1, f + l − x) and c − l chains split. In such a chain, if
+/// one UAV's first and last bricks are both in it, that UAV places only 2-UAV bricks;
+/// otherwise its first brick is the first of one UAV only and its last the last of the other
+/// only, so x ≤ min(f1, l1), and at least max(1 − l, f2 + max(0, f1 − l1)) chains split.
+fn chain_waits(q: usize, (f1, f2): (usize, usize), (l1, l2): (usize, usize)) -> usize {
+    if q == 0 {
+        return 0;
     }
+    let l = l1 + l2;
+    // l1 at the cap may be larger: then it may cover every f1.
+    let unmatched = match l1 >= PAIR_CAP {
+        true => 0,
+        false => f1.saturating_sub(l1),
+    };
+    1usize.saturating_sub(l).max(f2 + unmatched)
 }
 
-/// The makespan bound over the schedules in which some UAV places every 2-UAV brick and
-/// nothing else (see [`chain_waits`]), with k UAVs at work: that UAV's time aside, the other
-/// k − 1 UAVs work the rest of W, less the rests their last bricks can leave out.
+/// The makespan bound over the schedules in which some UAV places 2-UAV bricks and nothing
+/// else (see [`chain_waits`]), with k UAVs at work: that UAV's time aside (at most every 2-UAV
+/// brick's cycle), the other k − 1 UAVs work the rest of W, less the rests their last bricks
+/// can leave out.
 fn only_pairs_bound(p: &TeamProblem<'_>, work: f64, k: usize) -> f64 {
     if k < 2 {
         return f64::INFINITY;
@@ -395,24 +387,16 @@ impl ZoneEnds {
         let near = match (self.near_start.get(k), self.near_end.get(k)) {
             (Some(starts), Some(ends)) => {
                 let mut least = f64::INFINITY;
-                for (l, e) in ends.iter().enumerate() {
-                    if !last.allows(l > 0) {
+                let counts = || (0..=PAIR_CAP).flat_map(|a| (0..=PAIR_CAP).map(move |b| (a, b)));
+                for (l1, l2) in counts() {
+                    if !last.allows(l1 + l2 > 0) {
                         continue;
                     }
-                    for (f, s) in starts.iter().enumerate() {
-                        for (fb, lb) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                            let waits = match shortest {
-                                Some(p) => {
-                                    let q = self.pair_bricks;
-                                    match chain_waits(q, (f, fb == 1), (l, lb == 1)) {
-                                        Some(n) => n as f64 * p,
-                                        None => continue,
-                                    }
-                                }
-                                None => 0.0,
-                            };
-                            least = least.min(s[fb] + e[lb] + waits);
-                        }
+                    for (f1, f2) in counts() {
+                        let waits = shortest.map_or(0.0, |p| {
+                            chain_waits(self.pair_bricks, (f1, f2), (l1, l2)) as f64 * p
+                        });
+                        least = least.min(starts[f1][f2] + ends[l1][l2] + waits);
                     }
                 }
                 least
@@ -485,12 +469,17 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
     // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
     // Per 2-UAV bricks used (up to PAIR_CAP), the least cost covering c UAVs.
     let side = |end: bool| -> Vec<PairCounts> {
-        let mut best = vec![[[f64::INFINITY; 2]; PAIR_CAP + 1]; kmax + 1];
+        let mut best = vec![[[f64::INFINITY; PAIR_CAP + 1]; PAIR_CAP + 1]; kmax + 1];
         best[0][0][0] = 0.0;
-        let count = |n: usize, need: u32| (n + usize::from(need > 1)).min(PAIR_CAP);
-        // (covered, phases so far as bits, 2-UAV bricks, one of them for both its UAVs) →
-        // least cost; the first brick must wait for nothing.
-        let mut layer: BTreeMap<(usize, u64, usize, bool), f64> = BTreeMap::new();
+        // The 2-UAV bricks so far, for one UAV and for both, after one more brick.
+        let count = |(one, both): (usize, usize), need: u32, w: usize| match (need > 1, w) {
+            (false, _) => (one, both),
+            (true, 1) => ((one + 1).min(PAIR_CAP), both),
+            (true, _) => (one, (both + 1).min(PAIR_CAP)),
+        };
+        // (covered, phases so far as bits, 2-UAV bricks for one UAV, for both) → least cost;
+        // the first brick must wait for nothing.
+        let mut layer: BTreeMap<(usize, u64, (usize, usize)), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
             for w in 1..=(need as usize).min(kmax) {
                 let wait = if end { t[w - 1] } else { h };
@@ -499,16 +488,15 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
                 }
                 let cost = -if end { w as f64 * rest } else { 0.0 };
                 let e = layer
-                    .entry((w, place.to_bits(), count(0, need), w == 2))
+                    .entry((w, place.to_bits(), count((0, 0), need, w)))
                     .or_insert(f64::INFINITY);
                 *e = e.min(cost);
             }
         }
         while !layer.is_empty() {
-            let mut next: BTreeMap<(usize, u64, usize, bool), f64> = BTreeMap::new();
-            for (&(c, o, pairs, both), &cost) in &layer {
-                let b = usize::from(both);
-                best[c][pairs][b] = best[c][pairs][b].min(cost);
+            let mut next: BTreeMap<(usize, u64, (usize, usize)), f64> = BTreeMap::new();
+            for (&(c, o, pairs), &cost) in &layer {
+                best[c][pairs.0][pairs.1] = best[c][pairs.0][pairs.1].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
                     for w in 1..=(need as usize) {
@@ -518,12 +506,7 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCoun
                         let wait = if end { t[w - 1] } else { h };
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
-                            .entry((
-                                c + w,
-                                (o + place).to_bits(),
-                                count(pairs, need),
-                                both || w == 2,
-                            ))
+                            .entry((c + w, (o + place).to_bits(), count(pairs, need, w)))
                             .or_insert(f64::INFINITY);
                         *e = e.min(cost + add);
                     }
