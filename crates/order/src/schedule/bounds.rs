@@ -564,26 +564,19 @@ fn waits<'a>(
     wait
 }
 
-/// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
-/// each) and single bricks for the rest, the longest rests first.
+/// The most rest time `m` UAVs' last bricks can add up to: each UAV's last brick is its own
+/// UAV-slot of a brick (a 2-UAV brick has two, and may be the last of one of its UAVs only), so
+/// at most the `m` longest rests over all UAV-slots. (Counting a 2-UAV brick only as the last
+/// of both its UAVs, as this did before, passed the optimum: a pair's UAV may stop on it while
+/// its partner goes on.)
 fn last_rests(p: &TeamProblem<'_>, m: usize) -> f64 {
-    let mut pairs: Vec<f64> = p
+    let mut slots: Vec<f64> = p
         .wall()
         .ids()
-        .filter(|&b| p.need(b) == 2)
-        .map(|b| p.rest_s(b))
+        .flat_map(|b| std::iter::repeat_n(p.rest_s(b), p.need(b) as usize))
         .collect();
-    let mut singles: Vec<f64> = p
-        .wall()
-        .ids()
-        .filter(|&b| p.need(b) == 1)
-        .map(|b| p.rest_s(b))
-        .collect();
-    pairs.sort_by(|a, b| b.total_cmp(a));
-    singles.sort_by(|a, b| b.total_cmp(a));
-    (0..=pairs.len().min(m / 2))
-        .map(|k| 2.0 * pairs[..k].iter().sum::<f64>() + singles.iter().take(m - 2 * k).sum::<f64>())
-        .fold(0.0, f64::max)
+    slots.sort_by(|a, b| b.total_cmp(a));
+    slots.iter().take(m).sum()
 }
 
 /// Membership tests [`conflict_clique`] may make in all: every clique it grew bounds the
