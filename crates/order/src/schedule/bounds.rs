@@ -8,7 +8,9 @@
 //!     less the most rest the m last bricks can leave out, plus (zone rule) the UAVs' first
 //!     starts and last ends, spread over m UAVs: their least sum is found exactly for a
 //!     relaxation (`ZoneEnds`, and for teams up to 16 with the bricks under and on each
-//!     first and last brick, `near_loss`); with 2-UAV bricks, unless one of them is some
+//!     first and last brick, `near_loss`, where a UAV's last brick also leaves the bricks it
+//!     carries to the other UAVs and a 2-UAV brick that is the last of one UAV only lets its
+//!     partner go on after its rest); with 2-UAV bricks, unless one of them is some
 //!     UAV's last brick, the last of them leaves its two UAVs free at once and one waits at
 //!     least the shortest placing phase for the other's next brick (`pair_wait`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
@@ -95,16 +97,24 @@ pub fn makespan_lower_bound_within(p: &TeamProblem<'_>, search: &Budget) -> f64 
                 if let Some(e) = &ends {
                     let steps = zone_stagger(k, pairs, first_pair) + zone_stagger(k, pairs, true);
                     // With 2-UAV bricks, either one of them is some UAV's last brick, or the
-                    // last of them leaves its UAVs to wait (`pair_wait`).
+                    // last of them leaves its UAVs to wait (`pair_wait`, and `chain_waits`).
                     let zone_loss = if pairs && k >= 2 {
-                        e.loss(k, Last::SomePair)
-                            .min(e.loss(k, Last::Singles) + pair_wait(shortest))
+                        e.loss(k, Last::SomePair, Some(shortest)).min(e.loss(
+                            k,
+                            Last::Singles,
+                            Some(shortest),
+                        ))
                     } else {
-                        e.loss(k, Last::Any)
+                        e.loss(k, Last::Any, None)
                     };
                     loss = (loss + steps as f64 * shortest).max(zone_loss);
                 }
-                bound = bound.min((work + loss) / k as f64);
+                let mut at_k = (work + loss) / k as f64;
+                if ends.is_some() && pairs && k <= NEAR_UAVS {
+                    // `chain_waits` leaves these schedules out of the loss.
+                    at_k = at_k.min(only_pairs_bound(p, work, k));
+                }
+                bound = bound.min(at_k);
             }
             bound
         }
@@ -176,9 +186,68 @@ struct ZoneEnds {
     items: Vec<(f64, f64, usize, bool, bool, bool)>,
     /// For k ≤ [`NEAR_UAVS`]: the same least first-start and last-end costs where each brick
     /// also waits for the bricks under it and is waited for by the bricks on it
-    /// ([`near_loss`]); −∞ above.
-    near_start: Vec<f64>,
-    near_end: [Vec<f64>; 2],
+    /// ([`near_loss`]), by the number of 2-UAV bricks among the first (last) bricks; −∞ above.
+    near_start: Vec<PairCounts>,
+    near_end: Vec<PairCounts>,
+    /// The wall's 2-UAV bricks.
+    pair_bricks: usize,
+}
+
+/// Least costs by the number of 2-UAV bricks among the UAVs' first (or last) bricks that are
+/// the first (last) brick of one of their UAVs only, then of both (index c for exactly c, the
+/// last index for [`PAIR_CAP`] or more).
+type PairCounts = [[f64; PAIR_CAP + 1]; PAIR_CAP + 1];
+
+/// [`near_loss`] counts the 2-UAV bricks among the first (last) bricks up to this many.
+const PAIR_CAP: usize = 3;
+
+/// The pair splits [`ZoneEnds::loss`] counts when, among the UAVs' first bricks, `first` =
+/// (f1, f2) 2-UAV bricks are the first brick of one of their UAVs only (f1) or of both (f2),
+/// and likewise `last` = (l1, l2) among their last bricks (a count at [`PAIR_CAP`] meaning that
+/// many or more), in a schedule with 2-UAV bricks in which no UAV places only 2-UAV bricks
+/// ([`only_pairs_bound`] covers those).
+///
+/// Chain the 2-UAV bricks: one follows another when it is the next brick of both UAVs of the
+/// other (the same crew, back to back). A 2-UAV brick that is some UAV's first brick has no
+/// such predecessor, so it starts a chain of its own (f = f1 + f2 chains start so), and one
+/// that is some UAV's last brick ends its chain (l = l1 + l2 chains end so). Every other chain
+/// ends with its two UAVs going on to two different bricks (else the next brick would continue
+/// it), and after each of those, as in [`pair_wait`], the two UAVs are free at the same moment
+/// and the later of their two next bricks starts a placing phase later: one UAV waits at least
+/// the shortest placing phase, between two of its bricks (waits after different 2-UAV bricks
+/// are different stretches of time). With c chains, x of which both start on a first brick
+/// and end on a last one, c ≥ max(1, f + l − x) and c − l chains split. In such a chain, if
+/// one UAV's first and last bricks are both in it, that UAV places only 2-UAV bricks;
+/// otherwise its first brick is the first of one UAV only and its last the last of the other
+/// only, so x ≤ min(f1, l1), and at least max(1 − l, f2 + max(0, f1 − l1)) chains split.
+fn chain_waits(q: usize, (f1, f2): (usize, usize), (l1, l2): (usize, usize)) -> usize {
+    if q == 0 {
+        return 0;
+    }
+    let l = l1 + l2;
+    // l1 at the cap may be larger: then it may cover every f1.
+    let unmatched = match l1 >= PAIR_CAP {
+        true => 0,
+        false => f1.saturating_sub(l1),
+    };
+    1usize.saturating_sub(l).max(f2 + unmatched)
+}
+
+/// The makespan bound over the schedules in which some UAV places 2-UAV bricks and nothing
+/// else (see [`chain_waits`]), with k UAVs at work: that UAV's time aside (at most every 2-UAV
+/// brick's cycle), the other k − 1 UAVs work the rest of W, less the rests their last bricks
+/// can leave out.
+fn only_pairs_bound(p: &TeamProblem<'_>, work: f64, k: usize) -> f64 {
+    if k < 2 {
+        return f64::INFINITY;
+    }
+    let pairs: f64 = p
+        .wall()
+        .ids()
+        .filter(|&b| p.need(b) == 2)
+        .map(|b| p.place_s(b) + p.rest_s(b))
+        .sum();
+    (work - pairs - last_rests(p, k - 1)) / (k - 1) as f64
 }
 
 /// Which UAVs' last bricks [`ZoneEnds::loss`] allows.
@@ -277,6 +346,7 @@ impl ZoneEnds {
         ZoneEnds {
             near_start,
             near_end,
+            pair_bricks: wall.ids().filter(|&b| p.need(b) == 2).count(),
             start,
             end: knapsack(true),
             items: items
@@ -288,8 +358,11 @@ impl ZoneEnds {
 
     /// The least `Σ first starts + Σ (makespan − last end) − Σ last rests` with k UAVs at
     /// work, over the schedules whose last bricks `last` allows (+∞: none, or k UAVs cannot
-    /// all have a brick).
-    fn loss(&self, k: usize, last: Last) -> f64 {
+    /// all have a brick), plus, in a schedule with 2-UAV bricks (`shortest`: the shortest
+    /// placing phase), the waits after 2-UAV bricks whose UAVs part: one ([`pair_wait`]) when
+    /// no 2-UAV brick is a last brick, and where the bricks under and on each first and last
+    /// brick count, one per [`chain_waits`].
+    fn loss(&self, k: usize, last: Last, shortest: Option<f64>) -> f64 {
         let mut first = f64::INFINITY;
         let mut end = f64::INFINITY;
         for &(place, rest, w, opens, closes, pair) in &self.items {
@@ -308,15 +381,25 @@ impl ZoneEnds {
                 }
             }
         }
-        let near = match (self.near_start.get(k), self.near_end[0].get(k)) {
-            (Some(&s), Some(&e0)) => {
-                let e1 = self.near_end[1][k];
-                let e = match last {
-                    Last::Any => e0.min(e1),
-                    Last::Singles => e0,
-                    Last::SomePair => e1,
-                };
-                s + e
+        if let (Last::Singles, Some(s)) = (last, shortest) {
+            end += pair_wait(s);
+        }
+        let near = match (self.near_start.get(k), self.near_end.get(k)) {
+            (Some(starts), Some(ends)) => {
+                let mut least = f64::INFINITY;
+                let counts = || (0..=PAIR_CAP).flat_map(|a| (0..=PAIR_CAP).map(move |b| (a, b)));
+                for (l1, l2) in counts() {
+                    if !last.allows(l1 + l2 > 0) {
+                        continue;
+                    }
+                    for (f1, f2) in counts() {
+                        let waits = shortest.map_or(0.0, |p| {
+                            chain_waits(self.pair_bricks, (f1, f2), (l1, l2)) as f64 * p
+                        });
+                        least = least.min(starts[f1][f2] + ends[l1][l2] + waits);
+                    }
+                }
+                least
             }
             _ => f64::NEG_INFINITY,
         };
@@ -328,14 +411,19 @@ impl ZoneEnds {
 /// no earlier than the placing phases of all the bricks under it (they place one after another
 /// before it), and ends no later than the makespan less those of all the bricks on it. Per
 /// brick these are bounded below by `head` = max(Σ supports' p, max over supports (p + head))
-/// and `tail` likewise upwards; a group of bricks with the same times takes its members' least
-/// head and tail. The j-th first brick then starts at max(its head, the phases of the first
-/// bricks before it), and likewise for the last ends; Smith's order no longer holds, so a
+/// and `tail` likewise upwards. A last brick's tail depends on how many of its UAVs (w) it is
+/// the last of: the bricks it carries start after it and none of those w UAVs places anything
+/// after its last brick, so the other m − w place them ([`others_tail`]); and a 2-UAV brick
+/// that is the last of one UAV only has a partner that places another brick after its rest,
+/// so the makespan is at least its rest and the shortest placing phase after its end. A group
+/// of bricks with the same times takes its members' least head and, per w, least tail. The
+/// j-th first brick then starts at max(its head, the phases of the first bricks before it),
+/// and likewise for the last ends; Smith's order no longer holds, so a
 /// dynamic programme over (UAVs covered, phases so far) finds the least cost exactly, with
 /// every group usable any number of times (a relaxation). Entry k: the least first-start cost
 /// with k UAVs at work, and the least last-end cost by flag (index 1: some 2-UAV brick among
 /// the last bricks), for k ≤ `kmax`.
-fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
+fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<PairCounts>, Vec<PairCounts>) {
     use std::collections::BTreeMap;
     let wall = p.wall();
     let mut order: Vec<BrickId> = wall.ids().collect();
@@ -346,58 +434,79 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
             carried[s.index()].push(b);
         }
     }
+    let shortest = wall
+        .ids()
+        .map(|b| p.place_s(b))
+        .fold(f64::INFINITY, f64::min);
     let head = waits(p, order.iter().copied(), |b| wall.supports(b));
     let tail = waits(p, order.iter().rev().copied(), |b| {
         carried[b.index()].as_slice()
     });
-    // Groups (place, rest, need) with their least head and tail.
-    let mut groups: Vec<(f64, f64, u32, f64, f64)> = Vec::new();
+    // Groups (place, rest, need) with their least head, and their least tail as the last
+    // brick of 1 or of 2 UAVs.
+    let mut groups: Vec<(f64, f64, u32, f64, [f64; 2])> = Vec::new();
     for b in wall.ids() {
         let key = (p.place_s(b), p.rest_s(b), p.need(b));
-        let (h, t) = (head[b.index()], tail[b.index()]);
+        let h = head[b.index()];
+        let t = [1, 2].map(|w| {
+            // A UAV of `b` for which it is not the last brick places another after its rest.
+            let partner = match (w as u32) < p.need(b) {
+                true => p.rest_s(b) + shortest,
+                false => 0.0,
+            };
+            tail[b.index()]
+                .max(others_tail(p, &carried[b.index()], w))
+                .max(partner)
+        });
         match groups.iter_mut().find(|g| (g.0, g.1, g.2) == key) {
             Some(g) => {
                 g.3 = g.3.min(h);
-                g.4 = g.4.min(t);
+                g.4 = [g.4[0].min(t[0]), g.4[1].min(t[1])];
             }
             None => groups.push((key.0, key.1, key.2, h, t)),
         }
     }
     // One side: `wait` is a group's least head (start) or tail (end); `rest` counts at the end.
-    // Per flag (a 2-UAV group used), the least cost covering c UAVs.
-    let side = |end: bool| -> [Vec<f64>; 2] {
-        let mut best = [vec![f64::INFINITY; kmax + 1], vec![f64::INFINITY; kmax + 1]];
-        // (covered, phases so far as bits, flag) → least cost; the first brick must wait for
-        // nothing.
-        let mut layer: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
+    // Per 2-UAV bricks used (up to PAIR_CAP), the least cost covering c UAVs.
+    let side = |end: bool| -> Vec<PairCounts> {
+        let mut best = vec![[[f64::INFINITY; PAIR_CAP + 1]; PAIR_CAP + 1]; kmax + 1];
+        best[0][0][0] = 0.0;
+        // The 2-UAV bricks so far, for one UAV and for both, after one more brick.
+        let count = |(one, both): (usize, usize), need: u32, w: usize| match (need > 1, w) {
+            (false, _) => (one, both),
+            (true, 1) => ((one + 1).min(PAIR_CAP), both),
+            (true, _) => (one, (both + 1).min(PAIR_CAP)),
+        };
+        // (covered, phases so far as bits, 2-UAV bricks for one UAV, for both) → least cost;
+        // the first brick must wait for nothing.
+        let mut layer: BTreeMap<(usize, u64, (usize, usize)), f64> = BTreeMap::new();
         for &(place, rest, need, h, t) in &groups {
-            let wait = if end { t } else { h };
-            if wait > 0.0 {
-                continue;
-            }
             for w in 1..=(need as usize).min(kmax) {
+                let wait = if end { t[w - 1] } else { h };
+                if wait > 0.0 {
+                    continue;
+                }
                 let cost = -if end { w as f64 * rest } else { 0.0 };
                 let e = layer
-                    .entry((w, place.to_bits(), need > 1))
+                    .entry((w, place.to_bits(), count((0, 0), need, w)))
                     .or_insert(f64::INFINITY);
                 *e = e.min(cost);
             }
         }
         while !layer.is_empty() {
-            let mut next: BTreeMap<(usize, u64, bool), f64> = BTreeMap::new();
-            for (&(c, o, flag), &cost) in &layer {
-                let f = usize::from(flag);
-                best[f][c] = best[f][c].min(cost);
+            let mut next: BTreeMap<(usize, u64, (usize, usize)), f64> = BTreeMap::new();
+            for (&(c, o, pairs), &cost) in &layer {
+                best[c][pairs.0][pairs.1] = best[c][pairs.0][pairs.1].min(cost);
                 let o = f64::from_bits(o);
                 for &(place, rest, need, h, t) in &groups {
-                    let wait = if end { t } else { h };
                     for w in 1..=(need as usize) {
                         if c + w > kmax {
                             break;
                         }
+                        let wait = if end { t[w - 1] } else { h };
                         let add = w as f64 * (o.max(wait) - if end { rest } else { 0.0 });
                         let e = next
-                            .entry((c + w, (o + place).to_bits(), flag || need > 1))
+                            .entry((c + w, (o + place).to_bits(), count(pairs, need, w)))
                             .or_insert(f64::INFINITY);
                         *e = e.min(cost + add);
                     }
@@ -407,14 +516,32 @@ fn near_loss(p: &TeamProblem<'_>, kmax: usize) -> (Vec<f64>, [Vec<f64>; 2]) {
         }
         best
     };
-    let [s0, s1] = side(false);
-    let start: Vec<f64> = (0..=kmax)
-        .map(|k| if k == 0 { 0.0 } else { s0[k].min(s1[k]) })
-        .collect();
-    let [mut e0, mut e1] = side(true);
-    e0[0] = 0.0;
-    e1[0] = f64::INFINITY;
-    (start, [e0, e1])
+    (side(false), side(true))
+}
+
+/// How long after a brick ends the bricks it carries take at least when that brick is the
+/// last of `w` of its UAVs: they start after it, and none of those w UAVs places anything
+/// after its last brick, so the other m − w UAVs place them all (+∞ if they cannot: too few
+/// for a 2-UAV brick, or none). Some UAV starts ⌈S/(m − w)⌉ of them (S: their UAV-cycles), a
+/// cycle apart at least, and the last ends a placing phase after its start.
+fn others_tail(p: &TeamProblem<'_>, carried: &[BrickId], w: usize) -> f64 {
+    if carried.is_empty() {
+        return 0.0;
+    }
+    let others = p.uavs().saturating_sub(w);
+    let slots: usize = carried.iter().map(|&c| p.need(c) as usize).sum();
+    if carried.iter().any(|&c| p.need(c) as usize > others) {
+        return f64::INFINITY;
+    }
+    let cycle = carried
+        .iter()
+        .map(|&c| p.place_s(c) + p.rest_s(c))
+        .fold(f64::INFINITY, f64::min);
+    let place = carried
+        .iter()
+        .map(|&c| p.place_s(c))
+        .fold(f64::INFINITY, f64::min);
+    (slots.div_ceil(others) - 1) as f64 * cycle + place
 }
 
 /// The placing phases that must come before (or after) each brick, visited in `bricks` with
@@ -437,26 +564,19 @@ fn waits<'a>(
     wait
 }
 
-/// The most rest time `m` UAVs' last bricks can add up to: k orange-like pairs (2 UAVs
-/// each) and single bricks for the rest, the longest rests first.
+/// The most rest time `m` UAVs' last bricks can add up to: each UAV's last brick is its own
+/// UAV-slot of a brick (a 2-UAV brick has two, and may be the last of one of its UAVs only), so
+/// at most the `m` longest rests over all UAV-slots. (Counting a 2-UAV brick only as the last
+/// of both its UAVs, as this did before, passed the optimum: a pair's UAV may stop on it while
+/// its partner goes on.)
 fn last_rests(p: &TeamProblem<'_>, m: usize) -> f64 {
-    let mut pairs: Vec<f64> = p
+    let mut slots: Vec<f64> = p
         .wall()
         .ids()
-        .filter(|&b| p.need(b) == 2)
-        .map(|b| p.rest_s(b))
+        .flat_map(|b| std::iter::repeat_n(p.rest_s(b), p.need(b) as usize))
         .collect();
-    let mut singles: Vec<f64> = p
-        .wall()
-        .ids()
-        .filter(|&b| p.need(b) == 1)
-        .map(|b| p.rest_s(b))
-        .collect();
-    pairs.sort_by(|a, b| b.total_cmp(a));
-    singles.sort_by(|a, b| b.total_cmp(a));
-    (0..=pairs.len().min(m / 2))
-        .map(|k| 2.0 * pairs[..k].iter().sum::<f64>() + singles.iter().take(m - 2 * k).sum::<f64>())
-        .fold(0.0, f64::max)
+    slots.sort_by(|a, b| b.total_cmp(a));
+    slots.iter().take(m).sum()
 }
 
 /// Membership tests [`conflict_clique`] may make in all: every clique it grew bounds the
