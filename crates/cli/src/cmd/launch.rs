@@ -50,8 +50,8 @@ pub struct LaunchArgs {
     #[arg(long)]
     pub insecure: bool,
     /// The link that carries mutual TLS: quic (TLS 1.3 in QUIC over UDP, the default) or tls
-    /// (TLS over TCP; Zenoh 1.10.2's TLS link has a data race that can crash an agent when a
-    /// peer goes away, see the README)
+    /// (TLS over TCP; Zenoh 1.10.2's TLS link has a data race that now and then crashes an
+    /// agent with SIGILL, see the README's "Why QUIC")
     #[arg(long, value_enum, default_value_t = Link::Quic, conflicts_with = "insecure")]
     pub link: Link,
     /// Ground stations to make TLS files for, in OUT/station-<s>
