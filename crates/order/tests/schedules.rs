@@ -699,6 +699,42 @@ fn optimum_and_bound(
     Some((exact.makespan_s, lb))
 }
 
+/// The zone-rule bound against the exhaustive optimum on the instances `make` draws (wall,
+/// model, UAVs) from one seeded generator, `default` of them (the variable `env` sets another
+/// count): every bound must stay below its optimum ([`optimum_and_bound`]), at least
+/// 1/`share` of the instances must be solved to optimality, and the bound must meet one
+/// optimum.
+fn bound_sweep(
+    seed: u64,
+    env: &str,
+    default: usize,
+    share: usize,
+    mut make: impl FnMut(&mut ChaCha8Rng, usize) -> (Wall, TeamModel, usize),
+) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let cases: usize = std::env::var(env)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default);
+    let (mut solved, mut tight) = (0, 0);
+    for case in 0..cases {
+        let (wall, model, uavs) = make(&mut rng, case);
+        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
+            continue;
+        };
+        solved += 1;
+        if optimum <= lb + 1e-6 {
+            tight += 1;
+        }
+    }
+    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
+    assert!(
+        solved >= cases / share,
+        "only {solved} walls solved exactly"
+    );
+    assert!(tight > 0, "the bound met no optimum");
+}
+
 /// The makespan bound under the zone rule (the thesis model's), against the exhaustive optimum
 /// on tiny walls with mixed placing and rest times, orange pairs and 2–4 UAVs: the bound's
 /// first-start and last-end relaxation must never pass the optimum. At least 150 of the 300
@@ -725,35 +761,19 @@ fn zone_rule_makespan_bound_is_below_the_exhaustive_optimum() {
 /// the 1000 walls (`MASON_PAIR_CASES` sets another count) must be solved to optimality.
 #[test]
 fn zone_rule_bound_with_pair_waits_is_below_the_exhaustive_optimum() {
-    let mut rng = ChaCha8Rng::seed_from_u64(0x7061_6972);
-    let mut solved = 0;
-    let mut tight = 0;
-    let cases: usize = std::env::var("MASON_PAIR_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1000);
-    for case in 0..cases {
+    bound_sweep(0x7061_6972, "MASON_PAIR_CASES", 1000, 2, |rng, case| {
         let wall = loop {
-            let w = random_wall(&mut rng, 6, 3);
+            let w = random_wall(rng, 6, 3);
             if w.ids()
                 .any(|b| w.brick(b).kind == mason_wall::BrickType::Orange)
             {
                 break w;
             }
         };
-        let model = zone_model(&mut rng, case);
+        let model = zone_model(rng, case);
         let uavs = rng.gen_range(2..6);
-        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
-            continue;
-        };
-        solved += 1;
-        if optimum <= lb + 1e-6 {
-            tight += 1;
-        }
-    }
-    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
-    assert!(solved >= cases / 2, "only {solved} walls solved exactly");
-    assert!(tight > 0, "the bound met no optimum");
+        (wall, model, uavs)
+    });
 }
 
 /// The tails of the UAVs' last bricks (`bounds::others_tail` and the partner of a 2-UAV brick
@@ -764,54 +784,32 @@ fn zone_rule_bound_with_pair_waits_is_below_the_exhaustive_optimum() {
 /// (`MASON_TAIL_CASES` sets another count) must be solved to optimality.
 #[test]
 fn zone_rule_bound_with_last_brick_tails_is_below_the_exhaustive_optimum() {
-    let mut rng = ChaCha8Rng::seed_from_u64(0x7461_696c);
-    let mut solved = 0;
-    let mut tight = 0;
-    let cases: usize = std::env::var("MASON_TAIL_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(600);
-    for case in 0..cases {
+    bound_sweep(0x7461_696c, "MASON_TAIL_CASES", 600, 2, |rng, case| {
         let wall = loop {
-            let w = random_wall(&mut rng, 7, 2);
+            let w = random_wall(rng, 7, 2);
             if w.ids().any(|b| w.carried(b).len() >= 2) {
                 break w;
             }
         };
-        let model = zone_model(&mut rng, case);
+        let model = zone_model(rng, case);
         let uavs = rng.gen_range(2..6);
-        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
-            continue;
-        };
-        solved += 1;
-        if optimum <= lb + 1e-6 {
-            tight += 1;
-        }
-    }
-    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
-    assert!(solved >= cases / 2, "only {solved} walls solved exactly");
-    assert!(tight > 0, "the bound met no optimum");
+        (wall, model, uavs)
+    });
 }
 
 /// The pair splits counted per chain of 2-UAV bricks (`bounds::chain_waits`): with f1 (f2) of
 /// them among the first bricks of one of their UAVs (of both) and l1, l2 among the last, at
-/// least max(1 − l1 − l2, f2 + max(0, f1 − l1)) times a pair's two UAVs part and one waits. Against the exhaustive optimum on tiny walls with two
-/// or more orange bricks (one or two levels), the thesis times or mixed ones and 3–5 UAVs; at
-/// least a third of the 600 walls (`MASON_CHAIN_CASES` sets another count) must be solved to
-/// optimality. (Case 500 found the bug of `last_rests_count_a_pair_brick_that_is_the_last_of_one_uav`.)
+/// least max(1 − l1 − l2, f2 + max(0, f1 − l1)) times a pair's two UAVs part and one waits.
+/// Against the exhaustive optimum on tiny walls with two or more orange bricks (one or two
+/// levels), the thesis times or mixed ones and 3–5 UAVs; at least a third of the 600 walls
+/// (`MASON_CHAIN_CASES` sets another count) must be solved to optimality. (Case 500 found the
+/// bug of `last_rests_count_a_pair_brick_that_is_the_last_of_one_uav`.)
 #[test]
 fn zone_rule_bound_with_orange_chains_is_below_the_exhaustive_optimum() {
-    let mut rng = ChaCha8Rng::seed_from_u64(0x6368_6169);
-    let mut solved = 0;
-    let mut tight = 0;
-    let cases: usize = std::env::var("MASON_CHAIN_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(600);
-    for case in 0..cases {
+    bound_sweep(0x6368_6169, "MASON_CHAIN_CASES", 600, 3, |rng, case| {
         let levels = 1 + case % 2;
         let wall = loop {
-            let w = random_wall(&mut rng, 7, levels);
+            let w = random_wall(rng, 7, levels);
             let oranges = w
                 .ids()
                 .filter(|&b| w.brick(b).kind == mason_wall::BrickType::Orange)
@@ -820,19 +818,10 @@ fn zone_rule_bound_with_orange_chains_is_below_the_exhaustive_optimum() {
                 break w;
             }
         };
-        let model = zone_model(&mut rng, case);
+        let model = zone_model(rng, case);
         let uavs = rng.gen_range(3..6);
-        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
-            continue;
-        };
-        solved += 1;
-        if optimum <= lb + 1e-6 {
-            tight += 1;
-        }
-    }
-    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
-    assert!(solved >= cases / 3, "only {solved} walls solved exactly");
-    assert!(tight > 0, "the bound met no optimum");
+        (wall, model, uavs)
+    });
 }
 
 /// The chain cases of `bounds::chain_waits` where they bind most: one row of two or three
@@ -842,14 +831,7 @@ fn zone_rule_bound_with_orange_chains_is_below_the_exhaustive_optimum() {
 /// solved to optimality.
 #[test]
 fn zone_rule_bound_on_rows_of_orange_pairs_is_below_the_exhaustive_optimum() {
-    let mut rng = ChaCha8Rng::seed_from_u64(0x726f_7773);
-    let mut solved = 0;
-    let mut tight = 0;
-    let cases: usize = std::env::var("MASON_CHAIN_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(400);
-    for case in 0..cases {
+    bound_sweep(0x726f_7773, "MASON_CHAIN_CASES", 400, 2, |rng, case| {
         let mut tokens = vec!["O"; rng.gen_range(2..4)];
         for _ in 0..rng.gen_range(1..5) {
             tokens.push(["R", "G", "B"][rng.gen_range(0..3)]);
@@ -858,19 +840,10 @@ fn zone_rule_bound_on_rows_of_orange_pairs_is_below_the_exhaustive_optimum() {
             tokens.swap(i, rng.gen_range(0..=i));
         }
         let wall = parse_layer_text(&tokens.join(" "), "row").unwrap();
-        let model = zone_model(&mut rng, case);
+        let model = zone_model(rng, case);
         let uavs = rng.gen_range(2..5);
-        let Some((optimum, lb)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
-            continue;
-        };
-        solved += 1;
-        if optimum <= lb + 1e-6 {
-            tight += 1;
-        }
-    }
-    eprintln!("{solved} of {cases} solved, bound tight on {tight}");
-    assert!(solved >= cases / 2, "only {solved} walls solved exactly");
-    assert!(tight > 0, "the bound met no optimum");
+        (wall, model, uavs)
+    });
 }
 
 /// A 2-UAV brick may be the last brick of one of its UAVs while its partner goes on, so the
