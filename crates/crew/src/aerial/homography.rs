@@ -37,6 +37,35 @@ impl Homography {
         Homography::from_points([(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)], corners)
     }
 
+    /// The pixels `(x0, y0, x1, y1)` (x0..x1 by y0..y1, one pixel of margin to the right and
+    /// below) of the bounding box of floor cell `(cx, cy)`'s image, clipped to a `width` ×
+    /// `height` image; `None` when a corner is on the line at infinity.
+    pub fn cell_box(
+        &self,
+        (cx, cy): (u32, u32),
+        width: usize,
+        height: usize,
+    ) -> Option<(usize, usize, usize, usize)> {
+        let (fx, fy) = (f64::from(cx), f64::from(cy));
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+        for c in [
+            (fx, fy),
+            (fx + 1.0, fy),
+            (fx + 1.0, fy + 1.0),
+            (fx, fy + 1.0),
+        ] {
+            let (x, y) = self.apply(c)?;
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+        Some((
+            clamp(x0.floor(), width),
+            clamp(y0.floor(), height),
+            clamp(x1.ceil() + 1.0, width),
+            clamp(y1.ceil() + 1.0, height),
+        ))
+    }
+
     /// The image of a point; `None` on the line at infinity.
     pub fn apply(&self, (x, y): Point) -> Option<Point> {
         let m = &self.0;

@@ -99,21 +99,9 @@ pub fn look(
         saturation: 0.0,
         unsure: (0, 0),
     };
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
-    for c in [
-        (fx, fy),
-        (fx + 1.0, fy),
-        (fx + 1.0, fy + 1.0),
-        (fx, fy + 1.0),
-    ] {
-        let Some((x, y)) = floor_to_image.apply(c) else {
-            return out;
-        };
-        (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-    }
-    let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
-    let (x0, x1) = (clamp(x0.floor(), width), clamp(x1.ceil() + 1.0, width));
-    let (y0, y1) = (clamp(y0.floor(), height), clamp(y1.ceil() + 1.0, height));
+    let Some((x0, y0, x1, y1)) = floor_to_image.cell_box((cx, cy), width, height) else {
+        return out;
+    };
     // Floor pixels: (brightness, colour) after white balance.
     let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
     for y in y0..y1 {
