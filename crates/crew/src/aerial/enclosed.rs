@@ -65,20 +65,13 @@ pub fn settle(classes: &mut [u8], width: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn paint(classes: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize), c: Class) {
-        for y in y0..y1 {
-            for x in x0..x1 {
-                classes[y * 20 + x] = c as u8;
-            }
-        }
-    }
+    use crate::aerial::tests::paint;
 
     #[test]
     fn a_robot_s_dark_cap_is_the_robot() {
         let mut classes = vec![Class::Floor as u8; 20 * 20];
-        paint(&mut classes, (2, 2, 10, 10), Class::Robot);
-        paint(&mut classes, (4, 4, 8, 8), Class::Unsure);
+        paint(&mut classes, 20, (2, 2, 10, 10), Class::Robot);
+        paint(&mut classes, 20, (4, 4, 8, 8), Class::Unsure);
         assert_eq!(settle(&mut classes, 20), 1);
         assert!(classes.iter().all(|&c| c != Class::Unsure as u8));
     }
@@ -87,12 +80,12 @@ mod tests {
     fn an_unsure_blob_on_the_floor_or_between_two_kinds_stays() {
         let mut classes = vec![Class::Floor as u8; 20 * 20];
         // On the floor, touching an obstacle on one side only.
-        paint(&mut classes, (0, 0, 4, 20), Class::Obstacle);
-        paint(&mut classes, (4, 2, 9, 7), Class::Unsure);
+        paint(&mut classes, 20, (0, 0, 4, 20), Class::Obstacle);
+        paint(&mut classes, 20, (4, 2, 9, 7), Class::Unsure);
         // Between a robot and an obstacle.
-        paint(&mut classes, (12, 10, 15, 20), Class::Robot);
-        paint(&mut classes, (15, 10, 17, 20), Class::Unsure);
-        paint(&mut classes, (17, 10, 20, 20), Class::Obstacle);
+        paint(&mut classes, 20, (12, 10, 15, 20), Class::Robot);
+        paint(&mut classes, 20, (15, 10, 17, 20), Class::Unsure);
+        paint(&mut classes, 20, (17, 10, 20, 20), Class::Obstacle);
         let before = classes.clone();
         assert_eq!(settle(&mut classes, 20), 0);
         assert_eq!(classes, before);

@@ -313,6 +313,7 @@ fn goals_within(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::aerial::tests::paint;
 
     /// A 4 × 2-cell floor, 10 px per cell, straight down: floor → image, image → floor.
     fn floor() -> (Homography, Homography, Vec<u8>) {
@@ -329,23 +330,15 @@ mod tests {
         )
     }
 
-    fn paint(classes: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize), c: Class) {
-        for y in y0..y1 {
-            for x in x0..x1 {
-                classes[y * 40 + x] = c as u8;
-            }
-        }
-    }
-
     #[test]
     fn a_goal_coloured_shelf_over_two_cells_is_an_obstacle() {
         let (to_image, to_floor, mut classes) = floor();
         // Goals 4 px wide in cells (3, 0) and (3, 1); a shelf over cells (0, 0) and (1, 0),
         // goal-coloured with some unsure pixels.
-        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
-        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
-        paint(&mut classes, (1, 1, 19, 9), Class::Goal);
-        paint(&mut classes, (5, 2, 7, 4), Class::Unsure);
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
+        paint(&mut classes, 40, (5, 2, 7, 4), Class::Unsure);
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
@@ -356,11 +349,11 @@ mod tests {
         let (to_image, to_floor, mut classes) = floor();
         // A yellow (unsure) shelf over cells (0, 0) and (1, 0); a goal in cell (1, 1) joined
         // to it by a pixel of a colour between; goals in cells (3, 0) and (3, 1).
-        paint(&mut classes, (1, 1, 19, 9), Class::Unsure);
-        paint(&mut classes, (13, 10, 17, 14), Class::Goal);
-        paint(&mut classes, (15, 9, 16, 10), Class::Unsure);
-        paint(&mut classes, (33, 3, 37, 7), Class::Goal);
-        paint(&mut classes, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Unsure);
+        paint(&mut classes, 40, (13, 10, 17, 14), Class::Goal);
+        paint(&mut classes, 40, (15, 9, 16, 10), Class::Unsure);
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[12 * 40 + 15], Class::Goal as u8);
@@ -370,10 +363,10 @@ mod tests {
     fn goals_filling_one_cell_each_stay_goals() {
         let (to_image, to_floor, mut classes) = floor();
         // One goal per cell, each filling its cell, touching the next: twice the median.
-        paint(&mut classes, (0, 0, 10, 10), Class::Goal);
-        paint(&mut classes, (10, 0, 20, 10), Class::Goal);
-        paint(&mut classes, (21, 11, 30, 20), Class::Goal);
-        paint(&mut classes, (0, 11, 10, 20), Class::Goal);
+        paint(&mut classes, 40, (0, 0, 10, 10), Class::Goal);
+        paint(&mut classes, 40, (10, 0, 20, 10), Class::Goal);
+        paint(&mut classes, 40, (21, 11, 30, 20), Class::Goal);
+        paint(&mut classes, 40, (0, 11, 10, 20), Class::Goal);
         let before = classes.clone();
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
         assert_eq!(classes, before);
@@ -382,7 +375,7 @@ mod tests {
     #[test]
     fn a_blob_filling_one_cell_is_not_judged() {
         let (to_image, to_floor, mut classes) = floor();
-        paint(&mut classes, (0, 0, 10, 10), Class::Unsure);
+        paint(&mut classes, 40, (0, 0, 10, 10), Class::Unsure);
         let before = classes.clone();
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
         assert_eq!(classes, before);

@@ -4,6 +4,21 @@ use super::*;
 use image::{ImageFormat, Rgb};
 use std::io::Cursor;
 
+/// Sets the pixels x0..x1 by y0..y1 of a class map `width` pixels wide to `c` (the step tests
+/// of `shelves` and `enclosed`).
+pub(super) fn paint(
+    classes: &mut [u8],
+    width: usize,
+    (x0, y0, x1, y1): (usize, usize, usize, usize),
+    c: Class,
+) {
+    for y in y0..y1 {
+        for x in x0..x1 {
+            classes[y * width + x] = c as u8;
+        }
+    }
+}
+
 /// A floor painted through a homography: grey with a shadow band, optional dark grid lines,
 /// blue obstacles on whole cells, red discs (robots) and green discs (goals) at floor points.
 struct Paint {
