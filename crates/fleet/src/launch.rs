@@ -234,16 +234,17 @@ pub fn schedule(
     Ok(plan)
 }
 
-/// A port free on 127.0.0.1 for both TCP and UDP (QUIC links are UDP).
-fn free_port() -> FleetResult<u16> {
+/// A port free on 127.0.0.1 for both TCP and UDP (QUIC links are UDP), with the sockets that
+/// hold it: while they are open no later call gets the same port.
+fn free_port() -> FleetResult<(u16, std::net::TcpListener, std::net::UdpSocket)> {
     let err = |e: std::io::Error| {
         FleetError::Network(format!("cannot find a free port on 127.0.0.1: {e}"))
     };
     for _ in 0..64 {
         let tcp = std::net::TcpListener::bind("127.0.0.1:0").map_err(err)?;
         let port = tcp.local_addr().map_err(err)?.port();
-        if std::net::UdpSocket::bind(("127.0.0.1", port)).is_ok() {
-            return Ok(port);
+        if let Ok(udp) = std::net::UdpSocket::bind(("127.0.0.1", port)) {
+            return Ok((port, tcp, udp));
         }
     }
     Err(FleetError::Network(
@@ -260,7 +261,11 @@ fn ports(base: Option<u32>, n: usize) -> FleetResult<Vec<u16>> {
             "--base-port {p}: ports {p}..{} must lie in 1..65535",
             p as usize + n - 1
         ))),
-        None => (0..n).map(|_| free_port()).collect(),
+        // Every socket stays open until all n ports are found, so that the ports differ.
+        None => {
+            let held: Vec<_> = (0..n).map(|_| free_port()).collect::<FleetResult<_>>()?;
+            Ok(held.into_iter().map(|(port, _, _)| port).collect())
+        }
     }
 }
 
@@ -651,6 +656,8 @@ mod tests {
         assert_eq!(ports(Some(7000), 3).unwrap(), vec![7000, 7001, 7002]);
         assert!(ports(Some(65535), 2).is_err());
         assert!(ports(Some(0), 1).is_err());
-        assert_eq!(ports(None, 2).unwrap().len(), 2);
+        let free = ports(None, 8).unwrap();
+        let distinct: std::collections::BTreeSet<u16> = free.iter().copied().collect();
+        assert_eq!(distinct.len(), 8, "{free:?}");
     }
 }
