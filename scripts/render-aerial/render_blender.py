@@ -24,6 +24,7 @@ import math
 import os
 import sys
 import tempfile
+import time
 
 import bmesh
 import bpy
@@ -738,7 +739,9 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     lo, hi = parse_range(args.seeds)
     for seed in range(lo, hi + 1):
-        print(render_one(args, seed, args.out), flush=True)
+        t0 = time.time()
+        path = render_one(args, seed, args.out)
+        print(f"RENDERED {path} {time.time() - t0:.1f} s", flush=True)
 
 
 if __name__ == "__main__":
