@@ -433,7 +433,7 @@ def make_goal(i, rng, goal, cx, cy):
         flat_polygon(f"goal{i}", cx, cy, z, circle(r, 40), mat)
 
 
-def make_shelf(i, rng, s, h, inset):
+def make_shelf(i, rng, fam, s, h, inset):
     x0, x1 = s["x"] + inset, s["x"] + s["w"] - inset
     y1, y0 = h - s["y"] - inset, h - s["y"] - s["h"] + inset
     hgt = s["height"]
@@ -443,7 +443,7 @@ def make_shelf(i, rng, s, h, inset):
     obj["shelf"] = True
     if s["goods"]:
         # Cartons on the top, one per cell, each a little smaller than the cell.
-        box = principled(f"goods{i}", np.clip(np.array(FAMILIES["G"]["goods_colour"]) * rng.uniform(0.8, 1.15), 0, 1), 0.8)
+        box = principled(f"goods{i}", np.clip(np.array(fam["goods_colour"]) * rng.uniform(0.8, 1.15), 0, 1), 0.8)
         for cx in range(s["w"]):
             for cy in range(s["h"]):
                 m = rng.uniform(0.08, 0.16)
@@ -636,7 +636,7 @@ def render_one(args, seed, out_dir):
     mesh_object("surround", [(-big_r, -big_r, -0.002), (w + big_r, -big_r, -0.002), (w + big_r, h + big_r, -0.002),
                              (-big_r, h + big_r, -0.002)], [[0, 1, 2, 3]], surround)
     for i, s in enumerate(shelves):
-        make_shelf(i, rng, s, h, inset)
+        make_shelf(i, rng, fam, s, h, inset)
     setup_world(rng, light)
 
     # Drop the marks a shelf hides from the camera (their centre on the floor, and a robot's top).
