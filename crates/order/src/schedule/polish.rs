@@ -173,8 +173,8 @@ struct Evaluator {
 
 impl Evaluator {
     fn new(m: usize, n: usize, cap: usize) -> Self {
-        let mut first = vec![0.0; m + 1];
-        first[0] = 0.0;
+        // The start: the zone and every UAV free at 0.
+        let first = vec![0.0; m + 1];
         Evaluator {
             m,
             cap,
@@ -191,8 +191,7 @@ impl Evaluator {
     /// layers go to the scratch ([`Evaluator::accept`] keeps them).
     fn eval(&mut self, p: &TeamProblem<'_>, seq: &[BrickId], from: usize) -> f64 {
         let w = self.m + 1;
-        for k in from..seq.len() {
-            let b = seq[k];
+        for (k, &b) in seq.iter().enumerate().skip(from) {
             let need = p.need(b) as usize;
             let (place, rest) = (p.place_s(b), p.rest_s(b));
             let prev = if k == from {

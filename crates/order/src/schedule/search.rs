@@ -15,6 +15,10 @@
 //!   the result depends only on the seed unless the deadline stops the search.
 //! * Stops when the result meets its bound (status `Optimal`), at the budget's node cap
 //!   (decodes per thread) or at its deadline (`Timeout`, best so far).
+//! * Under the zone rule, a whole-wall makespan result then goes through
+//!   [`super::polish`] (two threads, seeds 2s and 2s + 1; under a deadline the list search
+//!   gets three quarters of the time left); a polished schedule is kept only if
+//!   [`validate_schedule`] accepts it and it ends earlier.
 
 use super::bounds::{
     earliest_end, expected_reward_upper_bound_within, makespan_lower_bound_within,
