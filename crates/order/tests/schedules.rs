@@ -846,6 +846,57 @@ fn zone_rule_bound_on_rows_of_orange_pairs_is_below_the_exhaustive_optimum() {
     });
 }
 
+/// The zone rule's polish (`schedule::polish`, annealing over zone sequences with exact crews)
+/// against the exhaustive optimum and the bound on tiny walls with mixed times, orange pairs,
+/// one or two levels and 2–5 UAVs: every planned schedule passes the validator, never beats the
+/// optimum, and so never passes below the bound (a schedule below the bound would prove the
+/// bound wrong). 300 walls (`MASON_POLISH_CASES` sets another count); at least half must be
+/// solved exactly, and the planner must reach the optimum on most of those.
+#[test]
+fn zone_rule_polished_schedules_stay_between_the_optimum_and_above_the_bound() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0x706f_6c69);
+    let cases: usize = std::env::var("MASON_POLISH_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(300);
+    let (mut solved, mut reached) = (0, 0);
+    for case in 0..cases {
+        let wall = random_wall(&mut rng, 7, 1 + case % 2);
+        let model = zone_model(&mut rng, case);
+        let uavs = rng.gen_range(2..6);
+        let p = TeamProblem::new(&wall, model.clone(), uavs, None, Objective::Makespan).unwrap();
+        let out = plan_schedule(&p, &Budget::nodes(3000), case as u64);
+        let s = out.schedule.as_ref().expect("a whole-wall schedule");
+        let e = validate_schedule(&wall, p.model(), uavs, None, s)
+            .unwrap_or_else(|err| panic!("case {case}: {err}"));
+        assert_eq!(e.bricks, wall.len(), "case {case}");
+        assert!(
+            e.makespan_s >= out.bound - 1e-6,
+            "case {case}: schedule {} below the bound {}",
+            e.makespan_s,
+            out.bound
+        );
+        let Some((optimum, _)) = optimum_and_bound(case, &wall, model, uavs, 1_000_000) else {
+            continue;
+        };
+        solved += 1;
+        assert!(
+            e.makespan_s >= optimum - 1e-6,
+            "case {case}: schedule {} below the optimum {optimum}",
+            e.makespan_s
+        );
+        if e.makespan_s <= optimum + 1e-6 {
+            reached += 1;
+        }
+    }
+    eprintln!("{solved} of {cases} solved, optimum reached on {reached}");
+    assert!(solved >= cases / 2, "only {solved} walls solved exactly");
+    assert!(
+        reached * 10 >= solved * 9,
+        "optimum reached on {reached} of {solved}"
+    );
+}
+
 /// A 2-UAV brick may be the last brick of one of its UAVs while its partner goes on, so the
 /// rests the UAVs' last bricks leave out are the longest over UAV-slots, not over whole pairs:
 /// here UAV 0 and 1 place both oranges (the second is the last of both) and UAV 2 ends on the

@@ -23,6 +23,7 @@ mod checked;
 mod closure;
 pub mod exhaustive;
 mod model;
+pub mod polish;
 mod problem;
 pub mod search;
 pub mod sgs;

@@ -15,14 +15,20 @@
 //!   the result depends only on the seed unless the deadline stops the search.
 //! * Stops when the result meets its bound (status `Optimal`), at the budget's node cap
 //!   (decodes per thread) or at its deadline (`Timeout`, best so far).
+//! * Under the zone rule, a whole-wall makespan result then goes through
+//!   [`super::polish`] (two threads, seeds 2s and 2s + 1; under a deadline the list search
+//!   gets three quarters of the time left); a polished schedule is kept only if
+//!   [`validate_schedule`] accepts it and it ends earlier.
 
 use super::bounds::{
     earliest_end, expected_reward_upper_bound_within, makespan_lower_bound_within,
     reward_upper_bound_within, RewardBound,
 };
+use super::polish;
 use super::problem::{Objective, Placement, Schedule, TeamOutcome, TeamProblem, TeamStats};
 use super::sgs::{Decoded, Decoder, Mode};
 use super::slots::{exact_with_work, least_makespan_at, EXACT_WORK};
+use super::validate::validate_schedule;
 use crate::outcome::{Better, Budget, Status};
 use mason_wall::BrickId;
 use rand::{Rng, SeedableRng};
@@ -686,6 +692,25 @@ pub fn plan_schedule_with(
         Objective::Expected { hazard_per_hour } => scenarios(p, hazard_per_hour, seed),
         _ => Vec::new(),
     };
+    // Under the zone rule, a whole-wall makespan search ends with the polish of its best
+    // schedule ([`super::polish`]); under a deadline the list search leaves it a quarter of the
+    // time left.
+    let polish = p.objective() == Objective::Makespan
+        && whole
+        && p.zone_rule()
+        && (2..=polish::MAX_BRICKS).contains(&p.len());
+    let search_budget = match (polish, budget.deadline) {
+        (true, Some(d)) => {
+            let now = Instant::now();
+            Budget {
+                deadline: Some(now + d.saturating_duration_since(now).mul_f64(0.75)),
+                ..budget.clone()
+            }
+        }
+        _ => budget.clone(),
+    };
+    let budget_all = budget;
+    let budget = &search_budget;
     let mut results: Vec<ThreadResult> = std::thread::scope(|sc| {
         let handles: Vec<_> = (0..2u64)
             .map(|k| {
@@ -729,6 +754,50 @@ pub fn plan_schedule_with(
         let d = decoder.decode(&r.list);
         (d, decoder.schedule())
     });
+    let budget = budget_all;
+    if polish && d.makespan_s > bound + 1e-9 && !budget.out_of_time() {
+        // Moves per thread: the default's, no more than a node cap, unbounded under a deadline
+        // (which stops it).
+        let moves = match budget.node_limit {
+            Some(u64::MAX) if budget.deadline.is_some() => u64::MAX,
+            Some(cap) => cap.min(polish::polish_moves(p.len())),
+            None => polish::polish_moves(p.len()),
+        };
+        let found: Vec<Option<Schedule>> = std::thread::scope(|sc| {
+            let handles: Vec<_> = (0..2u64)
+                .map(|k| {
+                    let schedule = &schedule;
+                    let seed = seed.wrapping_mul(2).wrapping_add(k);
+                    sc.spawn(move || polish::polish_zone_makespan(p, schedule, moves, seed, budget))
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().expect("polish thread"))
+                .collect()
+        });
+        for s in found.into_iter().flatten() {
+            // Kept only if the independent validator agrees that it places every brick
+            // earlier; ties go to the first thread.
+            if let Ok(e) = validate_schedule(p.wall(), p.model(), p.uavs(), None, &s) {
+                if e.bricks == p.len() && e.makespan_s < d.makespan_s - 1e-9 {
+                    d.makespan_s = e.makespan_s;
+                    d.sum_end_s = s
+                        .placements
+                        .iter()
+                        .map(|pl| pl.start_s + p.place_s(pl.brick))
+                        .sum();
+                    schedule = s;
+                    budget.better(Better {
+                        value: d.makespan_s,
+                        bound,
+                        decodes,
+                        elapsed_s: t0.elapsed().as_secs_f64(),
+                    });
+                }
+            }
+        }
+    }
     let mut bound = bound;
     if let (Some(first), Some((b, _))) = (exact, &reward_bound) {
         // Still below the bound after the search, and the first try stopped short: the whole
