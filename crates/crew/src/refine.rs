@@ -188,7 +188,8 @@ struct Candidate {
 
 impl Candidate {
     /// Plans the group again, one robot after another, around everyone else as `occ` and
-    /// `paths` hold them (read only); `cost` are the robots' current costs.
+    /// `paths` hold them (read only); `cost` are the robots' current costs. With `ties` the new
+    /// paths may cost as much as the old ones in all, not only less.
     fn plan(
         &mut self,
         search: &mut Search<OpenEntry>,
@@ -196,8 +197,7 @@ impl Candidate {
         dist: &[Vec<u32>],
         goals: &[u32],
         (occ, paths, cost): (&Occupancy, &[Vec<u32>], &[u64]),
-        node_limit: u64,
-        ties: bool,
+        (node_limit, ties): (u64, bool),
     ) {
         self.fresh.clear();
         self.expanded = 0;
@@ -377,8 +377,7 @@ pub fn refine(
                 dist,
                 goals,
                 (shared.0, shared.1, &cost),
-                config.node_limit,
-                config.ties,
+                (config.node_limit, config.ties),
             );
             if let Ok(mut s) = scratch.lock() {
                 s.push(search);

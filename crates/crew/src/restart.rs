@@ -183,7 +183,7 @@ mod tests {
     #[test]
     fn a_pair_keeps_the_cheaper_of_its_guided_and_unguided_plans() {
         let grid = crate::generate::warehouse(40, 30, 0.05, 2);
-        let (mut checked, mut unguided_won) = (0, 0);
+        let mut checked = 0;
         for seed in 0..12u64 {
             let (robots, goals) = crate::generate::random_tasks(&grid, 80, seed);
             let m = MoveGraph::new(&grid, Connectivity::Four);
