@@ -18,6 +18,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 point() { # map agents limit seed
   local map=$1 n=$2 t=$3 s=$4
+  # A solver that dies writes nothing: never read the previous point's output instead.
+  rm -f "$tmp/l.txt" "$tmp/m.json"
   "$L" -m "$D/maps/$map.map" -i "$D/scen/$map-random-1.scen" -N "$n" -s "$s" -t "$t" \
     -v 0 -l -o "$tmp/l.txt" >/dev/null 2>&1 &
   local lp=$!
@@ -28,10 +30,13 @@ point() { # map agents limit seed
   python3 - "$tmp/l.txt" "$tmp/m.json" "$map" "$n" "$t" "$s" >>"$OUT-lacam3.tsv" 2>>"$OUT-mason.tsv" <<'PY'
 import json, sys
 l, m, map_, n, t, s = sys.argv[1:]
-kv = dict(line.strip().split("=", 1) for line in open(l) if "=" in line)
+try:
+    kv = dict(line.strip().split("=", 1) for line in open(l) if "=" in line)
+except OSError:
+    kv = {}
 solved = kv.get("solved") == "1"
 print("\t".join([map_, n, t, s, "1" if solved else "0", kv["soc"] if solved else "-",
-                 kv["soc_lb"], kv["makespan"] if solved else "-",
+                 kv.get("soc_lb", "-"), kv["makespan"] if solved else "-",
                  kv["comp_time_initial_solution"] if solved else "-"]))
 try:
     d = json.load(open(m))

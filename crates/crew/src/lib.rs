@@ -15,7 +15,7 @@
 //! - [`distance`]: BFS step distances and Dijkstra path lengths; [`rra`]: distances on demand;
 //! - [`astar`], [`line`], [`prm`]: single-robot paths;
 //! - [`hungarian`], [`perm`], [`assign`]: goal assignment;
-//! - [`spacetime`]: space-time A*, the one-robot search of [`st`], [`scatter`] and [`refine`];
+//! - [`spacetime`]: space-time A*, the one-robot search of [`st`] and [`refine`];
 //! - [`reservation`], [`paper`], [`st`]: collision resolution, prioritized (incomplete);
 //! - [`moves`], [`scatter`], [`pibt`], [`lacam`], [`refine`]: complete and anytime labelled
 //!   MAPF;

@@ -298,10 +298,8 @@ fn sum_of_costs(paths: &Paths) -> u64 {
         .sum()
 }
 
-/// Guide paths ([`crate::scatter`]): at most 10 steps longer than the shortest, a robot met
-/// costs 2 steps, at most 4000 states searched per robot. On warehouse-10-20-10-2-1 they cut the
-/// first plan's sum of costs by about a third at 500 and 1000 robots.
-const GUIDE: (u32, u32, usize) = (10, 2, 4000);
+/// Guide paths ([`crate::scatter`]): at most 10 steps longer than the shortest.
+const GUIDE_MARGIN: u32 = 10;
 
 /// Under a time limit the guide paths stop at this share of it (robots not yet rerouted keep
 /// the path they have): with 1000 robots they took 0.3–0.8 s of a 1 s limit on an unloaded
@@ -371,7 +369,15 @@ fn solve_lacam(
     guide_budget.deadline = budget
         .deadline
         .map(|d| started + d.saturating_duration_since(started).mul_f64(GUIDE_SHARE));
-    let guide = guide_paths(&graph, &dist, &starts, &targets, GUIDE, &guide_budget);
+    let guide = guide_paths(
+        &graph,
+        &dist,
+        &starts,
+        &targets,
+        GUIDE_MARGIN,
+        &guide_budget,
+        config.seed,
+    );
     if !guide_budget.out_of_time() {
         stats.guide = Some(guide_started.elapsed());
     }
