@@ -953,22 +953,7 @@ mod tests {
 
     #[test]
     fn every_batch_leaves_a_valid_plan_no_costlier_than_before() {
-        let grid = warehouse(60, 40, 0.05, 2);
-        let n = 90;
-        let (robots, goals) = random_tasks(&grid, n, 4);
-        let inst = Instance::new(
-            grid,
-            Connectivity::Four,
-            robots,
-            goals,
-            Some((0..n).collect()),
-            "warehouse",
-        )
-        .unwrap();
-        let graph = MoveGraph::new(&inst.grid, inst.connectivity);
-        let dist = goal_distances(&inst.grid, inst.connectivity, &inst.goals);
-        let targets: Vec<u32> = inst.goals.iter().map(|c| c.0).collect();
-        let mut paths = first_plan(&inst).expect("a first plan");
+        let (inst, graph, dist, targets, mut paths) = warehouse_case(90);
         let first: u64 = paths.iter().map(|p| arrival(p)).sum();
         let mut soc = first;
         let mut several_kept = 0;
