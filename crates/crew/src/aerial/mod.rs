@@ -52,6 +52,7 @@ pub mod homography;
 pub mod lines;
 pub mod looks;
 pub mod pixels;
+pub mod shadows;
 pub mod shelves;
 pub mod tinted;
 
@@ -606,33 +607,54 @@ pub fn read_aerial_image(
     let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
-    let not_floor = {
+    let looks: Vec<Option<looks::Look>> = {
         use rayon::prelude::*;
         (0..cells)
             .into_par_iter()
-            .filter(|&i| !blocked[i])
-            .find_map_first(|i| {
-                let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-                let look = looks::look(
-                    img,
-                    &classes,
-                    &classifier,
-                    &floor_to_image,
-                    &image_to_floor,
-                    nadir,
-                    &near_mark,
-                    (x, y),
-                );
-                look.odd().map(|why| {
-                    at_pixel(
-                        source,
-                        cell_centre_px(i),
-                        format!(
-                            "cell ({x}, {y}) would be free but does not look like the floor: {why}"
-                        ),
+            .map(|i| {
+                (!blocked[i]).then(|| {
+                    let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+                    looks::look(
+                        img,
+                        &classes,
+                        &classifier,
+                        &floor_to_image,
+                        &image_to_floor,
+                        nadir,
+                        &near_mark,
+                        (x, y),
                     )
                 })
             })
+            .collect()
+    };
+    let not_floor = looks.iter().enumerate().find_map(|(i, look)| {
+        let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+        look.as_ref()?.odd().map(|why| {
+            at_pixel(
+                source,
+                cell_centre_px(i),
+                format!("cell ({x}, {y}) would be free but does not look like the floor: {why}"),
+            )
+        })
+    });
+    // Every shadow on the free floor must have a caster (see `shadows`): a shelf of the
+    // floor's own colour and brightness shows only by its shadow.
+    let uncast = {
+        let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
+            looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
+        drop(looks);
+        shadows::uncast(&bins, (gw, gh)).map(|u| {
+            let (x, y) = u.cell;
+            at_pixel(
+                source,
+                floor_to_image.apply(u.at).unwrap_or((0.0, 0.0)),
+                format!(
+                    "a shadow on free floor from cell ({x}, {y}) ({:.1} cells of it) that no obstacle or robot in the image casts: something of the floor's colour may stand there",
+                    u.bins as f64 / shadows::BINS as f64
+                ),
+            )
+        })
     };
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
@@ -719,7 +741,7 @@ pub fn read_aerial_image(
             ));
         }
     }
-    if let Some(e) = not_floor {
+    if let Some(e) = not_floor.or(uncast) {
         return Err(e);
     }
     Ok(AerialReading {
