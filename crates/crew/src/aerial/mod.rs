@@ -601,6 +601,26 @@ pub fn read_aerial_image(
         }
         *b = true;
     }
+    // A covered cell on the floor's edge away from the nadir, behind a blocked cell: the top
+    // of the obstacle there may lean over it to the edge (see `cover::edge_doubt`).
+    if let Some(n) = nadir {
+        for i in 0..cells {
+            let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
+            if blocked[i]
+                && edge
+                && cover::edge_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y))
+            {
+                return Err(at_pixel(
+                    source,
+                    cell_centre_px(i),
+                    format!(
+                        "cell ({x}, {y}) on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends)"
+                    ),
+                ));
+            }
+        }
+    }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
     // reasons to refuse, which say more).

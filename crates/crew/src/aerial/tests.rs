@@ -277,6 +277,36 @@ fn refuses_what_it_cannot_read() {
 }
 
 #[test]
+fn a_shadow_needs_a_caster() {
+    // A shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
+    // goal: a shelf of the floor's own colour casts it, and the view is refused.
+    let shade = |img: &mut RgbImage, x0: u32| {
+        for y in 37..47 {
+            for x in x0..65 {
+                let p = img.get_pixel(x, y).0;
+                img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
+            }
+        }
+    };
+    let mut img = scene().straight(12);
+    shade(&mut img, 55);
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("a shadow on free floor from cell (4, 3)") && e.contains("pixel ("),
+        "{e}"
+    );
+    // The same shadow running to the blocked cells (3, 1)–(3, 3): theirs; read as before.
+    let mut img = scene().straight(12);
+    shade(&mut img, 48);
+    let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    assert_eq!(r.grid.width() * r.grid.height(), 40);
+    assert_eq!((0..40).filter(|&i| !r.grid.is_free(Cell(i))).count(), 3);
+}
+
+#[test]
 fn malformed_and_hostile_images_are_refused() {
     let cfg = grid(8, 5);
     let e = read_aerial(b"GIF89a....", "x", &cfg)
