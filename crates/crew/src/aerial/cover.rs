@@ -416,7 +416,7 @@ mod tests {
             for x in 0..40usize {
                 let (u, v) = ((x as f64 + 0.5) / 10.0, (y as f64 + 0.5) / 10.0);
                 if (blocked[(v as usize) * 4 + u as usize])
-                    || (v >= 2.0 && v < 3.0 && u >= 2.0 && u < over)
+                    || ((2.0..3.0).contains(&v) && (2.0..over).contains(&u))
                 {
                     classes[y * 40 + x] = Class::Obstacle as u8;
                 }
