@@ -13,7 +13,8 @@
 //!    a robot, a goal or an obstacle is part of it ([`enclosed`]); a blob that fills no cell
 //!    and has a mark's colour before white balance is that mark ([`tinted`]); every free
 //!    cell must look like the floor (no brighter than its texture and light allow, not tinted
-//!    where lit: [`looks`]);
+//!    where lit: [`looks`]), and every shadow on the free floor must touch what casts it
+//!    ([`shadows`]: a shelf of the floor's own colour shows by its shadow);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
@@ -21,8 +22,9 @@
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
 //! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
 //! colour between the robots' or goals' and another, a cell half covered that no leaning top
-//! explains, a free cell that does not look like the floor, a grid that does not fit the
-//! image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
+//! explains, a covered cell on the floor's far edge that a leaning top may cover, a free cell
+//! that does not look like the floor, a shadow that nothing casts, a grid that does not fit
+//! the image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
 //! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks.
 //!
 //! ```
