@@ -128,6 +128,7 @@ pub fn look(
             if near_mark[y * width + x] || class == Class::Robot as u8 || class == Class::Goal as u8
             {
                 bin.mark += 1;
+                bin.robot += u32::from(class == Class::Robot as u8);
                 continue;
             }
             let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);

@@ -10,9 +10,10 @@
 //! each judged by most of its pixels: floor darker than [`DARK`] times the lit floor (a
 //! shadow), lit floor, an obstacle's or an unsure colour (a caster), or a robot or goal and
 //! the pixels near it. A connected region of shadow bins that touches no caster (nor a blocked
-//! cell), and no robot or goal either unless it is small enough for a robot's shadow
-//! ([`ROBOT_SHADOW`]), has nothing that casts it in the image: something of the floor's
-//! colour stands there, and the view is refused, never read as free floor.
+//! cell), and no robot either (a bin of a mark with a robot's pixels in it or beside it) unless
+//! it is small enough for a robot's shadow ([`ROBOT_SHADOW`]), has nothing that casts it in
+//! the image: something of the floor's colour stands there, and the view is refused, never
+//! read as free floor. A goal lies flat and casts nothing.
 //!
 //! Painted lines (at most a third of a bin along the border) and tile seams do not make a bin
 //! dark; a shelf's shadow (at least a fifth of a cell wide under a sun up to 60° high and a
@@ -47,6 +48,8 @@ pub struct Bin {
     pub solid: u32,
     /// Pixels of a robot or a goal, or near one.
     pub mark: u32,
+    /// Of those, the robot's own pixels.
+    pub robot: u32,
 }
 
 /// A bin judged by most of its pixels.
@@ -110,6 +113,23 @@ pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Unc
             }
         })
         .collect();
+    // Bins with a robot's pixels in them or beside them.
+    let robot = |bx: usize, by: usize| match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
+        None => false,
+        Some(b) => b[(by % SIDE) * SIDE + bx % SIDE].robot > 0,
+    };
+    let mut robot_near = vec![false; bw * bh];
+    for by in 0..bh {
+        for bx in 0..bw {
+            if robot(bx, by) {
+                for y in by.saturating_sub(1)..=(by + 1).min(bh - 1) {
+                    for x in bx.saturating_sub(1)..=(bx + 1).min(bw - 1) {
+                        robot_near[y * bw + x] = true;
+                    }
+                }
+            }
+        }
+    }
     let mut seen = vec![false; bw * bh];
     let mut stack = Vec::new();
     for start in 0..bw * bh {
@@ -121,6 +141,7 @@ pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Unc
         let (mut size, mut caster, mut mark) = (0usize, false, false);
         while let Some(i) = stack.pop() {
             size += 1;
+            mark |= robot_near[i];
             let (x, y) = ((i % bw) as i64, (i / bw) as i64);
             for dy in -1..=1i64 {
                 for dx in -1..=1i64 {
@@ -132,7 +153,7 @@ pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Unc
                     let j = ny as usize * bw + nx as usize;
                     match kinds[j] {
                         Kind::Caster => caster = true,
-                        Kind::Mark => mark = true,
+                        Kind::Mark if robot_near[j] => mark = true,
                         Kind::Dark if (dx == 0 || dy == 0) && !seen[j] => {
                             seen[j] = true;
                             stack.push(j);
@@ -167,18 +188,28 @@ mod tests {
         lit: 9,
         solid: 0,
         mark: 0,
+        robot: 0,
     };
     const DARKENED: Bin = Bin {
         dark: 7,
         lit: 2,
         solid: 0,
         mark: 0,
+        robot: 0,
     };
     const ROBOT: Bin = Bin {
         dark: 1,
         lit: 1,
         solid: 0,
         mark: 7,
+        robot: 3,
+    };
+    const GOAL: Bin = Bin {
+        dark: 1,
+        lit: 1,
+        solid: 0,
+        mark: 7,
+        robot: 0,
     };
 
     /// A floor of `w` × `h` cells, all lit and free, with the bins `dark` (floor bin
@@ -270,6 +301,15 @@ mod tests {
         let mut cells = floor(5, 4, &large);
         robot_at(&mut cells);
         assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(36));
+        // A goal lies flat: beside the band of 12 it casts nothing.
+        let mut cells = floor(5, 4, &small);
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
+        assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(12));
+        // A robot's bin two bins away, behind the band of pixels near it, still casts it.
+        let mut cells = floor(5, 4, &small);
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 2] = ROBOT; // bin (6, 7)
+        assert_eq!(uncast(&cells, (5, 4)), None);
     }
 
     #[test]

@@ -19,8 +19,9 @@ pub(super) fn paint(
     }
 }
 
-/// A floor painted through a homography: grey with a shadow band, optional dark grid lines,
-/// blue obstacles on whole cells, red discs (robots) and green discs (goals) at floor points.
+/// A floor painted through a homography: grey with the blocked cells' shadow, optional dark
+/// grid lines, blue obstacles on whole cells, red discs (robots) and green discs (goals) at
+/// floor points.
 struct Paint {
     cells: (u32, u32),
     blocked: Vec<(u32, u32)>,
@@ -56,11 +57,16 @@ impl Paint {
                 return Rgb([90, 100, 120]);
             }
             let near = |c: &Point| (u - c.0).powi(2) + (v - c.1).powi(2) < self.radius.powi(2);
-            let shade = if (u - 2.0 * v).rem_euclid(7.0) < 1.5 {
-                0.45
-            } else {
-                1.0
-            };
+            // The blocked cells' shadow: the sun toward +u and −v, low (a shadow 1.5 cells long).
+            let shaded = (1..=30).any(|t| {
+                let t = f64::from(t) * 0.05;
+                let (su, sv) = (u + t, v - t / 2.0);
+                su >= 0.0
+                    && sv >= 0.0
+                    && self.blocked.contains(&(su as u32, sv as u32))
+                    && !self.blocked.contains(&(u as u32, v as u32))
+            });
+            let shade = if shaded { 0.45 } else { 1.0 };
             let sh = |c: [f64; 3]| Rgb(c.map(|x| (x * shade) as u8));
             if self.robots.iter().any(near) {
                 return sh([200.0, 30.0, 25.0]);
