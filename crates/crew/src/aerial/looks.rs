@@ -22,6 +22,7 @@ use super::blobs;
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
 use super::pixels::window;
+use super::shadows;
 use image::RgbImage;
 
 /// The brightest a free cell's floor may be, relative to the lit floor's median.
@@ -49,6 +50,9 @@ pub struct Look {
     pub saturation: f64,
     /// The pixels of a colour that cannot be told, and all the pixels judged (not near a mark).
     pub unsure: (usize, usize),
+    /// The whole cell in [`shadows::SIDE`] × [`shadows::SIDE`] bins on the floor, row-major:
+    /// what its pixels show, for the check that every shadow has a caster ([`shadows`]).
+    pub bins: [shadows::Bin; shadows::BINS],
 }
 
 impl Look {
@@ -98,29 +102,55 @@ pub fn look(
         bright: None,
         saturation: 0.0,
         unsure: (0, 0),
+        bins: [shadows::Bin::default(); shadows::BINS],
     };
     let Some((x0, y0, x1, y1)) = floor_to_image.cell_box((cx, cy), width, height) else {
         return out;
     };
     // Floor pixels: (brightness, colour) after white balance.
     let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
+    let side = shadows::SIDE as f64;
     for y in y0..y1 {
         for x in x0..x1 {
-            if near_mark[y * width + x] {
-                continue;
-            }
             let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
                 continue;
             };
             let (du, dv) = (u - fx, v - fy);
+            if !(0.0..1.0).contains(&du) || !(0.0..1.0).contains(&dv) {
+                continue;
+            }
+            let class = classes[y * width + x];
+            let (bu, bv) = (
+                ((du * side) as usize).min(shadows::SIDE - 1),
+                ((dv * side) as usize).min(shadows::SIDE - 1),
+            );
+            let bin = &mut out.bins[bv * shadows::SIDE + bu];
+            if near_mark[y * width + x] || class == Class::Robot as u8 || class == Class::Goal as u8
+            {
+                bin.mark += 1;
+                bin.robot += u32::from(class == Class::Robot as u8);
+                continue;
+            }
+            let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
+            let on_line = du.min(1.0 - du).min(dv).min(1.0 - dv) < shadows::LINE;
+            if class == Class::Floor as u8 {
+                if on_line {
+                    // Painted lines and their blur: neither shadow nor lit floor.
+                } else if (rgb[0] + rgb[1] + rgb[2]) / 3.0 < shadows::DARK {
+                    bin.dark += 1;
+                } else {
+                    bin.lit += 1;
+                }
+            } else {
+                bin.solid += 1;
+            }
             if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 {
                 continue;
             }
             out.unsure.1 += 1;
-            match classes[y * width + x] {
+            match class {
                 c if c == Class::Unsure as u8 => out.unsure.0 += 1,
                 c if c == Class::Floor as u8 => {
-                    let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
                     seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
                 }
                 _ => {}
@@ -201,6 +231,7 @@ mod tests {
             bright: Some(bright),
             saturation,
             unsure: (0, 100),
+            bins: Default::default(),
         }
     }
 
@@ -219,6 +250,7 @@ mod tests {
             bright: None,
             saturation: 0.0,
             unsure: (70, 100),
+            bins: Default::default(),
         };
         assert!(unsure.odd().unwrap().contains("70 %"));
     }

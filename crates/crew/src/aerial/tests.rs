@@ -19,8 +19,9 @@ pub(super) fn paint(
     }
 }
 
-/// A floor painted through a homography: grey with a shadow band, optional dark grid lines,
-/// blue obstacles on whole cells, red discs (robots) and green discs (goals) at floor points.
+/// A floor painted through a homography: grey with the blocked cells' shadow, optional dark
+/// grid lines, blue obstacles on whole cells, red discs (robots) and green discs (goals) at
+/// floor points.
 struct Paint {
     cells: (u32, u32),
     blocked: Vec<(u32, u32)>,
@@ -56,11 +57,16 @@ impl Paint {
                 return Rgb([90, 100, 120]);
             }
             let near = |c: &Point| (u - c.0).powi(2) + (v - c.1).powi(2) < self.radius.powi(2);
-            let shade = if (u - 2.0 * v).rem_euclid(7.0) < 1.5 {
-                0.45
-            } else {
-                1.0
-            };
+            // The blocked cells' shadow: the sun toward +u and −v, low (a shadow 1.5 cells long).
+            let shaded = (1..=30).any(|t| {
+                let t = f64::from(t) * 0.05;
+                let (su, sv) = (u + t, v - t / 2.0);
+                su >= 0.0
+                    && sv >= 0.0
+                    && self.blocked.contains(&(su as u32, sv as u32))
+                    && !self.blocked.contains(&(u as u32, v as u32))
+            });
+            let shade = if shaded { 0.45 } else { 1.0 };
             let sh = |c: [f64; 3]| Rgb(c.map(|x| (x * shade) as u8));
             if self.robots.iter().any(near) {
                 return sh([200.0, 30.0, 25.0]);
@@ -274,6 +280,36 @@ fn refuses_what_it_cannot_read() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("cell (7, 4)") && e.contains("covered"), "{e}");
+}
+
+#[test]
+fn a_shadow_needs_a_caster() {
+    // A shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
+    // goal: a shelf of the floor's own colour casts it, and the view is refused.
+    let shade = |img: &mut RgbImage, x0: u32| {
+        for y in 37..47 {
+            for x in x0..65 {
+                let p = img.get_pixel(x, y).0;
+                img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
+            }
+        }
+    };
+    let mut img = scene().straight(12);
+    shade(&mut img, 55);
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("a shadow on free floor from cell (4, 3)") && e.contains("pixel ("),
+        "{e}"
+    );
+    // The same shadow running to the blocked cells (3, 1)–(3, 3): theirs; read as before.
+    let mut img = scene().straight(12);
+    shade(&mut img, 48);
+    let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    assert_eq!(r.grid.width() * r.grid.height(), 40);
+    assert_eq!((0..40).filter(|&i| !r.grid.is_free(Cell(i))).count(), 3);
 }
 
 #[test]

@@ -1,0 +1,331 @@
+//! Every shadow on the free floor must have a caster.
+//!
+//! A shelf of the floor's own colour and brightness (pale blue-grey on cool grey, dark brown on
+//! dark warm-grey) looks like floor in every cell it stands on, and [`super::looks`] cannot
+//! tell it from floor cell by cell. It still casts a shadow: the sun lights its top as it
+//! lights the floor, but not the floor behind it. A shadow on the floor is cast by something
+//! that stands: a shelf (a blocked cell, or an obstacle's colour) or a robot, and it touches
+//! what casts it (a shadow begins at its caster's foot; a top that leans over it in the image
+//! is the caster's too). So the free cells are cut into [`SIDE`] × [`SIDE`] bins on the floor,
+//! each judged by most of its pixels: floor darker than [`DARK`] times the lit floor (a
+//! shadow), lit floor, an obstacle's or an unsure colour (a caster), or a robot or goal and
+//! the pixels near it. A connected region of shadow bins that touches no caster (nor a blocked
+//! cell), and no robot either (a bin of a mark with a robot's pixels in it or beside it) unless
+//! it is small enough for a robot's shadow ([`ROBOT_SHADOW`]), has nothing that casts it in
+//! the image: something of the floor's colour stands there, and the view is refused, never
+//! read as free floor. A goal lies flat and casts nothing.
+//!
+//! Painted lines (at most a third of a bin along the border) and tile seams do not make a bin
+//! dark; a shelf's shadow (at least a fifth of a cell wide under a sun up to 60° high and a
+//! shelf 0.3 high) darkens whole bins. Cost: O(bins), after the pass over the free cells'
+//! pixels in [`super::looks`] that fills them.
+
+/// Bins along each side of a cell.
+pub const SIDE: usize = 4;
+/// Bins per cell.
+pub const BINS: usize = SIDE * SIDE;
+/// Floor darker than this (the mean of its channels after white balance, 1 for the lit floor)
+/// is in a shadow. A shadow lit by the sky alone is at most about 0.8 of the lit floor after
+/// the sRGB curve (under a weak, low sun); the floor's stains and uneven light seldom go below.
+pub const DARK: f64 = 0.8;
+/// Floor pixels nearer than this to a cell's border (in cells) are not judged: painted lines
+/// lie there (up to 0.09 cell wide, and blurred).
+pub const LINE: f64 = 0.1;
+/// The largest shadow (in bins: two cells) a robot or a goal's neighbourhood explains.
+pub const ROBOT_SHADOW: usize = 2 * BINS;
+/// The fewest bins of a shadow with no caster that are refused (half a cell; smaller: noise,
+/// a stain).
+pub const MIN_SHADOW: usize = BINS / 2;
+
+/// What the pixels of one bin show.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Bin {
+    /// Floor pixels darker than [`DARK`].
+    pub dark: u32,
+    /// Floor pixels at least [`DARK`].
+    pub lit: u32,
+    /// Pixels of an obstacle's colour or a colour that cannot be told.
+    pub solid: u32,
+    /// Pixels of a robot or a goal, or near one.
+    pub mark: u32,
+    /// Of those, the robot's own pixels.
+    pub robot: u32,
+}
+
+/// A bin judged by most of its pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// No pixel (outside the image).
+    Empty,
+    /// An obstacle (or a blocked cell): it may cast a shadow.
+    Caster,
+    /// A robot or a goal and its neighbourhood.
+    Mark,
+    /// Floor in a shadow.
+    Dark,
+    /// Lit floor.
+    Lit,
+}
+
+impl Bin {
+    /// What most of the bin shows.
+    pub fn kind(&self) -> Kind {
+        let all = self.dark + self.lit + self.solid + self.mark;
+        if all == 0 {
+            Kind::Empty
+        } else if 2 * self.solid >= all {
+            Kind::Caster
+        } else if 2 * self.mark >= all {
+            Kind::Mark
+        } else if self.dark > self.lit {
+            Kind::Dark
+        } else {
+            Kind::Lit
+        }
+    }
+}
+
+/// A shadow with no caster: its first bin (row-major) as a cell and a point on the floor (in
+/// cells), and its size in bins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Uncast {
+    /// The cell of its first bin.
+    pub cell: (u32, u32),
+    /// The centre of its first bin on the floor.
+    pub at: (f64, f64),
+    /// Its size in bins.
+    pub bins: usize,
+}
+
+/// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
+/// `i`'s bins (row-major), `None` for a blocked cell (a caster).
+pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Uncast> {
+    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
+    if cells.len() != gw as usize * gh as usize || bw == 0 || bh == 0 {
+        return None;
+    }
+    let kinds: Vec<Kind> = (0..bw * bh)
+        .map(|i| {
+            let (bx, by) = (i % bw, i / bw);
+            match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
+                None => Kind::Caster,
+                Some(b) => b[(by % SIDE) * SIDE + bx % SIDE].kind(),
+            }
+        })
+        .collect();
+    // Bins with a robot's pixels in them or beside them.
+    let robot = |bx: usize, by: usize| match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
+        None => false,
+        Some(b) => b[(by % SIDE) * SIDE + bx % SIDE].robot > 0,
+    };
+    let mut robot_near = vec![false; bw * bh];
+    for by in 0..bh {
+        for bx in 0..bw {
+            if robot(bx, by) {
+                for y in by.saturating_sub(1)..=(by + 1).min(bh - 1) {
+                    for x in bx.saturating_sub(1)..=(bx + 1).min(bw - 1) {
+                        robot_near[y * bw + x] = true;
+                    }
+                }
+            }
+        }
+    }
+    let mut seen = vec![false; bw * bh];
+    let mut stack = Vec::new();
+    for start in 0..bw * bh {
+        if seen[start] || kinds[start] != Kind::Dark {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let (mut size, mut caster, mut mark) = (0usize, false, false);
+        while let Some(i) = stack.pop() {
+            size += 1;
+            mark |= robot_near[i];
+            let (x, y) = ((i % bw) as i64, (i / bw) as i64);
+            for dy in -1..=1i64 {
+                for dx in -1..=1i64 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if (dx, dy) == (0, 0) || nx < 0 || ny < 0 || nx >= bw as i64 || ny >= bh as i64
+                    {
+                        continue;
+                    }
+                    let j = ny as usize * bw + nx as usize;
+                    match kinds[j] {
+                        Kind::Caster => caster = true,
+                        Kind::Mark if robot_near[j] => mark = true,
+                        Kind::Dark if (dx == 0 || dy == 0) && !seen[j] => {
+                            seen[j] = true;
+                            stack.push(j);
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        let cast = caster || (mark && size <= ROBOT_SHADOW);
+        if !cast && size >= MIN_SHADOW {
+            let (bx, by) = (start % bw, start / bw);
+            return Some(Uncast {
+                cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
+                at: (
+                    (bx as f64 + 0.5) / SIDE as f64,
+                    (by as f64 + 0.5) / SIDE as f64,
+                ),
+                bins: size,
+            });
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LIT: Bin = Bin {
+        dark: 0,
+        lit: 9,
+        solid: 0,
+        mark: 0,
+        robot: 0,
+    };
+    const DARKENED: Bin = Bin {
+        dark: 7,
+        lit: 2,
+        solid: 0,
+        mark: 0,
+        robot: 0,
+    };
+    const ROBOT: Bin = Bin {
+        dark: 1,
+        lit: 1,
+        solid: 0,
+        mark: 7,
+        robot: 3,
+    };
+    const GOAL: Bin = Bin {
+        dark: 1,
+        lit: 1,
+        solid: 0,
+        mark: 7,
+        robot: 0,
+    };
+
+    /// A floor of `w` × `h` cells, all lit and free, with the bins `dark` (floor bin
+    /// coordinates) in a shadow.
+    fn floor(w: u32, h: u32, dark: &[(usize, usize)]) -> Vec<Option<[Bin; BINS]>> {
+        let mut cells = vec![Some([LIT; BINS]); (w * h) as usize];
+        for &(bx, by) in dark {
+            let c = (by / SIDE) * w as usize + bx / SIDE;
+            cells[c].as_mut().unwrap()[(by % SIDE) * SIDE + bx % SIDE] = DARKENED;
+        }
+        cells
+    }
+
+    /// A band of shadow 3 bins wide, bins x 8..11 of rows 4..12 (cells 2 by 1 and 2).
+    fn band() -> Vec<(usize, usize)> {
+        (4..12).flat_map(|y| (8..11).map(move |x| (x, y))).collect()
+    }
+
+    #[test]
+    fn bins_are_judged_by_most_of_their_pixels() {
+        assert_eq!(Bin::default().kind(), Kind::Empty);
+        assert_eq!(LIT.kind(), Kind::Lit);
+        assert_eq!(DARKENED.kind(), Kind::Dark);
+        assert_eq!(ROBOT.kind(), Kind::Mark);
+        // A painted line along a third of a lit bin leaves it lit.
+        let lined = Bin {
+            dark: 3,
+            lit: 6,
+            ..Bin::default()
+        };
+        assert_eq!(lined.kind(), Kind::Lit);
+        let shelf = Bin {
+            solid: 5,
+            lit: 4,
+            ..Bin::default()
+        };
+        assert_eq!(shelf.kind(), Kind::Caster);
+    }
+
+    #[test]
+    fn a_shadow_with_nothing_to_cast_it_is_found() {
+        let cells = floor(5, 4, &band());
+        let u = uncast(&cells, (5, 4)).unwrap();
+        assert_eq!(u.cell, (2, 1));
+        assert_eq!(u.bins, 24);
+        assert!((u.at.0 - 2.125).abs() < 1e-9 && (u.at.1 - 1.125).abs() < 1e-9);
+        // Lit floor alone, or a speck of seven bins, has none.
+        assert_eq!(uncast(&floor(5, 4, &[]), (5, 4)), None);
+        let speck: Vec<(usize, usize)> = (3..10).map(|x| (x, 3)).collect();
+        assert_eq!(uncast(&floor(5, 4, &speck), (5, 4)), None);
+    }
+
+    #[test]
+    fn a_blocked_cell_or_an_obstacle_beside_it_casts_it() {
+        // Cell (1, 1) blocked: the band's bins x 8.. touch its bins x 4..7 (x 7 next to 8).
+        let mut cells = floor(5, 4, &band());
+        cells[5 + 1] = None;
+        assert_eq!(uncast(&cells, (5, 4)), None);
+        // Or an obstacle's pixels in a free cell, diagonally beside the band's last bin.
+        let mut cells = floor(5, 4, &band());
+        cells[3 * 5 + 2].as_mut().unwrap()[3] = Bin {
+            solid: 9,
+            ..Bin::default()
+        };
+        assert_eq!(uncast(&cells, (5, 4)), None);
+    }
+
+    #[test]
+    fn a_robot_casts_a_small_shadow_only() {
+        // A robot's bin beside a shadow of 12 bins casts it (alone it is refused); beside the band of 24 too (at
+        // most 32); beside a band of 36 it does not.
+        let robot_at = |cells: &mut Vec<Option<[Bin; BINS]>>| {
+            cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = ROBOT; // bin (7, 7)
+        };
+        let small: Vec<(usize, usize)> =
+            (4..8).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
+        assert_eq!(
+            uncast(&floor(5, 4, &small), (5, 4)).map(|u| u.bins),
+            Some(12)
+        );
+        let mut cells = floor(5, 4, &small);
+        robot_at(&mut cells);
+        assert_eq!(uncast(&cells, (5, 4)), None);
+        let mut cells = floor(5, 4, &band());
+        robot_at(&mut cells);
+        assert_eq!(uncast(&cells, (5, 4)), None);
+        let large: Vec<(usize, usize)> =
+            (4..16).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
+        let mut cells = floor(5, 4, &large);
+        robot_at(&mut cells);
+        assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(36));
+        // A goal lies flat: beside the band of 12 it casts nothing.
+        let mut cells = floor(5, 4, &small);
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
+        assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(12));
+        // A robot's bin two bins away, behind the band of pixels near it, still casts it.
+        let mut cells = floor(5, 4, &small);
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
+        cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 2] = ROBOT; // bin (6, 7)
+        assert_eq!(uncast(&cells, (5, 4)), None);
+    }
+
+    #[test]
+    fn a_shadow_is_one_region_along_rows_and_columns_only() {
+        // Two squares of 6 bins that meet only at a corner are two shadows, each too small.
+        let square = |o: usize| (o..o + 3).flat_map(move |y| (o..o + 2).map(move |x| (x, y)));
+        let mut dark: Vec<(usize, usize)> = square(0).collect();
+        dark.extend(square(2).map(|(x, y)| (x, y + 1)));
+        assert_eq!(uncast(&floor(3, 3, &dark), (3, 3)), None);
+        // Joined along a side they are one of 12.
+        let mut dark: Vec<(usize, usize)> = square(0).collect();
+        dark.extend(square(2).map(|(x, y)| (x, y - 2)));
+        let u = uncast(&floor(3, 3, &dark), (3, 3)).unwrap();
+        assert_eq!((u.cell, u.bins), ((0, 0), 12));
+        // A mismatched list of cells is no finding, not a panic.
+        assert_eq!(uncast(&floor(3, 3, &dark), (4, 3)), None);
+        assert_eq!(uncast(&[], (0, 0)), None);
+    }
+}
