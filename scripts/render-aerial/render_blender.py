@@ -46,6 +46,20 @@ FAMILIES = {
                        (0.55, 0.60, 0.70), (0.07, 0.07, 0.08), (0.85, 0.85, 0.83)),
         goods_colour=(0.50, 0.36, 0.18),  # cardboard
         shelf_height=(0.3, 1.6), shelf_inset=(0.02, 0.07), camera_ratio=(1.6, 6.0), tilt_max=35.0),
+    # H: the second Blender family (rendered while the fifth round's reader was being written,
+    # held out from it, scored once with it): other floors and shelf colours, taller shelves
+    # inset further, nearer and farther cameras.
+    "H": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Mid blue-grey, light grey, warm tan, dark green-grey, sand.
+        floors=((0.35, 0.38, 0.42), (0.80, 0.80, 0.79), (0.62, 0.55, 0.45), (0.30, 0.34, 0.30),
+                (0.76, 0.70, 0.58)),
+        # Safety orange, light grey, dark navy, signal yellow, walnut brown, grey-green.
+        shelf_colours=((0.90, 0.40, 0.05), (0.70, 0.70, 0.70), (0.05, 0.08, 0.30), (0.85, 0.80, 0.10),
+                       (0.35, 0.22, 0.12), (0.40, 0.45, 0.38)),
+        goods_colour=(0.62, 0.48, 0.30),  # lighter cardboard
+        shelf_height=(0.4, 2.0), shelf_inset=(0.03, 0.10), camera_ratio=(1.4, 5.0), tilt_max=30.0),
 }
 
 
