@@ -12,7 +12,9 @@
 //!     carries to the other UAVs and a 2-UAV brick that is the last of one UAV only lets its
 //!     partner go on after its rest); with 2-UAV bricks, unless one of them is some
 //!     UAV's last brick, the last of them leaves its two UAVs free at once and one waits at
-//!     least the shortest placing phase for the other's next brick (`pair_wait`);
+//!     least the shortest placing phase for the other's next brick (`pair_wait`, and per chain
+//!     of 2-UAV bricks `chain_waits`), and two UAVs coming from two 1-UAV bricks to one 2-UAV
+//!     brick arrive apart (`merge_waits`);
 //!   - under the zone rule, the sum of all placing phases (they never overlap); under the
 //!     distance rule, the same sum over a clique of mutually conflicting bricks (greedily grown
 //!     from every brick), which never overlap either.
