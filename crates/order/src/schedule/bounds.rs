@@ -426,7 +426,7 @@ impl ZoneEnds {
     /// all have a brick), plus, in a schedule with 2-UAV bricks (`shortest`: the shortest
     /// placing phase), the waits after 2-UAV bricks whose UAVs part: one ([`pair_wait`]) when
     /// no 2-UAV brick is a last brick, and where the bricks under and on each first and last
-    /// brick count, one per [`chain_waits`].
+    /// brick count, one per [`chain_waits`], and the merges of [`merge_waits`].
     fn loss(&self, k: usize, last: Last, shortest: Option<f64>) -> f64 {
         let mut first = f64::INFINITY;
         let mut end = f64::INFINITY;
