@@ -3,7 +3,10 @@
 //!
 //! Given where every robot stands now, PIBT chooses where each stands one step later. Robots
 //! decide in priority order. A robot tries its cells (its own and its neighbours) nearest to its
-//! goal first, ties broken by preferring a cell nobody stands on now, then at random. Taking a
+//! goal first, ties broken by preferring a cell that hinders fewer others (fewer undecided
+//! robots next to it would step onto it to get nearer their own goals; after the tie-breaking
+//! study of Okumura and Nagai, SoCS 2025, in our own terms), then a cell nobody stands on now,
+//! then at random. Taking a
 //! cell another undecided robot stands on passes the taker's priority to that robot, which must
 //! then move away (recursively); when it cannot, the taker backtracks to its next cell. A robot
 //! that finds nothing stays.
@@ -45,6 +48,9 @@ pub struct Pibt<'a> {
     rng: ChaCha8Rng,
     /// Whether the corridor rules are on (see [`Pibt::set_swap`]).
     swap: bool,
+    /// Whether ties in distance go to the cell that hinders fewer others (see
+    /// [`Pibt::set_hindrance`]).
+    hindrance: bool,
     /// Per robot, the next cell of its guide path from each cell on it (empty: none).
     guide: Vec<rustc_hash::FxHashMap<u32, u32>>,
 }
@@ -59,6 +65,7 @@ impl<'a> Pibt<'a> {
             occupied_next: vec![NIL; graph.cells()],
             rng: ChaCha8Rng::seed_from_u64(seed),
             swap: true,
+            hindrance: true,
             guide: Vec::new(),
         }
     }
@@ -67,6 +74,13 @@ impl<'a> Pibt<'a> {
     /// which leaves plain PIBT.
     pub fn set_swap(&mut self, on: bool) {
         self.swap = on;
+    }
+
+    /// Breaks ties between cells equally near the goal in favour of the cell fewer undecided
+    /// neighbouring robots would step onto to get nearer their own goals (on), or only by
+    /// occupancy and at random (off).
+    pub fn set_hindrance(&mut self, on: bool) {
+        self.hindrance = on;
     }
 
     /// Gives each robot a guide path ([`crate::scatter`]): a robot standing on its guide path
@@ -151,7 +165,17 @@ impl<'a> Pibt<'a> {
         let mut len = 0;
         for &u in std::iter::once(&v).chain(self.graph.neighbours(v)) {
             let busy = u32::from(self.occupied_now[u as usize] != NIL && u != v);
-            cand[len] = (dist[u as usize], busy, self.rng.gen::<u32>(), u);
+            let hinder = if self.hindrance && u != v {
+                self.hindrance_at(i, u, to)
+            } else {
+                0
+            };
+            cand[len] = (
+                dist[u as usize],
+                2 * hinder + busy,
+                self.rng.gen::<u32>(),
+                u,
+            );
             if guided == Some(u) {
                 cand[len].0 = 0;
             }
@@ -213,6 +237,20 @@ impl<'a> Pibt<'a> {
         to[i as usize] = v;
         self.occupied_next[v as usize] = i;
         false
+    }
+
+    /// How many undecided robots other than `i`, standing next to `u`, would get nearer their
+    /// goals by stepping onto `u`: the robots `i` hinders by taking `u`.
+    fn hindrance_at(&self, i: u32, u: u32, to: &[u32]) -> u32 {
+        let mut count = 0;
+        for &w in self.graph.neighbours(u) {
+            let j = self.occupied_now[w as usize];
+            if j != NIL && j != i && to[j as usize] == NIL {
+                let dj = self.table(j);
+                count += u32::from(dj[u as usize] < dj[w as usize]);
+            }
+        }
+        count
     }
 
     /// Robot `i`'s step distances to its goal.
@@ -327,6 +365,35 @@ mod tests {
             std::mem::swap(&mut q, &mut next);
         }
         assert_eq!(q[0], c(3, 0));
+    }
+
+    #[test]
+    fn ties_go_to_the_cell_that_hinders_no_one() {
+        // Robot 0 on (0,0) has two cells one step nearer its goal (1,1): (1,0) and (0,1). Robot
+        // 1 on (2,0), still undecided, heads for (0,0) through (1,0). With the hindrance
+        // tie-break robot 0 always takes (0,1), whatever the seed; without it, the coin decides.
+        let g = Grid::new(4, 3, vec![false; 12]);
+        let m = MoveGraph::new(&g, Connectivity::Four);
+        let c = |x, y| g.cell(x, y).unwrap();
+        let goals = [c(1, 1), c(0, 0)];
+        let dist = goal_distances(&g, Connectivity::Four, &goals);
+        let from = [c(0, 0).0, c(2, 0).0];
+        let mut took = [0usize; 2];
+        for hinder in [true, false] {
+            for seed in 0..32 {
+                let mut p = Pibt::new(&m, &dist, seed);
+                p.set_hindrance(hinder);
+                let mut to = vec![0; 2];
+                assert!(p.step(&from, &mut to, &[0, 1], &[]));
+                assert!(to[0] == c(0, 1).0 || to[0] == c(1, 0).0);
+                if hinder {
+                    assert_eq!(to[0], c(0, 1).0, "seed {seed}");
+                } else {
+                    took[usize::from(to[0] == c(1, 0).0)] += 1;
+                }
+            }
+        }
+        assert!(took[1] > 0, "without the tie-break some seed takes (1,0)");
     }
 
     /// Steps PIBT with LaCAM's dynamic priorities (a robot away from its goal gains one per
