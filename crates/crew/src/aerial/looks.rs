@@ -17,6 +17,11 @@
 //! - mostly (over [`UNSURE`]) of a colour that cannot be told.
 //!
 //! A darker cell (a shadow) is not judged by its colour: a shadow's tint depends on the light.
+//!
+//! A pale shelf's top of nearly the floor's colour may pass these limits cell by cell (uneven
+//! light makes floor brighter than such a top), but it differs from the floor beside it over
+//! its whole extent: [`unlike_ring`] refuses three or more lit free cells side by side each
+//! brighter ([`RING`]) or more saturated ([`RING_TINT`]) than the lit free cells around them.
 
 use super::blobs;
 use super::colour::{Class, Classifier};

@@ -13,7 +13,8 @@
 //!    a robot, a goal or an obstacle is part of it ([`enclosed`]); a blob that fills no cell
 //!    and has a mark's colour before white balance is that mark ([`tinted`]); every free
 //!    cell must look like the floor (no brighter than its texture and light allow, not tinted
-//!    where lit: [`looks`]), and every shadow on the free floor must touch what casts it
+//!    where lit, and no three side by side brighter or more tinted than the lit floor around
+//!    them: [`looks`]), and every shadow on the free floor must touch what casts it
 //!    ([`shadows`]: a shelf of the floor's own colour shows by its shadow);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
