@@ -17,6 +17,11 @@
 //! - mostly (over [`UNSURE`]) of a colour that cannot be told.
 //!
 //! A darker cell (a shadow) is not judged by its colour: a shadow's tint depends on the light.
+//!
+//! A pale shelf's top of nearly the floor's colour may pass these limits cell by cell (uneven
+//! light makes floor brighter than such a top), but it differs from the floor beside it over
+//! its whole extent: [`unlike_ring`] refuses three or more lit free cells side by side each
+//! brighter ([`RING`]) or more saturated ([`RING_TINT`]) than the lit free cells around them.
 
 use super::blobs;
 use super::colour::{Class, Classifier};
@@ -38,6 +43,176 @@ pub const UNSURE: f64 = 0.6;
 pub const BORDER: f64 = 0.15;
 /// The fewest pixels a cell's middle must show to be judged.
 pub const MIN_PIXELS: usize = 12;
+/// The brightest a region of [`RING_CELLS`] or more lit free cells side by side may be, each
+/// relative to the lit free cells around it ([`ring_ratios`]): the floor's texture and light
+/// change little from one cell to the next, while the top of a pale shelf of nearly the
+/// floor's colour, nearer the light and the camera, is brighter than the floor beside it over
+/// its whole extent. Chosen on families A–G: such regions of free floor reach 1.12, the pale
+/// blue-grey shelf of G0024 1.155.
+pub const RING: f64 = 1.14;
+/// The most saturated (after white balance) a region of [`RING_CELLS`] or more lit free cells
+/// side by side may be, each above the lit free cells around it ([`ring_tints`]). Chosen on
+/// families A–G: such regions of free floor reach 0.06, the pale blue-grey shelves of G0024
+/// and G0033 (on blue-grey and light grey floors) 0.075 and 0.09.
+pub const RING_TINT: f64 = 0.075;
+/// The fewest lit free neighbours (of the eight) a cell needs to be compared with them.
+pub const RING_MIN: usize = 3;
+/// The fewest cells side by side, each brighter than [`RING`] times its ring, that are refused.
+pub const RING_CELLS: usize = 3;
+
+/// A region of lit free cells side by side, each brighter ([`RING`]) or more tinted
+/// ([`RING_TINT`]) than the lit free floor around it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// Its cells' indices, row-major, in increasing order.
+    pub cells: Vec<usize>,
+    /// The smallest of its cells' values (brightness ratio or saturation above the ring).
+    pub least: f64,
+}
+
+/// Each lit free cell's brightness ([`LIT`] or brighter) relative to its ring: the lower third
+/// of its lit free neighbours' brightness (at least [`RING_MIN`] of the eight; a shelf cell's
+/// other shelf cells must not set it) or the lit floor's (1), whichever is brighter (beside
+/// shadows and dim corners a lit cell of ordinary floor is brighter than its neighbours);
+/// `None` for the others. `bright` holds each cell's median brightness (`None` for a blocked
+/// cell or one with too few floor pixels), row-major over a `gw` × `gh` grid.
+pub fn ring_ratios(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<Option<f64>> {
+    let (gw, gh) = (gw as usize, gh as usize);
+    let lit = |i: usize| bright.get(i).copied().flatten().filter(|&b| b >= LIT);
+    let mut out = vec![None; gw * gh];
+    let mut ring = Vec::with_capacity(8);
+    for y in 0..gh {
+        for x in 0..gw {
+            let Some(b) = lit(y * gw + x) else { continue };
+            ring.clear();
+            for ny in y.saturating_sub(1)..(y + 2).min(gh) {
+                for nx in x.saturating_sub(1)..(x + 2).min(gw) {
+                    if (nx, ny) != (x, y) {
+                        if let Some(n) = lit(ny * gw + nx) {
+                            ring.push(n);
+                        }
+                    }
+                }
+            }
+            if ring.len() < RING_MIN {
+                continue;
+            }
+            ring.sort_by(f64::total_cmp);
+            let reference = ring[(ring.len() - 1) / 3].max(1.0);
+            out[y * gw + x] = Some(b / reference);
+        }
+    }
+    out
+}
+
+/// The largest region (ties: the first in row-major order) of at least [`RING_CELLS`] cells
+/// side by side (sharing edges) each of a value over `limit` (`values` from [`ring_ratios`]
+/// or [`ring_tints`]): the top of a pale shelf of nearly the floor's colour differs from the
+/// floor over its whole extent, while the floor's texture, noise and the glow of a mark make
+/// single cells or pairs brighter.
+pub fn odd_region(values: &[Option<f64>], (gw, gh): (u32, u32), limit: f64) -> Option<Region> {
+    let (gw, gh) = (gw as usize, gh as usize);
+    let over = |i: usize| values.get(i).copied().flatten().filter(|&r| r > limit);
+    let mut seen = vec![false; gw * gh];
+    let mut best: Option<Region> = None;
+    let mut stack = Vec::new();
+    for start in 0..gw * gh {
+        if seen[start] || over(start).is_none() {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut cells = Vec::new();
+        let mut least = f64::INFINITY;
+        while let Some(i) = stack.pop() {
+            cells.push(i);
+            least = least.min(over(i).unwrap_or(least));
+            let (x, y) = (i % gw, i / gw);
+            for j in [
+                (x > 0).then(|| i - 1),
+                (x + 1 < gw).then_some(i + 1),
+                (y > 0).then(|| i - gw),
+                (y + 1 < gh).then_some(i + gw),
+            ]
+            .into_iter()
+            .flatten()
+            {
+                if !seen[j] && over(j).is_some() {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        if cells.len() >= RING_CELLS && best.as_ref().is_none_or(|b| cells.len() > b.cells.len()) {
+            cells.sort_unstable();
+            best = Some(Region { cells, least });
+        }
+    }
+    best
+}
+
+/// Each lit free cell's saturation after white balance ([`LIT`] or brighter) above its ring's:
+/// the lower third of its lit free neighbours' saturation (at least [`RING_MIN`] of the
+/// eight); `None` for the others. `bright` as for [`ring_ratios`], `saturation` each cell's.
+pub fn ring_tints(
+    bright: &[Option<f64>],
+    saturation: &[f64],
+    (gw, gh): (u32, u32),
+) -> Vec<Option<f64>> {
+    let (gw, gh) = (gw as usize, gh as usize);
+    let lit = |i: usize| {
+        bright
+            .get(i)
+            .copied()
+            .flatten()
+            .filter(|&b| b >= LIT)
+            .and_then(|_| saturation.get(i).copied())
+    };
+    let mut out = vec![None; gw * gh];
+    let mut ring = Vec::with_capacity(8);
+    for y in 0..gh {
+        for x in 0..gw {
+            let Some(s) = lit(y * gw + x) else { continue };
+            ring.clear();
+            for ny in y.saturating_sub(1)..(y + 2).min(gh) {
+                for nx in x.saturating_sub(1)..(x + 2).min(gw) {
+                    if (nx, ny) != (x, y) {
+                        if let Some(n) = lit(ny * gw + nx) {
+                            ring.push(n);
+                        }
+                    }
+                }
+            }
+            if ring.len() < RING_MIN {
+                continue;
+            }
+            ring.sort_by(f64::total_cmp);
+            out[y * gw + x] = Some(s - ring[(ring.len() - 1) / 3]);
+        }
+    }
+    out
+}
+
+/// A region of free cells that do not look like the floor around them: brighter than it
+/// ([`RING`], first) or more tinted ([`RING_TINT`]); `true` with it for brighter. `bright`
+/// and `saturation` hold each cell's [`Look`] (`None` for a blocked cell or one with too few
+/// floor pixels), row-major over a `gw` × `gh` grid.
+pub fn unlike_ring(
+    bright: &[Option<f64>],
+    saturation: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<(bool, Region)> {
+    odd_region(&ring_ratios(bright, (gw, gh)), (gw, gh), RING)
+        .map(|r| (true, r))
+        .or_else(|| {
+            odd_region(
+                &ring_tints(bright, saturation, (gw, gh)),
+                (gw, gh),
+                RING_TINT,
+            )
+            .map(|r| (false, r))
+        })
+}
 
 /// How a free cell's middle looks after white balance.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -253,6 +428,77 @@ mod tests {
             bins: Default::default(),
         };
         assert!(unsure.odd().unwrap().contains("70 %"));
+    }
+
+    #[test]
+    fn cells_brighter_than_the_floor_around_them_are_found() {
+        // 5 x 4 cells: the lit floor brightening across the grid (uneven light) passes.
+        let (gw, gh) = (5u32, 4u32);
+        let grey = [0.02; 20];
+        let gradient: Vec<Option<f64>> =
+            (0..20).map(|i| Some(1.0 + 0.03 * (i % 5) as f64)).collect();
+        assert_eq!(unlike_ring(&gradient, &grey, (gw, gh)), None);
+        // A pale top over a 3 x 2 block, 1.2 times the floor, is found whole.
+        let mut shelf = vec![Some(1.0); 20];
+        for i in [6, 7, 8, 11, 12, 13] {
+            shelf[i] = Some(1.2);
+        }
+        shelf[7] = Some(1.25);
+        let (brighter, r) = unlike_ring(&shelf, &grey, (gw, gh)).unwrap();
+        assert!(brighter);
+        assert_eq!(r.cells, vec![6, 7, 8, 11, 12, 13]);
+        assert!((r.least - 1.2).abs() < 1e-9);
+        // Two bright cells side by side (noise, a stain, a mark's glow) are not enough.
+        let mut two = vec![Some(1.0); 20];
+        two[6] = Some(1.3);
+        two[7] = Some(1.3);
+        assert_eq!(unlike_ring(&two, &grey, (gw, gh)), None);
+        // Three on a diagonal are not side by side.
+        two[7] = Some(1.0);
+        two[12] = Some(1.3);
+        two[18] = Some(1.3);
+        assert_eq!(unlike_ring(&two, &grey, (gw, gh)), None);
+        // Shadows and blocked cells around them are not their ring.
+        let mut lone = vec![Some(0.5); 20];
+        for i in [6, 7, 8] {
+            lone[i] = Some(1.2);
+        }
+        lone[0] = None;
+        assert_eq!(unlike_ring(&lone, &grey, (gw, gh)), None);
+        // Lit floor beside a penumbra (0.86) is compared with the lit floor, not the penumbra.
+        let mut dim = vec![Some(0.86); 20];
+        for i in [6, 7, 8] {
+            dim[i] = Some(1.0);
+        }
+        assert_eq!(unlike_ring(&dim, &grey, (gw, gh)), None);
+        // No panic on an empty or a short list.
+        assert_eq!(unlike_ring(&[], &[], (gw, gh)), None);
+        assert_eq!(unlike_ring(&[Some(2.0); 3], &[0.5; 2], (gw, gh)), None);
+    }
+
+    #[test]
+    fn cells_more_tinted_than_the_floor_around_them_are_found() {
+        let (gw, gh) = (5u32, 4u32);
+        let lit = vec![Some(1.05); 20];
+        // A floor tinted all over (a coloured floor after white balance on its median) passes.
+        assert_eq!(unlike_ring(&lit, &[0.12; 20], (gw, gh)), None);
+        // A bluish top over three cells, 0.1 above the floor's saturation, is found.
+        let mut sat = vec![0.02; 20];
+        for i in [1, 6, 11] {
+            sat[i] = 0.12;
+        }
+        let (brighter, r) = unlike_ring(&lit, &sat, (gw, gh)).unwrap();
+        assert!(!brighter);
+        assert_eq!(r.cells, vec![1, 6, 11]);
+        // Not in a shadow (a shadow's tint depends on the light).
+        let mut shade = lit.clone();
+        for i in [1, 6, 11] {
+            shade[i] = Some(0.6);
+        }
+        assert_eq!(unlike_ring(&shade, &sat, (gw, gh)), None);
+        // Not two cells alone.
+        sat[11] = 0.02;
+        assert_eq!(unlike_ring(&lit, &sat, (gw, gh)), None);
     }
 
     #[test]

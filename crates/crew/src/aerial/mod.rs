@@ -13,7 +13,8 @@
 //!    a robot, a goal or an obstacle is part of it ([`enclosed`]); a blob that fills no cell
 //!    and has a mark's colour before white balance is that mark ([`tinted`]); every free
 //!    cell must look like the floor (no brighter than its texture and light allow, not tinted
-//!    where lit: [`looks`]), and every shadow on the free floor must touch what casts it
+//!    where lit, and no three side by side brighter or more tinted than the lit floor around
+//!    them: [`looks`]), and every shadow on the free floor must touch what casts it
 //!    ([`shadows`]: a shelf of the floor's own colour shows by its shadow);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
@@ -664,6 +665,45 @@ pub fn read_aerial_image(
             )
         })
     });
+    // Lit free cells side by side brighter or more tinted than the lit free floor around them
+    // (see `looks::unlike_ring`): the top of a pale shelf of nearly the floor's colour.
+    let unlike = {
+        let bright: Vec<Option<f64>> = looks
+            .iter()
+            .map(|l| l.as_ref().and_then(|l| l.bright))
+            .collect();
+        let saturation: Vec<f64> = looks
+            .iter()
+            .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
+            .collect();
+        looks::unlike_ring(&bright, &saturation, (gw, gh)).map(|(brighter, r)| {
+            let first = r.cells.first().copied().unwrap_or(0);
+            let (x, y) = ((first % gw as usize) as u32, (first / gw as usize) as u32);
+            let why = if brighter {
+                format!(
+                    "each at least {:.2} times as bright as the lit free floor around it (floor changes at most {:.2} times from cell to cell over {} cells side by side)",
+                    r.least,
+                    looks::RING,
+                    looks::RING_CELLS
+                )
+            } else {
+                format!(
+                    "each at least {:.3} more saturated after white balance than the lit free floor around it (floor at most {:.3} over {} cells side by side)",
+                    r.least,
+                    looks::RING_TINT,
+                    looks::RING_CELLS
+                )
+            };
+            at_pixel(
+                source,
+                cell_centre_px(first),
+                format!(
+                    "{} cells side by side from cell ({x}, {y}) would be free but do not look like the floor: {why}: the top of a shelf of nearly the floor's colour may stand there",
+                    r.cells.len()
+                ),
+            )
+        })
+    };
     // Every shadow on the free floor must have a caster (see `shadows`): a shelf of the
     // floor's own colour and brightness shows only by its shadow.
     let uncast = {
@@ -767,7 +807,7 @@ pub fn read_aerial_image(
             ));
         }
     }
-    if let Some(e) = not_floor.or(uncast) {
+    if let Some(e) = not_floor.or(uncast).or(unlike) {
         return Err(e);
     }
     Ok(AerialReading {
