@@ -427,10 +427,11 @@ mod tests {
 
     #[test]
     fn an_edge_cell_behind_a_top_that_may_lean_over_it_is_in_doubt() {
-        let doubt = |over: f64, nadir: Point| {
+        let doubt_at = |over: f64, nadir: Point, cell: (u32, u32)| {
             let (classes, f2i, i2f, blocked) = edge_floor(over);
-            edge_doubt(&classes, 40, (&f2i, &i2f), (4, 4), &blocked, nadir, (1, 3))
+            edge_doubt(&classes, 40, (&f2i, &i2f), (4, 4), &blocked, nadir, cell)
         };
+        let doubt = |over: f64, nadir: Point| doubt_at(over, nadir, (1, 3));
         // No overhang beside the obstacle: k at most 1 + 0.1 / 1.5; from a nadir 2.5 cells
         // from the edge cell its top leans 0.17 cell, from one 23 cells away 1.5 cells.
         assert!(!doubt(2.0, (0.5, 0.5)));
@@ -441,25 +442,8 @@ mod tests {
         // The nadir beyond the edge: tops lean the other way.
         assert!(!doubt(2.3, (0.5, 9.0)));
         // Not on the edge, or nothing blocked behind it.
-        let (classes, f2i, i2f, blocked) = edge_floor(2.0);
-        assert!(!edge_doubt(
-            &classes,
-            40,
-            (&f2i, &i2f),
-            (4, 4),
-            &blocked,
-            (0.5, -20.0),
-            (1, 2)
-        ));
-        assert!(!edge_doubt(
-            &classes,
-            40,
-            (&f2i, &i2f),
-            (4, 4),
-            &blocked,
-            (0.5, -20.0),
-            (3, 3)
-        ));
+        assert!(!doubt_at(2.0, (0.5, -20.0), (1, 2)));
+        assert!(!doubt_at(2.0, (0.5, -20.0), (3, 3)));
     }
 
     /// Bins of a cell whose part with fu (along u) in `covered_u` shows an obstacle.

@@ -77,18 +77,30 @@ pub struct Region {
 /// `None` for the others. `bright` holds each cell's median brightness (`None` for a blocked
 /// cell or one with too few floor pixels), row-major over a `gw` × `gh` grid.
 pub fn ring_ratios(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<Option<f64>> {
+    let lit: Vec<Option<f64>> = bright.iter().map(|b| b.filter(|&b| b >= LIT)).collect();
+    against_ring(&lit, (gw, gh), |b, ring| b / ring.max(1.0))
+}
+
+/// Each cell's `value` (`None`: not compared, not a neighbour) set against the lower third of
+/// its neighbours' values (at least [`RING_MIN`] of the eight) by `compare`; `None` for the
+/// cells without a value or with too few neighbours that have one.
+fn against_ring(
+    values: &[Option<f64>],
+    (gw, gh): (u32, u32),
+    compare: impl Fn(f64, f64) -> f64,
+) -> Vec<Option<f64>> {
     let (gw, gh) = (gw as usize, gh as usize);
-    let lit = |i: usize| bright.get(i).copied().flatten().filter(|&b| b >= LIT);
+    let value = |i: usize| values.get(i).copied().flatten();
     let mut out = vec![None; gw * gh];
     let mut ring = Vec::with_capacity(8);
     for y in 0..gh {
         for x in 0..gw {
-            let Some(b) = lit(y * gw + x) else { continue };
+            let Some(v) = value(y * gw + x) else { continue };
             ring.clear();
             for ny in y.saturating_sub(1)..(y + 2).min(gh) {
                 for nx in x.saturating_sub(1)..(x + 2).min(gw) {
                     if (nx, ny) != (x, y) {
-                        if let Some(n) = lit(ny * gw + nx) {
+                        if let Some(n) = value(ny * gw + nx) {
                             ring.push(n);
                         }
                     }
@@ -98,8 +110,7 @@ pub fn ring_ratios(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<Option<f
                 continue;
             }
             ring.sort_by(f64::total_cmp);
-            let reference = ring[(ring.len() - 1) / 3].max(1.0);
-            out[y * gw + x] = Some(b / reference);
+            out[y * gw + x] = Some(compare(v, ring[(ring.len() - 1) / 3]));
         }
     }
     out
@@ -159,38 +170,15 @@ pub fn ring_tints(
     saturation: &[f64],
     (gw, gh): (u32, u32),
 ) -> Vec<Option<f64>> {
-    let (gw, gh) = (gw as usize, gh as usize);
-    let lit = |i: usize| {
-        bright
-            .get(i)
-            .copied()
-            .flatten()
-            .filter(|&b| b >= LIT)
-            .and_then(|_| saturation.get(i).copied())
-    };
-    let mut out = vec![None; gw * gh];
-    let mut ring = Vec::with_capacity(8);
-    for y in 0..gh {
-        for x in 0..gw {
-            let Some(s) = lit(y * gw + x) else { continue };
-            ring.clear();
-            for ny in y.saturating_sub(1)..(y + 2).min(gh) {
-                for nx in x.saturating_sub(1)..(x + 2).min(gw) {
-                    if (nx, ny) != (x, y) {
-                        if let Some(n) = lit(ny * gw + nx) {
-                            ring.push(n);
-                        }
-                    }
-                }
-            }
-            if ring.len() < RING_MIN {
-                continue;
-            }
-            ring.sort_by(f64::total_cmp);
-            out[y * gw + x] = Some(s - ring[(ring.len() - 1) / 3]);
-        }
-    }
-    out
+    let lit: Vec<Option<f64>> = bright
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            b.filter(|&b| b >= LIT)
+                .and_then(|_| saturation.get(i).copied())
+        })
+        .collect();
+    against_ring(&lit, (gw, gh), |s, ring| s - ring)
 }
 
 /// A region of free cells that do not look like the floor around them: brighter than it
