@@ -3,27 +3,39 @@
 # the same machine load) on a representative subset of the MovingAI benchmark, at time limits
 # of 1, 10 and 30 s, and writes one tab-separated line per run and solver.
 #
-# usage: scripts/mapf-vs-lacam3.sh LACAM3_BINARY MASON_BINARY DATA_DIR OUT_PREFIX
+# usage: scripts/mapf-vs-lacam3.sh LACAM3_BINARY MASON_BINARY DATA_DIR OUT_PREFIX [--wide]
 #   DATA_DIR holds maps/NAME.map and scen/NAME-random-1.scen (MovingAI layout).
+#   --wide: instead, the other 24 maps of the MovingAI benchmark (every map family) at 1 and
+#   10 s. A map whose random-1 scenario is not in DATA_DIR gets one from
+#   `mason generate scen --map MAP --agents MAX --seed 1` (the same pairs on every run; both
+#   solvers read the first N pairs of that one file).
 #   Writes OUT_PREFIX-lacam3.tsv and OUT_PREFIX-mason.tsv with the columns
 #   map agents limit_s seed solved soc soc_lb makespan first_ms
 # lacam3 (Kei18/lacam3) is built outside this repository; its `soc` is the same measure as
 # Mason's sum of costs (steps until each agent last arrives at its goal).
 set -euo pipefail
-L=$1; M=$2; D=$3; OUT=$4
+L=$1; M=$2; D=$3; OUT=$4; MODE=${5:-}
 header=$'map\tagents\tlimit_s\tseed\tsolved\tsoc\tsoc_lb\tmakespan\tfirst_ms'
 echo "$header" > "$OUT-lacam3.tsv"
 echo "$header" > "$OUT-mason.tsv"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-point() { # map agents limit seed
-  local map=$1 n=$2 t=$3 s=$4
+scen_of() { # map max_agents
+  local f="$D/scen/$1-random-1.scen"
+  if [ ! -f "$f" ]; then
+    f="$tmp/$1-mason-1.scen"
+    [ -f "$f" ] || "$M" generate scen --map "$D/maps/$1.map" --agents "$2" --seed 1 --out "$f"
+  fi
+  echo "$f"
+}
+point() { # map agents limit seed [scenario]
+  local map=$1 n=$2 t=$3 s=$4 scen=${5:-$D/scen/$1-random-1.scen}
   # A solver that dies writes nothing: never read the previous point's output instead.
   rm -f "$tmp/l.txt" "$tmp/m.json"
-  "$L" -m "$D/maps/$map.map" -i "$D/scen/$map-random-1.scen" -N "$n" -s "$s" -t "$t" \
+  "$L" -m "$D/maps/$map.map" -i "$scen" -N "$n" -s "$s" -t "$t" \
     -v 0 -l -o "$tmp/l.txt" >/dev/null 2>&1 &
   local lp=$!
-  "$M" crew "$D/maps/$map.map" --scen "$D/scen/$map-random-1.scen" --agents "$n" \
+  "$M" crew "$D/maps/$map.map" --scen "$scen" --agents "$n" \
     --resolve lacam --connectivity 4 --seed "$s" --time-limit "$t" --json --quiet \
     >"$tmp/m.json" 2>/dev/null || true
   wait "$lp" || true
@@ -50,6 +62,24 @@ print("\t".join([map_, n, t, s, "1" if ok else "0", str(d["sum_of_costs"]) if ok
 PY
   echo "$map $n ${t}s seed $s done" >&2
 }
+if [ "$MODE" = --wide ]; then
+  for t in 1 10; do
+    for spec in empty-8-8:8,16,32 empty-16-16:32,64,128 empty-48-48:200,500,1000 \
+        random-32-32-10:100,300,461 random-64-64-10:300,1000 maze-32-32-4:50,200,395 \
+        maze-128-128-1:300,1000 maze-128-128-2:300,1000 maze-128-128-10:300,1000 \
+        room-64-64-16:300,1000 warehouse-10-20-10-2-2:500,1000 \
+        warehouse-20-40-10-2-1:500,1000 warehouse-20-40-10-2-2:500,1000 \
+        den312d:300,1000 brc202d:300,1000 lak303d:300,1000 orz900d:300,1000 \
+        ost003d:300,1000 ht_chantry:300,1000 ht_mansion_n:300,1000 \
+        lt_gallowstemplar_n:300,1000 w_woundedcoast:300,1000 Berlin_1_256:500,1000 \
+        Paris_1_256:500,1000; do
+      map=${spec%%:*}; counts=${spec#*:}; max=${counts##*,}
+      scen=$(scen_of "$map" "$max")
+      for k in ${counts//,/ }; do point "$map" "$k" "$t" 0 "$scen"; done
+    done
+  done
+  exit 0
+fi
 for t in 1 10; do
   for spec in empty-32-32:100,300,512 random-32-32-20:100,200,409 maze-32-32-2:50,100,333 \
       room-32-32-4:100,200,341 room-64-64-8:300,1000 random-64-64-20:300,1000 \

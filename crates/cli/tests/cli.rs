@@ -1138,6 +1138,56 @@ fn generate_scene_writes_a_birdseye_png_that_crew_reads_back_with_every_robot() 
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn generate_scen_writes_a_scenario_that_crew_plans_and_refuses_what_does_not_fit() {
+    let dir = std::env::temp_dir().join(format!("mason-genscen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scen = dir.join("room.scen").to_string_lossy().into_owned();
+    let map = data("crew-room.map");
+    let args = [
+        "generate",
+        "scen",
+        "--map",
+        map.as_str(),
+        "--agents",
+        "12",
+        "--seed",
+        "4",
+    ];
+    let o = mason(&[&args[..], &["--out", scen.as_str()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed = mason(&args);
+    assert_eq!(
+        std::fs::read_to_string(&scen).unwrap(),
+        stdout(&printed),
+        "--out writes what is printed, the same for the same seed"
+    );
+    assert!(stdout(&printed).starts_with("version 1\n0\tcrew-room.map\t"));
+    let o = mason(&["crew", &map, "--scen", &scen, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["agents"].as_array().unwrap().len(), 12);
+    for bad in [
+        &["--agents", "0"][..],
+        &["--agents", "100000"],
+        &["--agents", "9000"],
+    ] {
+        let o = mason(&[&["generate", "scen", "--map", map.as_str()][..], bad].concat());
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+    }
+    let o = mason(&[
+        "generate",
+        "scen",
+        "--map",
+        &data("not-a-png.png"),
+        "--agents",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A rendered aerial view in, the reading, a checked plan, the overlay and MovingAI files out.
 #[test]
 fn crew_reads_an_aerial_view_and_writes_what_it_read() {

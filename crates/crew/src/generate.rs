@@ -83,6 +83,76 @@ pub fn random_tasks(grid: &Grid, n: usize, seed: u64) -> (Vec<Cell>, Vec<Cell>) 
     (starts, goals)
 }
 
+/// A MovingAI-style random scenario on `grid`: `n` start–goal pairs with distinct starts,
+/// distinct goals, each goal reachable from its start (both in one 4-connected free region)
+/// and never equal to it. Starts are drawn uniformly from the free cells of regions of two or
+/// more cells, each goal uniformly from the unused cells of its start's region. `None` only
+/// when the grid has no room for `n` such pairs (more than its cells in regions of two or
+/// more).
+pub fn random_scenario(grid: &Grid, n: usize, seed: u64) -> Option<Vec<(Cell, Cell)>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut region = vec![u32::MAX; grid.len()];
+    let mut pools: Vec<Vec<Cell>> = Vec::new();
+    for s in 0..grid.len() as u32 {
+        if !grid.is_free(Cell(s)) || region[s as usize] != u32::MAX {
+            continue;
+        }
+        let id = pools.len() as u32;
+        let mut cells = vec![Cell(s)];
+        region[s as usize] = id;
+        let mut next = 0;
+        while let Some(&c) = cells.get(next) {
+            next += 1;
+            grid.for_each_move(c, crate::grid::Connectivity::Four, |m, _| {
+                if region[m.0 as usize] == u32::MAX {
+                    region[m.0 as usize] = id;
+                    cells.push(m);
+                }
+            });
+        }
+        pools.push(cells);
+    }
+    let mut starts: Vec<Cell> = pools
+        .iter()
+        .filter(|p| p.len() >= 2)
+        .flatten()
+        .copied()
+        .collect();
+    starts.shuffle(&mut rng);
+    for pool in &mut pools {
+        pool.shuffle(&mut rng);
+    }
+    let mut pairs: Vec<(Cell, Cell)> = Vec::with_capacity(n);
+    for start in starts {
+        if pairs.len() == n {
+            break;
+        }
+        let r = region[start.0 as usize];
+        let pool = &mut pools[r as usize];
+        // The pool is shuffled, so its last cell is a uniform draw; the start itself is
+        // skipped by looking one further.
+        let pick = match pool.last() {
+            Some(&g) if g != start => pool.len() - 1,
+            Some(_) if pool.len() >= 2 => pool.len() - 2,
+            Some(_) => {
+                // Only the start itself is left: trade goals with an earlier pair of the
+                // region (its goal is not this start, which was still unused).
+                let Some(k) = pairs.iter().rposition(|&(s, _)| region[s.0 as usize] == r) else {
+                    continue;
+                };
+                pool.clear();
+                let goal = std::mem::replace(&mut pairs[k].1, start);
+                pairs.push((start, goal));
+                continue;
+            }
+            None => continue,
+        };
+        let goal = pool.swap_remove(pick);
+        pairs.push((start, goal));
+    }
+    (pairs.len() == n).then_some(pairs)
+}
+
 /// A bird's-eye scene for `mason generate scene`: a [`warehouse`] grid (`clutter` 0.005, as
 /// `bench paper`) with `n` robots and `n` goals on distinct free cells. No two robots and no
 /// two goals touch (4-neighbours), so that each reads back from its image
@@ -124,4 +194,65 @@ pub fn birdseye_scene(
     let robots = pick(&mut taken)?;
     let goals = pick(&mut taken)?;
     Some((grid, robots, goals))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::movingai::{parse_map, parse_scen, scen_text};
+
+    /// Two regions: a 3×2 room on the left and a 2×1 pocket on the right; one lone cell.
+    const SPLIT: &str = "type octile\nheight 3\nwidth 7\nmap\n...@..@\n...@@@@\n@@@@@.@\n";
+
+    fn region_of(grid: &Grid, c: Cell) -> u8 {
+        let (x, _) = grid.xy(c);
+        u8::from(x >= 4)
+    }
+
+    #[test]
+    fn scenario_pairs_are_distinct_reachable_and_read_back() {
+        let grid = parse_map(SPLIT, "split").unwrap();
+        for seed in 0..50 {
+            let pairs = random_scenario(&grid, 4, seed).expect("room for 4 pairs");
+            let starts: std::collections::BTreeSet<_> = pairs.iter().map(|p| p.0).collect();
+            let goals: std::collections::BTreeSet<_> = pairs.iter().map(|p| p.1).collect();
+            assert_eq!(
+                (starts.len(), goals.len()),
+                (4, 4),
+                "seed {seed}: {pairs:?}"
+            );
+            for &(s, g) in &pairs {
+                assert!(grid.is_free(s) && grid.is_free(g));
+                assert_ne!(s, g, "seed {seed}");
+                assert_eq!(region_of(&grid, s), region_of(&grid, g), "seed {seed}");
+                // The lone cell at (5, 2) has nowhere to go.
+                assert_ne!(grid.xy(s), (5, 2));
+            }
+            let text = scen_text("split.map", &grid, &pairs);
+            let back = parse_scen(&text, "s", &grid, 4).unwrap();
+            assert_eq!(
+                back.iter().map(|a| (a.start, a.goal)).collect::<Vec<_>>(),
+                pairs
+            );
+        }
+    }
+
+    #[test]
+    fn scenario_is_seeded_and_refuses_what_does_not_fit() {
+        let grid = parse_map(SPLIT, "split").unwrap();
+        assert_eq!(random_scenario(&grid, 5, 7), random_scenario(&grid, 5, 7));
+        let differ = (0..20).any(|s| random_scenario(&grid, 5, s) != random_scenario(&grid, 5, 7));
+        assert!(differ, "the seed changes the scenario");
+        // 6 + 2 cells in regions of two or more: at most 8 pairs (each region's cells are
+        // both starts and goals), and never with the lone cell.
+        for seed in 0..50 {
+            let all = random_scenario(&grid, 8, seed).expect("8 pairs always fit");
+            assert!(all
+                .iter()
+                .all(|&(s, g)| s != g && region_of(&grid, s) == region_of(&grid, g)));
+            assert!(random_scenario(&grid, 9, seed).is_none());
+        }
+        let lone = parse_map("type octile\nheight 1\nwidth 3\nmap\n.@.\n", "lone").unwrap();
+        assert!(random_scenario(&lone, 1, 0).is_none());
+    }
 }

@@ -1,7 +1,8 @@
 //! `mason generate`: seeded inputs for the README's scaling figures, the same for the same seed.
 //! `wall`: a layer-text wall (`mason_wall::generate::large_layer_text`); `structure`: a CMCP
 //! wall, L, tower or storeys (`mason_wall::structure::structure_cmcp`); `scene`: a bird's-eye
-//! PNG of a warehouse with robots and goals (`mason_crew::generate::birdseye_scene`).
+//! PNG of a warehouse with robots and goals (`mason_crew::generate::birdseye_scene`); `scen`: a
+//! MovingAI random scenario for a map (`mason_crew::generate::random_scenario`).
 
 use crate::fail::{input_error, write_file, CliResult};
 use std::path::PathBuf;
@@ -57,6 +58,22 @@ pub enum GenerateCommand {
         #[arg(long)]
         png: PathBuf,
     },
+    /// Print a MovingAI random scenario (.scen, version 1) for a map: distinct starts, distinct
+    /// goals, each goal reachable from its start under 4-connectivity and never equal to it
+    Scen {
+        /// The MovingAI .map file (or occupancy PNG)
+        #[arg(long, value_name = "F.map")]
+        map: PathBuf,
+        /// Start–goal pairs
+        #[arg(long)]
+        agents: usize,
+        /// Seed of the generator
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Write the scenario here instead of printing it
+        #[arg(long, value_name = "F.scen")]
+        out: Option<PathBuf>,
+    },
 }
 
 /// `mason generate …`.
@@ -90,7 +107,46 @@ pub fn run(command: GenerateCommand) -> CliResult<()> {
             let bytes = scene(size, robots, seed)?;
             write_file(&png, &bytes)
         }
+        GenerateCommand::Scen {
+            map,
+            agents,
+            seed,
+            out,
+        } => {
+            if let Some(out) = &out {
+                crate::fail::check_output(out)?;
+            }
+            let text = scen(&map, agents, seed)?;
+            match out {
+                Some(out) => write_file(&out, text.as_bytes()),
+                None => {
+                    print!("{text}");
+                    Ok(())
+                }
+            }
+        }
     }
+}
+
+/// The text of `mason generate scen`: `agents` random pairs on the map at `map`.
+pub fn scen(map: &std::path::Path, agents: usize, seed: u64) -> CliResult<String> {
+    let max_agents = mason_crew::limits::MAX_AGENTS;
+    if agents == 0 || agents > max_agents {
+        return Err(input_error(format!(
+            "--agents {agents}: must lie in 1..={max_agents}"
+        )));
+    }
+    let grid = mason_io::load_grid(&map.to_string_lossy())?;
+    let pairs = mason_crew::generate::random_scenario(&grid, agents, seed).ok_or_else(|| {
+        input_error(format!(
+            "{}: --agents {agents}: the map has no room for that many start-goal pairs (distinct starts, distinct goals, each reachable from its start)",
+            map.display()
+        ))
+    })?;
+    let name = map
+        .file_name()
+        .map_or("map.map".to_string(), |n| n.to_string_lossy().into_owned());
+    Ok(mason_crew::movingai::scen_text(&name, &grid, &pairs))
 }
 
 /// The layer text of `mason generate wall`, one line per layer (top first), refused when it
