@@ -145,15 +145,21 @@ pub fn mapf(
     Ok(text)
 }
 
-/// lacam3's figures, measured once with `scripts/mapf-vs-lacam3.sh` (see the file's header).
+/// lacam3's figures, measured once with `scripts/mapf-vs-lacam3.sh` (see the file's header):
+/// the maps of `shared/benchmarks/mapf` and their published random-1 scenarios.
 const LACAM3: &str = include_str!("../data/lacam3-mapf.tsv");
+
+/// lacam3's figures on the other 24 maps of the MovingAI benchmark, measured once with
+/// `scripts/mapf-vs-lacam3.sh … --wide` (see the file's header); a map without its published
+/// scenario in `--data` runs on the one `mason generate scen` makes (seed 1).
+const LACAM3_WIDE: &str = include_str!("../data/lacam3-mapf-wide.tsv");
 
 /// One measured lacam3 run: map, agents, limit (s), seed, then its sum of costs (`None`: no
 /// plan), the lower bound and the time to its first plan (ms).
 type Anchor = (String, usize, f64, u64, Option<u64>, u64, Option<u64>);
 
 /// The rows of a lacam3 results file (tab-separated, `#` comments, one header line).
-fn anchors(text: &str) -> BenchResult<Vec<Anchor>> {
+fn anchors(text: &str, file: &str) -> BenchResult<Vec<Anchor>> {
     let mut rows = Vec::new();
     for (k, line) in text.lines().enumerate() {
         if line.starts_with('#') || line.starts_with("map\t") || line.trim().is_empty() {
@@ -161,7 +167,7 @@ fn anchors(text: &str) -> BenchResult<Vec<Anchor>> {
         }
         let f: Vec<&str> = line.split('\t').collect();
         let bad = || {
-            input_error(format!("lacam3-mapf.tsv:{}: expected 9 tab-separated fields `map agents limit_s seed solved soc soc_lb makespan first_ms`", k + 1))
+            input_error(format!("{file}:{}: expected 9 tab-separated fields `map agents limit_s seed solved soc soc_lb makespan first_ms`", k + 1))
         };
         if f.len() != 9 {
             return Err(bad());
@@ -180,11 +186,62 @@ fn anchors(text: &str) -> BenchResult<Vec<Anchor>> {
     Ok(rows)
 }
 
-/// Mason at every point of the lacam3 results file, beside lacam3's figures.
+/// The scenario file of a point: DATA's published `NAME-random-1.scen` when it has one, else
+/// (wide points only) the scenario `mason generate scen --map MAP --agents MAX --seed 1` writes,
+/// made once in `tmp`. `None` when neither can be had.
+fn scenario_for(
+    dir: &Path,
+    map_name: &str,
+    generate: Option<usize>,
+    tmp: &Path,
+) -> BenchResult<Option<std::path::PathBuf>> {
+    let published = dir.join("scen").join(format!("{map_name}-random-1.scen"));
+    let Some(max_agents) = generate.filter(|_| !published.is_file()) else {
+        return Ok(published.is_file().then_some(published));
+    };
+    let made = tmp.join(format!("{map_name}-mason-1.scen"));
+    if made.is_file() {
+        return Ok(Some(made));
+    }
+    let map = dir.join("maps").join(format!("{map_name}.map"));
+    let Ok(grid) = mason_io::load_grid(&map.to_string_lossy()) else {
+        return Ok(None);
+    };
+    let Some(pairs) = mason_crew::generate::random_scenario(&grid, max_agents, 1) else {
+        return Ok(None);
+    };
+    let text = mason_crew::movingai::scen_text(&format!("{map_name}.map"), &grid, &pairs);
+    std::fs::create_dir_all(tmp)
+        .and_then(|()| std::fs::write(&made, text))
+        .map_err(|e| input_error(format!("{}: {e}", made.display())))?;
+    Ok(Some(made))
+}
+
+/// Mason at every point of both lacam3 results files, beside lacam3's figures.
 fn against_lacam3(exe: &Path, dir: &Path, progress: &mut dyn FnMut(&str)) -> BenchResult<String> {
-    let mut text = String::from(
+    let tmp = std::env::temp_dir().join(format!("mason-bench-scen-{}", std::process::id()));
+    let mut text = String::new();
+    for (file, rows, wide) in [
+        ("lacam3-mapf.tsv", LACAM3, false),
+        ("lacam3-mapf-wide.tsv", LACAM3_WIDE, true),
+    ] {
+        text.push_str(&against_file(exe, dir, (file, rows, wide), &tmp, progress)?);
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+    Ok(text)
+}
+
+/// Mason at every point of one lacam3 results file.
+fn against_file(
+    exe: &Path,
+    dir: &Path,
+    (file, rows, wide): (&str, &str, bool),
+    tmp: &Path,
+    progress: &mut dyn FnMut(&str),
+) -> BenchResult<String> {
+    let mut text = format!(
         "\nAgainst lacam3 (Kei18/lacam3, its figures measured once and read from \
-         crates/bench/data/lacam3-mapf.tsv; Mason measured now, so the two saw different loads):\n",
+         crates/bench/data/{file}; Mason measured now, so the two saw different loads):\n"
     );
     text.push_str(&format!(
         "{:<24} {:>6} {:>6} {:>4} {:>10} {:>10} {:>9} {:>9} {:>8}\n",
@@ -199,17 +256,23 @@ fn against_lacam3(exe: &Path, dir: &Path, progress: &mut dyn FnMut(&str)) -> Ben
         "M first"
     ));
     let (mut points, mut at_or_below) = (0, 0);
-    for (map_name, agents, limit, seed, l_soc, _lb, l_first) in anchors(LACAM3)? {
+    let anchors = anchors(rows, file)?;
+    for (map_name, agents, limit, seed, l_soc, _lb, l_first) in anchors.iter().cloned() {
         let map = dir.join("maps").join(format!("{map_name}.map"));
-        let scen = dir.join("scen").join(format!("{map_name}-random-1.scen"));
+        let most = anchors
+            .iter()
+            .filter(|a| a.0 == map_name)
+            .map(|a| a.1)
+            .max();
+        let scen = scenario_for(dir, &map_name, most.filter(|_| wide), tmp)?;
         let head = format!(
             "{map_name:<24} {agents:>6} {:>6} {seed:>4}",
             format!("{limit}s")
         );
-        if !map.is_file() || !scen.is_file() {
+        let (true, Some(scen)) = (map.is_file(), scen) else {
             text.push_str(&format!("{head} data missing; skipped\n"));
             continue;
-        }
+        };
         progress(&format!(
             "bench mapf: {map_name} {agents} agents against lacam3"
         ));
@@ -332,20 +395,45 @@ mod tests {
 
     #[test]
     fn the_committed_lacam3_figures_parse() {
-        let rows = anchors(LACAM3).unwrap();
-        assert!(rows.len() >= 20);
-        assert!(rows.iter().all(|r| r.5 > 0 && r.4.is_none_or(|s| s >= r.5)));
+        for (text, file) in [(LACAM3, "n"), (LACAM3_WIDE, "w")] {
+            let rows = anchors(text, file).unwrap();
+            assert!(rows.len() >= 20);
+            assert!(rows.iter().all(|r| r.5 > 0 && r.4.is_none_or(|s| s >= r.5)));
+        }
     }
 
     #[test]
     fn a_malformed_lacam3_line_is_one_clear_error() {
-        let e = anchors("map\tagents\nroom\t3\t1\n")
+        let e = anchors("map\tagents\nroom\t3\t1\n", "lacam3-mapf.tsv")
             .unwrap_err()
             .to_string();
         assert!(
             e.contains("lacam3-mapf.tsv:2") && e.contains("9 tab-separated"),
             "{e}"
         );
-        assert!(anchors("room\tx\t1\t0\t1\t5\t3\t4\t10\n").is_err());
+        assert!(anchors("room\tx\t1\t0\t1\t5\t3\t4\t10\n", "f").is_err());
+    }
+
+    #[test]
+    fn a_wide_point_without_its_published_scenario_gets_a_generated_one() {
+        let dir = std::env::temp_dir().join(format!("mason-bench-wide-{}", std::process::id()));
+        let tmp = dir.join("tmp");
+        std::fs::create_dir_all(dir.join("maps")).unwrap();
+        std::fs::write(
+            dir.join("maps/x.map"),
+            "type octile\nheight 2\nwidth 4\nmap\n....\n.@..\n",
+        )
+        .unwrap();
+        assert_eq!(scenario_for(&dir, "x", None, &tmp).unwrap(), None);
+        assert_eq!(scenario_for(&dir, "x", Some(99), &tmp).unwrap(), None);
+        let made = scenario_for(&dir, "x", Some(5), &tmp).unwrap().unwrap();
+        let text = std::fs::read_to_string(&made).unwrap();
+        assert_eq!(text.lines().count(), 6, "{text}");
+        assert!(text.lines().nth(1).unwrap().starts_with("0\tx.map\t4\t2\t"));
+        std::fs::create_dir_all(dir.join("scen")).unwrap();
+        std::fs::write(dir.join("scen/x-random-1.scen"), "version 1\n").unwrap();
+        let published = scenario_for(&dir, "x", Some(5), &tmp).unwrap().unwrap();
+        assert!(published.ends_with("scen/x-random-1.scen"));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }
