@@ -38,28 +38,9 @@ pub fn warehouse(width: u32, height: u32, clutter: f64, seed: u64) -> Grid {
 
 /// Blocks every free cell outside the largest 4-connected free region.
 pub fn keep_largest_region(grid: &mut Grid) {
-    let mut label = vec![u32::MAX; grid.len()];
-    let mut sizes = Vec::new();
-    for s in 0..grid.len() as u32 {
-        if !grid.is_free(Cell(s)) || label[s as usize] != u32::MAX {
-            continue;
-        }
-        let id = sizes.len() as u32;
-        let mut size = 0usize;
-        let mut stack = vec![Cell(s)];
-        label[s as usize] = id;
-        while let Some(c) = stack.pop() {
-            size += 1;
-            grid.for_each_move(c, crate::grid::Connectivity::Four, |n, _| {
-                if label[n.0 as usize] == u32::MAX {
-                    label[n.0 as usize] = id;
-                    stack.push(n);
-                }
-            });
-        }
-        sizes.push(size);
-    }
-    let Some(best) = (0..sizes.len()).max_by_key(|&i| (sizes[i], std::cmp::Reverse(i))) else {
+    let (label, regions) = regions(grid);
+    let Some(best) = (0..regions.len()).max_by_key(|&i| (regions[i].len(), std::cmp::Reverse(i)))
+    else {
         return;
     };
     for (i, &l) in label.iter().enumerate() {
@@ -67,6 +48,33 @@ pub fn keep_largest_region(grid: &mut Grid) {
             grid.set_blocked(Cell(i as u32), true);
         }
     }
+}
+
+/// The 4-connected free regions of `grid`: each cell's region (`u32::MAX` for a blocked cell)
+/// and each region's cells, numbered in the order of their first cell.
+fn regions(grid: &Grid) -> (Vec<u32>, Vec<Vec<Cell>>) {
+    let mut label = vec![u32::MAX; grid.len()];
+    let mut regions: Vec<Vec<Cell>> = Vec::new();
+    for s in 0..grid.len() as u32 {
+        if !grid.is_free(Cell(s)) || label[s as usize] != u32::MAX {
+            continue;
+        }
+        let id = regions.len() as u32;
+        let mut cells = vec![Cell(s)];
+        label[s as usize] = id;
+        let mut next = 0;
+        while let Some(&c) = cells.get(next) {
+            next += 1;
+            grid.for_each_move(c, crate::grid::Connectivity::Four, |m, _| {
+                if label[m.0 as usize] == u32::MAX {
+                    label[m.0 as usize] = id;
+                    cells.push(m);
+                }
+            });
+        }
+        regions.push(cells);
+    }
+    (label, regions)
 }
 
 /// `n` distinct start cells and `n` distinct goal cells, drawn from the free cells.
@@ -91,27 +99,7 @@ pub fn random_tasks(grid: &Grid, n: usize, seed: u64) -> (Vec<Cell>, Vec<Cell>) 
 /// more).
 pub fn random_scenario(grid: &Grid, n: usize, seed: u64) -> Option<Vec<(Cell, Cell)>> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut region = vec![u32::MAX; grid.len()];
-    let mut pools: Vec<Vec<Cell>> = Vec::new();
-    for s in 0..grid.len() as u32 {
-        if !grid.is_free(Cell(s)) || region[s as usize] != u32::MAX {
-            continue;
-        }
-        let id = pools.len() as u32;
-        let mut cells = vec![Cell(s)];
-        region[s as usize] = id;
-        let mut next = 0;
-        while let Some(&c) = cells.get(next) {
-            next += 1;
-            grid.for_each_move(c, crate::grid::Connectivity::Four, |m, _| {
-                if region[m.0 as usize] == u32::MAX {
-                    region[m.0 as usize] = id;
-                    cells.push(m);
-                }
-            });
-        }
-        pools.push(cells);
-    }
+    let (region, mut pools) = regions(grid);
     let mut starts: Vec<Cell> = pools
         .iter()
         .filter(|p| p.len() >= 2)
