@@ -6,7 +6,7 @@
 # usage: scripts/mapf-vs-lacam3.sh LACAM3_BINARY MASON_BINARY DATA_DIR OUT_PREFIX [--wide]
 #   DATA_DIR holds maps/NAME.map and scen/NAME-random-1.scen (MovingAI layout).
 #   --wide: instead, the other 24 maps of the MovingAI benchmark (every map family) at 1 and
-#   10 s. A map whose random-1 scenario is not in DATA_DIR gets one from
+#   10 s, and the 1000-agent points of eight of them at 30 s. A map whose random-1 scenario is not in DATA_DIR gets one from
 #   `mason generate scen --map MAP --agents MAX --seed 1` (the same pairs on every run; both
 #   solvers read the first N pairs of that one file).
 #   Writes OUT_PREFIX-lacam3.tsv and OUT_PREFIX-mason.tsv with the columns
@@ -77,6 +77,11 @@ if [ "$MODE" = --wide ]; then
       scen=$(scen_of "$map" "$max")
       for k in ${counts//,/ }; do point "$map" "$k" "$t" 0 "$scen"; done
     done
+  done
+  for spec in empty-48-48:1000 random-64-64-10:1000 maze-128-128-10:1000 room-64-64-16:1000 \
+      warehouse-20-40-10-2-1:1000 den312d:1000 lak303d:1000 Berlin_1_256:1000; do
+    map=${spec%%:*}
+    point "$map" "${spec#*:}" 30 0 "$(scen_of "$map" "${spec#*:}")"
   done
   exit 0
 fi
