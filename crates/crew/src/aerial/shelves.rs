@@ -5,14 +5,25 @@
 //! as a colour that cannot be told. Its shape tells what it is: it stands on whole cells and
 //! fills them, while a goal is a mark inside one cell, and all goals of a view are alike.
 //!
-//! So every 8-connected blob of goal, unsure and obstacle pixels that holds some goal or
-//! unsure pixels is judged as a whole. It is an obstacle when it fills (at least [`FILLED`]
+//! The same holds for shelves near the robots' colour (walnut brown, the shaded sides and
+//! edges of safety-orange shelves): their pixels, or slivers of them, read as robot.
+//!
+//! So every 8-connected blob of goal, unsure, robot and obstacle pixels that holds some
+//! goal, unsure or robot pixels is judged as a whole, less the robot-sized robot blobs in it
+//! (from [`SLIVER`] to [`LARGER`] times the median robot of the view, taken over the robot
+//! blobs that do not fill two cells on their own): those stay robots and take no part in
+//! the shape. It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
 //! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
 //! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
 //! mostly outside the cells it fills).
+//! Its robot-coloured pieces become obstacle pixels when at most [`GOAL_OUTSIDE`] of them
+//! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
+//! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
+//! shelf of the robots' colour; its pixels outside the filled cells stay robot pixels, and
+//! are refused or read as before).
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
