@@ -19,7 +19,7 @@
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
 //! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
 //! mostly outside the cells it fills).
-//! Its robot-coloured pieces become obstacle pixels when at most [`GOAL_OUTSIDE`] of them
+//! Its robot-coloured pieces become obstacle pixels when less than [`GOAL_OUTSIDE`] of one
 //! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
 //! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
 //! shelf of the robots' colour; its pixels outside the filled cells stay robot pixels, and
