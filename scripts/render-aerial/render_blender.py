@@ -60,6 +60,25 @@ FAMILIES = {
                        (0.35, 0.22, 0.12), (0.40, 0.45, 0.38)),
         goods_colour=(0.62, 0.48, 0.30),  # lighter cardboard
         shelf_height=(0.4, 2.0), shelf_inset=(0.03, 0.10), camera_ratio=(1.4, 5.0), tilt_max=30.0),
+    # I: the third Blender family (rendered at the start of the sixth round, held out from it,
+    # scored once with its final reader): other floors and shelf colours, other robot and goal
+    # sizes and reds and greens, a higher sun of other softness, other exposure, noise, blur
+    # and JPEG quality. Keys absent from G and H take the defaults in render_one.
+    "I": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Warm light grey, dark blue-grey, khaki, cool pale concrete, brown-grey.
+        floors=((0.66, 0.64, 0.60), (0.22, 0.25, 0.30), (0.55, 0.52, 0.40), (0.60, 0.63, 0.66),
+                (0.45, 0.40, 0.36)),
+        # Royal blue, dark grey, cream, dark teal, mauve, light tan.
+        shelf_colours=((0.10, 0.25, 0.70), (0.25, 0.25, 0.27), (0.85, 0.80, 0.65), (0.05, 0.30, 0.32),
+                       (0.50, 0.35, 0.45), (0.75, 0.60, 0.40)),
+        goods_colour=(0.55, 0.45, 0.35),  # greyer cardboard
+        shelf_height=(0.3, 1.8), shelf_inset=(0.02, 0.09), camera_ratio=(1.8, 4.5), tilt_max=25.0,
+        robot_size=(0.35, 0.85), big_robot_size=(1.2, 1.6), goal_size=(0.35, 0.85),
+        robot_rgb=((0.45, 0.9), (0.0, 0.15), (0.02, 0.15)), goal_rgb=((0.02, 0.2), (0.3, 0.7), (0.02, 0.25)),
+        sun_elevation=(35.0, 85.0), sun_angle=(1.0, 8.0), exposure=(0.14, 0.30),
+        noise_max=0.03, blur_max=1.3, jpeg_quality=(55, 96)),
 }
 
 
@@ -522,12 +541,12 @@ def blur(img, sigma):
     return sum(k[i] * tmp[i:i + img.shape[0]] for i in range(len(k)))
 
 
-def develop(rng, lin, floor_mask):
+def develop(rng, lin, floor_mask, exposure):
     """Linear render -> 8-bit sRGB: exposure from the floor's median, white balance, a tone
     curve (clipped, or a soft shoulder), vignetting."""
     lum = lin @ np.array([0.2126, 0.7152, 0.0722])
     ref = np.median(lum[floor_mask]) if floor_mask.any() else np.median(lum)
-    target = rng.uniform(0.16, 0.32)
+    target = rng.uniform(*exposure)
     img = lin * (target / max(ref, 1e-6))
     img = img * np.array([rng.uniform(0.92, 1.08), 1.0, rng.uniform(0.92, 1.08)])
     hh, ww = img.shape[:2]
@@ -562,13 +581,14 @@ def render_one(args, seed, out_dir):
     n = int(rng.integers(n_lo, n_hi + 1))
     big = rng.random() < 0.15
     robot = dict(shape=fam["robot_shapes"][int(rng.integers(len(fam["robot_shapes"])))],
-                 size=float(rng.uniform(1.3, 1.7) if big else rng.uniform(0.4, 0.8)),
+                 size=float(rng.uniform(*fam.get("big_robot_size", (1.3, 1.7))) if big
+                            else rng.uniform(*fam.get("robot_size", (0.4, 0.8)))),
                  height=float(rng.uniform(0.15, 0.5)), rough=float(rng.uniform(0.15, 0.6)),
                  coat=float(rng.uniform(0, 0.6)),
-                 colour=[rng.uniform(0.5, 0.85), rng.uniform(0.02, 0.12), rng.uniform(0.02, 0.1)])
+                 colour=[rng.uniform(*r) for r in fam.get("robot_rgb", ((0.5, 0.85), (0.02, 0.12), (0.02, 0.1)))])
     goal = dict(shape=fam["goal_shapes"][int(rng.integers(len(fam["goal_shapes"])))],
-                size=float(rng.uniform(0.4, 0.8)), inner=float(rng.uniform(0.35, 0.55)),
-                colour=[rng.uniform(0.03, 0.15), rng.uniform(0.35, 0.65), rng.uniform(0.05, 0.2)])
+                size=float(rng.uniform(*fam.get("goal_size", (0.4, 0.8)))), inner=float(rng.uniform(0.35, 0.55)),
+                colour=[rng.uniform(*r) for r in fam.get("goal_rgb", ((0.03, 0.15), (0.35, 0.65), (0.05, 0.2)))])
     # Smallest marks: a robot 4 px wide, a goal's thin parts at least about 2 px.
     robot["size"] = max(robot["size"], (8.0 if robot["shape"] == "capsule" else 4.0) / cell_px)
     thin = {"ring": 1 - goal["inner"], "star": 0.6, "xcross": goal["inner"], "target": 1 - goal["inner"], "disc": 1.0}
@@ -597,10 +617,10 @@ def render_one(args, seed, out_dir):
     cam = plan_camera(rng, w, h, cell_px, dict(fam, tilt_max=args.tilt or fam["tilt_max"]), straight)
 
     if rng.random() < 0.55:
-        el = float(rng.uniform(25, 80))
+        el = float(rng.uniform(*fam.get("sun_elevation", (25, 80))))
         warm = rng.uniform(-0.15, 0.15)
         light = dict(kind="sun", elevation=el, azimuth=float(rng.uniform(0, 360)), sun=float(rng.uniform(2.5, 6.0)),
-                     angle=float(rng.uniform(0.5, 12.0)), sky=float(rng.uniform(0.15, 0.6)),
+                     angle=float(rng.uniform(*fam.get("sun_angle", (0.5, 12.0)))), sky=float(rng.uniform(0.15, 0.6)),
                      colour=[1 + warm, 1.0, 1 - warm])
     else:
         warm = rng.uniform(-0.1, 0.1)
@@ -695,14 +715,14 @@ def render_one(args, seed, out_dir):
     for k in range(4):
         (ax, ay), (bx, by) = corners[k], corners[(k + 1) % 4]
         inside &= (bx - ax) * (yy - ay) - (by - ay) * (xx - ax) >= 0
-    img, dev = develop(rng, lin, inside)
-    sigma = float(rng.uniform(0, 1.1))
+    img, dev = develop(rng, lin, inside, fam.get("exposure", (0.16, 0.32)))
+    sigma = float(rng.uniform(0, fam.get("blur_max", 1.1)))
     img = blur(img, sigma)
-    noise = float(rng.uniform(0, 0.025))
+    noise = float(rng.uniform(0, fam.get("noise_max", 0.025)))
     img = np.clip(img + rng.normal(0, noise, img.shape), 0, 1)
     pixels = Image.fromarray((img * 255 + 0.5).astype(np.uint8))
     name = f"{args.family}{seed:04d}"
-    quality = int(rng.integers(60, 96)) if rng.random() < args.jpeg else None
+    quality = int(rng.integers(*fam.get("jpeg_quality", (60, 96)))) if rng.random() < args.jpeg else None
     if quality:
         path = os.path.join(out_dir, name + ".jpg")
         pixels.save(path, quality=quality)

@@ -5,14 +5,25 @@
 //! as a colour that cannot be told. Its shape tells what it is: it stands on whole cells and
 //! fills them, while a goal is a mark inside one cell, and all goals of a view are alike.
 //!
-//! So every 8-connected blob of goal, unsure and obstacle pixels that holds some goal or
-//! unsure pixels is judged as a whole. It is an obstacle when it fills (at least [`FILLED`]
+//! The same holds for shelves near the robots' colour (walnut brown, the shaded sides and
+//! edges of safety-orange shelves): their pixels, or slivers of them, read as robot.
+//!
+//! So every 8-connected blob of goal, unsure, robot and obstacle pixels that holds some
+//! goal, unsure or robot pixels is judged as a whole, less the robot-sized robot blobs in it
+//! (from [`SLIVER`] to [`LARGER`] times the median robot of the view, taken over the robot
+//! blobs that do not fill two cells on their own): those stay robots and take no part in
+//! the shape. It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
 //! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
 //! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
 //! mostly outside the cells it fills).
+//! Its robot-coloured pieces become obstacle pixels when less than [`GOAL_OUTSIDE`] of one
+//! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
+//! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
+//! shelf of the robots' colour; its pixels outside the filled cells stay robot pixels, and
+//! are refused or read as before).
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
@@ -37,13 +48,22 @@ pub const LARGER: f64 = 2.5;
 /// A goal joined to an obstacle blob has at least this share of its pixels outside the
 /// cells the blob fills.
 pub const GOAL_OUTSIDE: f64 = 0.8;
+/// A robot-coloured piece of an obstacle blob under this share of the median robot is a
+/// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
+/// brown), not a robot.
+pub const SLIVER: f64 = 0.3;
 
-/// The 8-connected blobs of goal, unsure and obstacle pixels that hold some goal or unsure
-/// pixels, as lists of pixel indices, in row-major order of their first pixel.
+/// The 8-connected blobs of goal, unsure, robot and obstacle pixels that hold some goal,
+/// unsure or robot pixels, as lists of pixel indices, in row-major order of their first
+/// pixel.
 fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
     let height = classes.len() / width.max(1);
-    let part =
-        |c: u8| c == Class::Goal as u8 || c == Class::Unsure as u8 || c == Class::Obstacle as u8;
+    let part = |c: u8| {
+        c == Class::Goal as u8
+            || c == Class::Unsure as u8
+            || c == Class::Obstacle as u8
+            || c == Class::Robot as u8
+    };
     let mut seen = vec![false; classes.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();
@@ -214,17 +234,52 @@ pub fn absorb(
     let cells = f64::from(floor.0) * f64::from(floor.1);
     let inside = classes.iter().filter(|&&c| c != OUTSIDE).count() as f64;
     let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
-    let large: Vec<&Vec<usize>> = blobs_found
-        .iter()
-        .filter(|b| b.len() >= two_cells)
-        .collect();
-    if large.is_empty() {
-        return 0;
-    }
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
-    let shaped: Vec<(&Vec<usize>, Vec<usize>)> = large
+    // The robots' blobs: the median robot among those that do not fill two cells on their
+    // own (a shelf of the robots' colour may; so may a robot 1.6 cells wide under a tilted
+    // camera, but not most of a view's robots), and the pixels of the robot-sized ones
+    // (from [`SLIVER`] to [`LARGER`] median robots), which stay robots and take no part in a
+    // shelf's shape (a large robot touching a goal would otherwise fill two cells with it).
+    let (robot_median, robot_sized) = {
+        let found = blobs::find(classes, width, Class::Robot as u8);
+        let index = |b: &blobs::Blob| -> Vec<usize> {
+            b.pixels
+                .iter()
+                .map(|&(x, y)| y as usize * width + x as usize)
+                .collect()
+        };
+        let robots: Vec<blobs::Blob> = found
+            .iter()
+            .filter(|b| {
+                b.area() < two_cells
+                    || filled_cells(&index(b), classes, width, maps, floor, &mut known).is_empty()
+            })
+            .cloned()
+            .collect();
+        let median = (robot_median_area(robots) as f64).max(blobs::MIN_AREA as f64);
+        let mut sized: Vec<usize> = found
+            .iter()
+            .filter(|b| (SLIVER..LARGER).contains(&(b.area() as f64 / median)))
+            .flat_map(index)
+            .collect();
+        sized.sort_unstable();
+        (median, sized)
+    };
+    let without_robots: Vec<Vec<usize>> = blobs_found
         .into_iter()
+        .map(|b| {
+            b.into_iter()
+                .filter(|i| robot_sized.binary_search(i).is_err())
+                .collect::<Vec<usize>>()
+        })
+        .filter(|b| b.len() >= two_cells && b.iter().any(|&i| classes[i] != Class::Obstacle as u8))
+        .collect();
+    if without_robots.is_empty() {
+        return 0;
+    }
+    let shaped: Vec<(&Vec<usize>, Vec<usize>)> = without_robots
+        .iter()
         .map(|b| (b, filled_cells(b, classes, width, maps, floor, &mut known)))
         .filter(|(_, cells)| !cells.is_empty())
         .collect();
@@ -248,9 +303,23 @@ pub fn absorb(
             cell_of(i, width, image_to_floor, floor)
                 .is_some_and(|c| cells.binary_search(&c).is_ok())
         };
-        let goals = goals_within(classes, width, b, &in_filled);
+        let goals = marks_within(classes, width, b, Class::Goal, &in_filled, &|_, outside| {
+            if outside >= GOAL_OUTSIDE {
+                Keep::All
+            } else {
+                Keep::None
+            }
+        });
+        let robots = marks_within(
+            classes,
+            width,
+            b,
+            Class::Robot,
+            &in_filled,
+            &|area, outside| robot_piece(area as f64 / robot_median, outside),
+        );
         for &i in b {
-            if goals.binary_search(&i).is_err() {
+            if goals.binary_search(&i).is_err() && robots.binary_search(&i).is_err() {
                 classes[i] = Class::Obstacle as u8;
             }
         }
@@ -259,20 +328,58 @@ pub fn absorb(
     turned
 }
 
-/// The pixels of the goals within a blob: its goal pixels that make, on their own, a blob
-/// with at least [`GOAL_OUTSIDE`] of it outside the cells the blob fills (a goal joined to a
-/// shelf by pixels of a colour between: blur mixes a goal's green with a shelf's yellow).
-fn goals_within(
+/// The median area of robot blobs, as [`blobs::sort`] takes it.
+fn robot_median_area(robots: Vec<blobs::Blob>) -> usize {
+    blobs::sort(robots).median_area
+}
+
+/// Which pixels of a piece of a mark's colour within an obstacle blob stay the mark's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Keep {
+    /// All of them.
+    All,
+    /// Those outside the cells the blob fills.
+    Outside,
+    /// None: the piece is part of the obstacle.
+    None,
+}
+
+/// A robot-coloured piece of an obstacle blob (its area in median robots, and the share of
+/// it outside the cells the blob fills): a robot when at least [`GOAL_OUTSIDE`] of it is
+/// outside; else a shelf of the robots' colour when at least [`LARGER`] robots large (its
+/// pixels outside the filled cells stay robot-coloured, a robot touching the shelf among
+/// them: they are refused or read as before), a sliver of the shelf's edge or noise when
+/// under [`SLIVER`] of a robot, and otherwise a robot partly hidden, kept whole.
+fn robot_piece(robots: f64, outside: f64) -> Keep {
+    if outside >= GOAL_OUTSIDE {
+        Keep::All
+    } else if robots >= LARGER {
+        Keep::Outside
+    } else if robots < SLIVER {
+        Keep::None
+    } else {
+        Keep::All
+    }
+}
+
+/// The pixels of the marks of class `class` within a blob: its pixels of that class split
+/// into 8-connected pieces among themselves, each kept as `keep(area, share outside the
+/// cells the blob fills)` says. Goals are kept with at least [`GOAL_OUTSIDE`] of them
+/// outside (a goal joined to a shelf by pixels of a colour between: blur mixes a goal's
+/// green with a shelf's yellow).
+fn marks_within(
     classes: &[u8],
     width: usize,
     blob: &[usize],
+    class: Class,
     in_filled: &dyn Fn(usize) -> bool,
+    keep: &dyn Fn(usize, f64) -> Keep,
 ) -> Vec<usize> {
-    // The blob's goal pixels, sorted, split into 8-connected pieces among themselves.
+    // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut goal: Vec<usize> = blob
         .iter()
         .copied()
-        .filter(|&i| classes[i] == Class::Goal as u8)
+        .filter(|&i| classes[i] == class as u8)
         .collect();
     goal.sort_unstable();
     let height = classes.len() / width.max(1);
@@ -302,8 +409,10 @@ fn goals_within(
             }
         }
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
-        if outside as f64 >= GOAL_OUTSIDE * piece.len() as f64 {
-            kept.extend(piece);
+        match keep(piece.len(), outside as f64 / piece.len() as f64) {
+            Keep::All => kept.extend(piece),
+            Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
+            Keep::None => {}
         }
     }
     kept.sort_unstable();
@@ -370,6 +479,46 @@ mod tests {
         let before = classes.clone();
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
         assert_eq!(classes, before);
+    }
+
+    #[test]
+    fn a_robot_coloured_shelf_and_slivers_on_a_shelf_are_obstacles_but_robots_stay() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Robots 5 × 5 px in cells (3, 0), (3, 1) and (2, 1); goals in cells (2, 0) and
+        // (0, 1); a robot-coloured shelf over cells (0, 0) and (1, 0) with obstacle pixels in
+        // it; a robot touching it in cell (1, 1) stays a robot.
+        paint(&mut classes, 40, (33, 3, 38, 8), Class::Robot);
+        paint(&mut classes, 40, (33, 13, 38, 18), Class::Robot);
+        paint(&mut classes, 40, (23, 13, 28, 18), Class::Robot);
+        paint(&mut classes, 40, (23, 3, 27, 7), Class::Goal);
+        paint(&mut classes, 40, (3, 13, 7, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Robot);
+        paint(&mut classes, 40, (4, 4, 8, 6), Class::Obstacle);
+        paint(&mut classes, 40, (13, 9, 18, 14), Class::Robot);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 12], Class::Obstacle as u8);
+        assert_eq!(classes[12 * 40 + 15], Class::Robot as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Robot as u8);
+    }
+
+    #[test]
+    fn a_sliver_of_robot_colour_on_a_shelf_is_obstacle_but_a_piece_of_a_robot_is_not() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Robots of 25 px in cells (3, 0), (3, 1) and (2, 1); goals in cells (2, 0) and
+        // (0, 1); an obstacle over cells (0, 0) and (1, 0) with a robot-coloured sliver of
+        // 4 px on it (under 0.3 of the median robot) and a robot-coloured piece of 12 px
+        // (about half a robot, on the shelf's edge: it might be a robot partly hidden).
+        paint(&mut classes, 40, (33, 3, 38, 8), Class::Robot);
+        paint(&mut classes, 40, (33, 13, 38, 18), Class::Robot);
+        paint(&mut classes, 40, (23, 13, 28, 18), Class::Robot);
+        paint(&mut classes, 40, (23, 3, 27, 7), Class::Goal);
+        paint(&mut classes, 40, (3, 13, 7, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Obstacle);
+        paint(&mut classes, 40, (3, 3, 5, 5), Class::Robot);
+        paint(&mut classes, 40, (9, 7, 13, 10), Class::Robot);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(classes[3 * 40 + 3], Class::Obstacle as u8);
+        assert_eq!(classes[8 * 40 + 10], Class::Robot as u8);
     }
 
     #[test]

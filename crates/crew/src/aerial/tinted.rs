@@ -6,7 +6,10 @@
 //! colour before white balance tell what it is: it fills no cell, and most of its pixels are
 //! a mark's colour before white balance ([`Classifier::raw_mark`]).
 //!
-//! So every 8-connected blob of obstacle pixels of which at least [`MOSTLY`] are one mark's
+//! The same holds for a mark whose balanced colour falls just outside its hue band (a
+//! colour that cannot be told): a pale green goal on a brown floor.
+//!
+//! So every 8-connected blob of obstacle (or of unsure) pixels of which at least [`MOSTLY`] are one mark's
 //! colour before white balance, and which fills no cell (fewer than
 //! [`shelves::FILLED`](super::shelves::FILLED) of the pixels of any cell's middle), becomes
 //! that mark's blob. An obstacle fills its cells; a shelf of a colour near a mark's before
@@ -42,7 +45,11 @@ pub fn recover(
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
     let mut turned = 0;
-    for blob in blobs::find(classes, width, Class::Obstacle as u8) {
+    let found: Vec<blobs::Blob> = [Class::Obstacle, Class::Unsure]
+        .into_iter()
+        .flat_map(|c| blobs::find(classes, width, c as u8))
+        .collect();
+    for blob in found {
         let (mut robot, mut goal) = (0usize, 0usize);
         for &(x, y) in &blob.pixels {
             match classifier.raw_mark(colour(x, y)) {
@@ -86,6 +93,38 @@ mod tests {
     use super::*;
     use crate::aerial::colour::Hue;
     use crate::aerial::pixels;
+    use crate::aerial::tests::paint;
+
+    #[test]
+    fn an_unsure_blob_of_a_goals_colour_before_white_balance_is_a_goal_unless_it_fills_a_cell() {
+        // A grey floor, 10 px per cell; a green goal read as unsure in cell (3, 1), and an
+        // unsure green square filling cell (0, 0).
+        let grey = [150u8, 150, 150];
+        let green = [60u8, 170, 80];
+        let mut img = RgbImage::from_pixel(40, 20, image::Rgb(grey));
+        let mut classes = vec![Class::Floor as u8; 40 * 20];
+        for (x0, y0, x1, y1) in [(33, 13, 37, 17), (0, 0, 10, 10)] {
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    img.put_pixel(x as u32, y as u32, image::Rgb(green));
+                }
+            }
+            paint(&mut classes, 40, (x0, y0, x1, y1), Class::Unsure);
+        }
+        let to_image = Homography::floor_to_image(
+            4.0,
+            2.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 20.0), (0.0, 20.0)],
+        )
+        .unwrap();
+        let to_floor = to_image.inverse().unwrap();
+        let classifier = Classifier::new(grey.map(f64::from), Hue::RED, Hue::GREEN);
+        assert_eq!(classifier.raw_mark(green), Some(Class::Goal));
+        let maps = (&to_image, &to_floor);
+        assert_eq!(recover(&mut classes, &img, &classifier, maps, (4, 2)), 1);
+        assert_eq!(classes[15 * 40 + 35], Class::Goal as u8);
+        assert_eq!(classes[5 * 40 + 5], Class::Unsure as u8);
+    }
 
     #[test]
     fn a_pale_green_goal_on_a_beige_floor_is_a_goal_and_a_teal_shelf_an_obstacle() {
