@@ -74,6 +74,29 @@ pub fn lacam_guided(
     budget: &Budget,
     seed: u64,
 ) -> (LacamEnd, u64) {
+    lacam_search(graph, dist, starts, goals, guide, budget, seed, false)
+}
+
+/// [`lacam_guided`], where `revisit` chooses what happens when a step leads to a configuration
+/// already reached. Off: the step is dropped and the same configuration tries its next
+/// constraint set (LaCAM). On: the search goes on from the configuration reached, which is
+/// put on top of the stack again (as LaCAM* does, without its costs): the search follows the
+/// robots' motion instead of working through the constraints of a configuration it keeps
+/// coming back to. Both are complete (every push of a known configuration uses up one
+/// constraint set, of which there are finitely many). Measured on small dense maps (see
+/// [`crate::restart`]), revisiting finds much shorter first plans, but on some seeds it needs
+/// many more configurations.
+#[allow(clippy::too_many_arguments)]
+pub fn lacam_search(
+    graph: &MoveGraph,
+    dist: &[Vec<u32>],
+    starts: &[u32],
+    goals: &[u32],
+    guide: &[Vec<u32>],
+    budget: &Budget,
+    seed: u64,
+    revisit: bool,
+) -> (LacamEnd, u64) {
     let n = starts.len();
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x1aca_0001);
     let mut pibt = Pibt::new(graph, dist, seed);
@@ -137,7 +160,10 @@ pub fn lacam_guided(
         if !pibt.step(&node.config, &mut next, &node.order, &constraints) {
             continue;
         }
-        if explored.contains_key(next.as_slice()) {
+        if let Some(&known) = explored.get(next.as_slice()) {
+            if revisit {
+                open.push(known);
+            }
             continue;
         }
         let priority: Box<[f32]> = (0..n)

@@ -176,6 +176,18 @@ pub(crate) fn arrival(p: &[u32]) -> u64 {
 /// Neighbourhoods drawn per batch by default (see the module notes).
 const BATCH: usize = 4;
 
+/// Rounds in a row without a gain before the neighbourhood grows (see [`size_ladder`]).
+const SIZE_PATIENCE: u64 = 200;
+
+/// The neighbourhood sizes refinement climbs through, smallest first, for a configured size
+/// `k` (at least 1): half of it, it, and twice it, without repeats.
+fn size_ladder(k: usize) -> Vec<usize> {
+    let k = k.max(1);
+    let mut ladder = vec![(k / 2).max(1), k, 2 * k];
+    ladder.dedup();
+    ladder
+}
+
 /// One neighbourhood of a batch: its kind, its robots in planning order, and what planning
 /// them again gave.
 struct Candidate {
@@ -315,9 +327,22 @@ pub fn refine(
         .sum();
     let mut cost: Vec<u64> = paths.iter().map(|p| arrival(p)).collect();
     let mut soc: u64 = cost.iter().sum();
-    let k = config.neighbourhood.min(n);
+    // Variable neighbourhood search: the size climbs a ladder (half the configured size, the
+    // size, twice it) after `SIZE_PATIENCE` rounds in a row without a gain at one rung, wraps
+    // round after the top, and drops back to the bottom after every gain.
+    let ladder: Vec<usize> = size_ladder(config.neighbourhood)
+        .into_iter()
+        .map(|k| k.min(n))
+        .collect();
+    let mut rung = 0usize;
+    let mut rung_stall = 0u64;
     let mut batch: Vec<Candidate> = Vec::with_capacity(config.batch);
     loop {
+        if rung_stall >= SIZE_PATIENCE {
+            rung = (rung + 1) % ladder.len();
+            rung_stall = 0;
+        }
+        let k = ladder[rung];
         if soc <= lower
             || budget.out_of_time()
             || config.rounds.is_some_and(|r| stats.rounds >= r)
@@ -408,16 +433,20 @@ pub fn refine(
                     }
                     soc -= gain;
                     if gain > 0 {
+                        rung = 0;
+                        rung_stall = 0;
                         stats.improvements += 1;
                         stall = 0;
                         weights[cand.kind] += gain as f64;
                     } else {
+                        rung_stall += 1;
                         stats.sideways += 1;
                         stall += 1;
                     }
                     changed = true;
                 }
                 None => {
+                    rung_stall += 1;
                     weights[cand.kind] = (weights[cand.kind] * 0.99).max(0.05);
                     stall += 1;
                 }

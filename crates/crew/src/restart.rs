@@ -33,7 +33,7 @@
 //! search makes the result depend on speed. Cost: at most about twice the iterations of the
 //! attempt that succeeds, per core, plus the extra pairs.
 
-use crate::lacam::{lacam_guided, LacamEnd};
+use crate::lacam::{lacam_search, LacamEnd};
 use crate::moves::MoveGraph;
 use crate::outcome::Budget;
 use std::time::Instant;
@@ -110,10 +110,11 @@ pub fn lacam_restarts(
                 b.deadline = Some(b.deadline.map_or(until, |d| d.min(until)));
             }
         }
-        // Even attempts follow the guide paths, odd ones do without (see the module).
+        // Even attempts follow the guide paths and revisit known configurations, odd ones do
+        // neither (see the module).
         let run = |k: u64| {
             let advice = if k % 2 == 0 { guide } else { &[] };
-            lacam_guided(
+            lacam_search(
                 graph,
                 dist,
                 starts,
@@ -121,6 +122,7 @@ pub fn lacam_restarts(
                 advice,
                 &b,
                 attempt_seed(seed, k),
+                k % 2 == 0,
             )
         };
         let ((e0, c0), (e1, c1)) = rayon::join(|| run(k), || run(k + 1));
@@ -200,8 +202,18 @@ mod tests {
                 node_limit: Some(4 * longest + 64),
                 ..Budget::unlimited()
             };
-            let guided = lacam_guided(&m, &dist, &s, &t, &guide, &capped, seed).0;
-            let plain = lacam_guided(&m, &dist, &s, &t, &[], &capped, attempt_seed(seed, 1)).0;
+            let guided = lacam_search(&m, &dist, &s, &t, &guide, &capped, seed, true).0;
+            let plain = lacam_search(
+                &m,
+                &dist,
+                &s,
+                &t,
+                &[],
+                &capped,
+                attempt_seed(seed, 1),
+                false,
+            )
+            .0;
             let (LacamEnd::Found(a), LacamEnd::Found(b)) = (guided, plain) else {
                 continue;
             };
