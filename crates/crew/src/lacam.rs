@@ -215,3 +215,81 @@ fn extract(nodes: &[Node], last: u32, goals: &[u32]) -> Vec<Vec<u32>> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::keep_largest_region;
+    use crate::grid::{Cell, Connectivity, Grid};
+    use crate::moves::goal_distances;
+    use crate::validate::validate;
+    use rand::Rng;
+
+    #[test]
+    fn revisiting_finds_valid_plans_and_agrees_on_which_instances_have_none() {
+        // Both rules are complete: on every small instance where neither runs out of its
+        // cap, they must agree on whether a plan exists, and every plan must be valid.
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let (mut found, mut none) = (0, 0);
+        for k in 0..400 {
+            let conn = if k % 2 == 0 {
+                Connectivity::Four
+            } else {
+                Connectivity::Eight
+            };
+            let (w, h) = (rng.gen_range(2..6), rng.gen_range(2..6));
+            let blocked = (0..w * h).map(|_| rng.gen_bool(0.2)).collect();
+            let mut grid = Grid::new(w, h, blocked);
+            keep_largest_region(&mut grid);
+            let mut free: Vec<Cell> = (0..grid.len() as u32)
+                .map(Cell)
+                .filter(|&c| grid.is_free(c))
+                .collect();
+            let n = 2 + k % 4;
+            if free.len() < n + 1 {
+                continue;
+            }
+            free.shuffle(&mut rng);
+            let starts: Vec<Cell> = free[..n].to_vec();
+            free.shuffle(&mut rng);
+            let goals: Vec<Cell> = free[..n].to_vec();
+            let graph = MoveGraph::new(&grid, conn);
+            let dist = goal_distances(&grid, conn, &goals);
+            if (0..n).any(|i| dist[i][starts[i].0 as usize] == crate::distance::UNREACHABLE) {
+                continue;
+            }
+            let s: Vec<u32> = starts.iter().map(|c| c.0).collect();
+            let g: Vec<u32> = goals.iter().map(|c| c.0).collect();
+            let capped = Budget {
+                node_limit: Some(200_000),
+                ..Budget::unlimited()
+            };
+            let ends: Vec<LacamEnd> = [false, true]
+                .iter()
+                .map(|&revisit| {
+                    lacam_search(&graph, &dist, &s, &g, &[], &capped, k as u64, revisit).0
+                })
+                .collect();
+            for end in &ends {
+                if let LacamEnd::Found(paths) = end {
+                    let cells: Vec<Vec<Cell>> = paths
+                        .iter()
+                        .map(|p| p.iter().map(|&c| Cell(c)).collect())
+                        .collect();
+                    validate(&grid, conn, &starts, &goals, &cells)
+                        .unwrap_or_else(|e| panic!("instance {k}: {e}"));
+                }
+            }
+            match (&ends[0], &ends[1]) {
+                (LacamEnd::Found(_), LacamEnd::Found(_)) => found += 1,
+                (LacamEnd::Exhausted, LacamEnd::Exhausted) => none += 1,
+                (LacamEnd::Budget, _) | (_, LacamEnd::Budget) => {}
+                (a, b) => panic!("instance {k}: without revisits {a:?}, with {b:?}"),
+            }
+        }
+        assert!(
+            found >= 100 && none >= 5,
+            "{found} solved, {none} without a plan"
+        );
+    }
+}

@@ -953,6 +953,15 @@ mod tests {
     }
 
     #[test]
+    fn the_size_ladder_halves_and_doubles_the_configured_size() {
+        assert_eq!(size_ladder(4), vec![2, 4, 8]);
+        assert_eq!(size_ladder(5), vec![2, 5, 10]);
+        assert_eq!(size_ladder(2), vec![1, 2, 4]);
+        assert_eq!(size_ladder(1), vec![1, 2]);
+        assert_eq!(size_ladder(0), vec![1, 2]);
+    }
+
+    #[test]
     fn a_fixed_number_of_rounds_gives_the_same_plan_twice() {
         let (_, graph, dist, targets, first) = warehouse_case(90);
         let config = RefineConfig {
