@@ -75,7 +75,8 @@ use std::sync::Mutex;
 /// When refinement stops besides the deadline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RefineConfig {
-    /// Robots replanned per round.
+    /// Robots replanned per round: the middle rung of the size ladder (half of it, it, twice it;
+    /// see the module notes).
     pub neighbourhood: usize,
     /// Whether new paths of equal sum of costs replace the old ones too (a sideways move that
     /// changes where the robots are without making the plan worse; see the module notes).
