@@ -28,12 +28,28 @@
 //! warehouse-10-20-10-2-1 500 50 305 / 49 167 / 50 285 against 50 933 / 49 611 / 50 285 and
 //! 1000 151 563 / 146 090 / 153 661 against 151 951 / 150 530 / 151 217.
 //!
+//! In the extra pairs the even attempt also revisits ([`crate::lacam::lacam_search`]): a step
+//! that reaches a known configuration continues from it, as LaCAM* does, instead of trying the
+//! next constraint set of the configuration it came from. On small dense maps this gives far
+//! shorter plans, but on some seeds it needs many more configurations before any plan, and
+//! its first plan can be much costlier (random-32-32-20 409 agents, seed 3: 83 105 against
+//! 45 844); so the pairs before the first plan never revisit, and the first plan and its time
+//! stay what they were. Measured 2026-11-26 (sum of costs of the plan kept after the extra
+//! pairs, `--refine-rounds 0 --time-limit 10`, seeds 0–3, 4-connected, random-1), without
+//! revisits against with them in the extra pairs: random-32-32-20 409 agents 30 401 / 29 090 /
+//! 25 794 / 32 360 against 27 780 / 30 378 / 25 264 / 32 360; room-32-32-4 341 34 972 /
+//! 33 033 / 33 666 / 32 601 against 34 273 / 33 033 / 33 666 / 32 623; maze-32-32-2 333
+//! unchanged. Revisiting in every guided attempt, the first pairs included, gave lower sums
+//! after the extra pairs (geometric mean 2.0 % below none over 16 runs) but, on a loaded
+//! machine where the extra pairs had little time, refinement from seed 3's first plan ended
+//! at 50 497 in 10 s, against 25 478 with revisits in the extra pairs only (lacam3: 22 765).
+//!
 //! Caps count iterations, never time, and attempt `k`'s seed is a fixed function of the seed
 //! and `k`, so a seed gives the same plan on one core or two; only a deadline that cuts the
 //! search makes the result depend on speed. Cost: at most about twice the iterations of the
 //! attempt that succeeds, per core, plus the extra pairs.
 
-use crate::lacam::{lacam_guided, LacamEnd};
+use crate::lacam::{lacam_search, LacamEnd};
 use crate::moves::MoveGraph;
 use crate::outcome::Budget;
 use std::time::Instant;
@@ -110,10 +126,12 @@ pub fn lacam_restarts(
                 b.deadline = Some(b.deadline.map_or(until, |d| d.min(until)));
             }
         }
-        // Even attempts follow the guide paths, odd ones do without (see the module).
+        // Even attempts follow the guide paths, odd ones do without; in the extra pairs the
+        // even ones revisit known configurations too (see the module).
+        let extra_pair = best.is_some();
         let run = |k: u64| {
             let advice = if k % 2 == 0 { guide } else { &[] };
-            lacam_guided(
+            lacam_search(
                 graph,
                 dist,
                 starts,
@@ -121,6 +139,7 @@ pub fn lacam_restarts(
                 advice,
                 &b,
                 attempt_seed(seed, k),
+                extra_pair && k % 2 == 0,
             )
         };
         let ((e0, c0), (e1, c1)) = rayon::join(|| run(k), || run(k + 1));
@@ -200,8 +219,18 @@ mod tests {
                 node_limit: Some(4 * longest + 64),
                 ..Budget::unlimited()
             };
-            let guided = lacam_guided(&m, &dist, &s, &t, &guide, &capped, seed).0;
-            let plain = lacam_guided(&m, &dist, &s, &t, &[], &capped, attempt_seed(seed, 1)).0;
+            let guided = lacam_search(&m, &dist, &s, &t, &guide, &capped, seed, false).0;
+            let plain = lacam_search(
+                &m,
+                &dist,
+                &s,
+                &t,
+                &[],
+                &capped,
+                attempt_seed(seed, 1),
+                false,
+            )
+            .0;
             let (LacamEnd::Found(a), LacamEnd::Found(b)) = (guided, plain) else {
                 continue;
             };
