@@ -79,6 +79,28 @@ FAMILIES = {
         robot_rgb=((0.45, 0.9), (0.0, 0.15), (0.02, 0.15)), goal_rgb=((0.02, 0.2), (0.3, 0.7), (0.02, 0.25)),
         sun_elevation=(35.0, 85.0), sun_angle=(1.0, 8.0), exposure=(0.14, 0.30),
         noise_max=0.03, blur_max=1.3, jpeg_quality=(55, 96)),
+    # J: the fourth Blender family (rendered at the start of the seventh round, held out from
+    # it, scored once with its final reader): other floors, shelves of colours near some of
+    # them, other robot and goal sizes, reds and greens, a sun of other height and softness,
+    # other exposure, noise, blur and JPEG quality, cameras nearer and tilted further. Only
+    # keys G, H and I already know, so those render unchanged.
+    "J": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Mid warm grey, pale blue, olive grey, light beige, charcoal.
+        floors=((0.50, 0.47, 0.44), (0.62, 0.68, 0.74), (0.42, 0.44, 0.34), (0.78, 0.74, 0.66),
+                (0.18, 0.18, 0.20)),
+        # Light warm grey (near the beige and warm grey floors), pale steel blue (near the pale
+        # blue floor), olive drab, forest green-grey, dark charcoal (near the charcoal floor),
+        # bright blue, ochre.
+        shelf_colours=((0.70, 0.66, 0.60), (0.55, 0.62, 0.72), (0.35, 0.36, 0.20), (0.20, 0.30, 0.25),
+                       (0.12, 0.12, 0.13), (0.05, 0.35, 0.80), (0.75, 0.55, 0.15)),
+        goods_colour=(0.58, 0.42, 0.26),
+        shelf_height=(0.25, 1.7), shelf_inset=(0.02, 0.08), camera_ratio=(1.5, 4.0), tilt_max=32.0,
+        robot_size=(0.38, 0.82), big_robot_size=(1.25, 1.65), goal_size=(0.38, 0.82),
+        robot_rgb=((0.5, 0.95), (0.0, 0.1), (0.0, 0.12)), goal_rgb=((0.0, 0.18), (0.32, 0.72), (0.0, 0.3)),
+        sun_elevation=(30.0, 75.0), sun_angle=(0.8, 10.0), exposure=(0.15, 0.31),
+        noise_max=0.028, blur_max=1.2, jpeg_quality=(58, 96)),
 }
 
 

@@ -54,6 +54,154 @@ impl Blob {
     }
 }
 
+/// The share of the pixels around `blob` (within [`RING`] pixels of it, inside the image, not
+/// in it) whose class is `class` (the high bit ignored).
+pub fn ring_share(blob: &Blob, classes: &[u8], width: usize, class: u8) -> f64 {
+    let height = classes.len() / width.max(1);
+    if blob.pixels.is_empty() || height == 0 {
+        return 0.0;
+    }
+    let r = RING as usize;
+    let x0 = (blob.bbox.0 as usize).saturating_sub(r);
+    let y0 = (blob.bbox.1 as usize).saturating_sub(r);
+    let x1 = (blob.bbox.2 as usize + r).min(width - 1);
+    let y1 = (blob.bbox.3 as usize + r).min(height - 1);
+    let (bw, bh) = (x1 - x0 + 1, y1 - y0 + 1);
+    // 0: away, 1: around, 2: in the blob.
+    let mut mask = vec![0u8; bw * bh];
+    for &(x, y) in &blob.pixels {
+        let (x, y) = (x as usize, y as usize);
+        for ny in y.saturating_sub(r).max(y0)..=(y + r).min(y1) {
+            for nx in x.saturating_sub(r).max(x0)..=(x + r).min(x1) {
+                let m = &mut mask[(ny - y0) * bw + nx - x0];
+                *m = (*m).max(1);
+            }
+        }
+    }
+    for &(x, y) in &blob.pixels {
+        mask[(y as usize - y0) * bw + x as usize - x0] = 2;
+    }
+    let (mut around, mut hit) = (0u32, 0u32);
+    for yy in 0..bh {
+        for xx in 0..bw {
+            if mask[yy * bw + xx] == 1 {
+                around += 1;
+                hit += u32::from(classes[(y0 + yy) * width + x0 + xx] & 0x7f == class);
+            }
+        }
+    }
+    if around == 0 {
+        0.0
+    } else {
+        f64::from(hit) / f64::from(around)
+    }
+}
+
+/// The largest 8-connected region of pixels of class `class` that touches `blob` (within
+/// [`RING`] pixels of it), counted up to `cap` pixels (a region that large is not counted
+/// further).
+pub fn largest_around(blob: &Blob, classes: &[u8], width: usize, class: u8, cap: usize) -> usize {
+    let height = classes.len() / width.max(1);
+    if blob.pixels.is_empty() || height == 0 {
+        return 0;
+    }
+    let r = RING as usize;
+    let mut seen = std::collections::HashSet::new();
+    let mut best = 0;
+    for &(x, y) in &blob.pixels {
+        let (x, y) = (x as usize, y as usize);
+        for sy in y.saturating_sub(r)..=(y + r).min(height - 1) {
+            for sx in x.saturating_sub(r)..=(x + r).min(width - 1) {
+                let start = sy * width + sx;
+                if classes[start] & 0x7f != class || !seen.insert(start) {
+                    continue;
+                }
+                let mut size = 0;
+                let mut stack = vec![start];
+                while let Some(i) = stack.pop() {
+                    size += 1;
+                    if size >= cap {
+                        return cap;
+                    }
+                    let (px, py) = (i % width, i / width);
+                    for ny in py.saturating_sub(1)..=(py + 1).min(height - 1) {
+                        for nx in px.saturating_sub(1)..=(px + 1).min(width - 1) {
+                            let j = ny * width + nx;
+                            if classes[j] & 0x7f == class && seen.insert(j) {
+                                stack.push(j);
+                            }
+                        }
+                    }
+                }
+                best = best.max(size);
+            }
+        }
+    }
+    best
+}
+
+/// How far (pixels) around a blob [`ring_share`] looks.
+pub const RING: u32 = 2;
+
+/// The obstacle region a doubtful piece lies against is at least this many cells large (a
+/// shelf's top or side, not a stray pixel of a mark's shading).
+pub const OBSTACLE_CELLS: f64 = 0.5;
+/// A doubtful piece with at least this share of the pixels around it of an obstacle lies
+/// against one.
+pub const AGAINST: f64 = 0.35;
+/// The doubtful pieces against an obstacle near one piece (within [`NEAR_MEDIANS`] median
+/// widths) together under this share of the median: what is left of a mark the obstacle
+/// hides.
+pub const HIDDEN_SHARE: f64 = 0.3;
+/// How near (in widths of a median blob: the square root of its area) pieces count as one.
+pub const NEAR_MEDIANS: f64 = 1.5;
+
+/// Which doubtful pieces can be set aside as what an obstacle leaves: a stray of its edge's
+/// colour, or the remains of a mark it hides. Such a piece lies against an obstacle (at least
+/// [`AGAINST`] of the pixels around it are obstacle pixels, of a region of at least
+/// `obstacle_least` pixels: a shelf's top or side, not a mark's own stray shading), and the
+/// pieces against one near it, itself included, come to less than [`HIDDEN_SHARE`] of the
+/// median; pieces that add up to more may be a mark cut by an obstacle's edge and stay
+/// doubtful.
+///
+/// Setting aside is not proof: a mark whose centre shows may still show as little as a sixth
+/// of itself beside a shelf leaning over it (family E, E0034: a goal's 19 px of a median
+/// 114). So the caller reads a view with pieces set aside only when it then has exactly as
+/// many goals as robots: a mark wrongly set aside leaves its pair over, and the piece is
+/// refused as before.
+pub fn behind_obstacle(
+    doubtful: &[Blob],
+    median: usize,
+    (classes, width): (&[u8], usize),
+    obstacle_least: usize,
+) -> Vec<bool> {
+    const OBSTACLE: u8 = super::colour::Class::Obstacle as u8;
+    let against: Vec<bool> = doubtful
+        .iter()
+        .map(|b| {
+            ring_share(b, classes, width, OBSTACLE) >= AGAINST
+                && largest_around(b, classes, width, OBSTACLE, obstacle_least) >= obstacle_least
+        })
+        .collect();
+    let reach = NEAR_MEDIANS * (median as f64).sqrt();
+    let centres: Vec<Point> = doubtful.iter().map(Blob::centroid).collect();
+    (0..doubtful.len())
+        .map(|i| {
+            against[i] && {
+                let near: usize = (0..doubtful.len())
+                    .filter(|&j| {
+                        against[j]
+                            && (centres[i].0 - centres[j].0).hypot(centres[i].1 - centres[j].1)
+                                <= reach
+                    })
+                    .map(|j| doubtful[j].area())
+                    .sum();
+                (near as f64) < HIDDEN_SHARE * median as f64
+            }
+        })
+        .collect()
+}
+
 /// The 8-connected blobs of pixels whose class is `class`, in row-major order of their first
 /// pixel. Visited pixels get their high bit set in `classes` (cleared again at the end).
 pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
@@ -420,6 +568,92 @@ pub fn on_floor(blob: &Blob, image_to_floor: &Homography) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A `w` × `h` class map of `fill`, with the rectangles given set to their class.
+    fn class_map(
+        w: usize,
+        h: usize,
+        fill: u8,
+        rects: &[(usize, usize, usize, usize, u8)],
+    ) -> Vec<u8> {
+        let mut c = vec![fill; w * h];
+        for &(x0, y0, x1, y1, class) in rects {
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    c[y * w + x] = class;
+                }
+            }
+        }
+        c
+    }
+
+    fn square_blob(x0: u32, y0: u32, side: u32) -> Blob {
+        let pixels: Vec<(u32, u32)> = (y0..y0 + side)
+            .flat_map(|y| (x0..x0 + side).map(move |x| (x, y)))
+            .collect();
+        Blob {
+            pixels,
+            bbox: (x0, y0, x0 + side - 1, y0 + side - 1),
+        }
+    }
+
+    #[test]
+    fn ring_share_counts_only_the_pixels_around() {
+        const OB: u8 = super::super::colour::Class::Obstacle as u8;
+        // A 3 × 3 piece at (10, 10); obstacle fills the columns left of x = 10.
+        let c = class_map(30, 30, 0, &[(0, 0, 10, 30, OB)]);
+        let b = square_blob(10, 10, 3);
+        // The ring (2 px) is 7 × 7 less the 3 × 3: 40 pixels, 14 of them (x = 8, 9) obstacle.
+        let share = ring_share(&b, &c, 30, OB);
+        assert!((share - 14.0 / 40.0).abs() < 1e-9, "{share}");
+        assert_eq!(ring_share(&square_blob(20, 10, 3), &c, 30, OB), 0.0);
+    }
+
+    #[test]
+    fn largest_around_finds_the_region_touching_and_stops_at_the_cap() {
+        const OB: u8 = super::super::colour::Class::Obstacle as u8;
+        // A big obstacle (10 × 30) left of the piece, a small one (2 × 2) right of it.
+        let c = class_map(40, 30, 0, &[(0, 0, 10, 30, OB), (14, 10, 16, 12, OB)]);
+        let b = square_blob(10, 10, 3);
+        assert_eq!(largest_around(&b, &c, 40, OB, 1000), 300);
+        assert_eq!(largest_around(&b, &c, 40, OB, 50), 50);
+        // Only the small one touches a piece at (17, 10): it is 4 pixels.
+        assert_eq!(largest_around(&square_blob(17, 10, 2), &c, 40, OB, 1000), 4);
+    }
+
+    #[test]
+    fn only_small_pieces_against_a_large_obstacle_are_set_aside() {
+        const OB: u8 = super::super::colour::Class::Obstacle as u8;
+        let c = class_map(60, 40, 0, &[(0, 0, 10, 40, OB), (40, 20, 42, 22, OB)]);
+        let median = 100;
+        let pieces = vec![
+            square_blob(10, 5, 3),  // 9 px against the big obstacle: set aside
+            square_blob(25, 5, 3),  // 9 px on open floor: doubtful
+            square_blob(42, 20, 3), // 9 px against a 4-pixel obstacle: doubtful
+        ];
+        assert_eq!(
+            behind_obstacle(&pieces, median, (&c, 60), 200),
+            vec![true, false, false]
+        );
+        // Two pieces of 3 × 6 px against the obstacle one above the other, 18 + 18 px: 0.36
+        // of the median together, and a mark cut by the obstacle's edge may show so much:
+        // both stay doubtful, while either alone is set aside.
+        let tall = |y0: u32| Blob {
+            pixels: (y0..y0 + 6)
+                .flat_map(|y| (10..13).map(move |x| (x, y)))
+                .collect(),
+            bbox: (10, y0, 12, y0 + 5),
+        };
+        let cut = vec![tall(5), tall(13)];
+        assert_eq!(
+            behind_obstacle(&cut[..1], median, (&c, 60), 200),
+            vec![true]
+        );
+        assert_eq!(
+            behind_obstacle(&cut, median, (&c, 60), 200),
+            vec![false, false]
+        );
+    }
 
     fn disc(cx: f64, cy: f64, r: f64) -> Vec<Point> {
         let mut out = Vec::new();

@@ -724,23 +724,23 @@ pub fn read_aerial_image(
     };
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
-    let robots = marks(
+    let (robots, robots_aside) = marks(
         blobs::find(&mut classes, width, Class::Robot as u8),
         "robot",
         &grid,
-        &image_to_floor,
-        nadir,
+        (&image_to_floor, nadir),
         1.0 / px,
         source,
+        (&classes, width),
     )?;
-    let goals = marks(
+    let (goals, goals_aside) = marks(
         blobs::find(&mut classes, width, Class::Goal as u8),
         "goal",
         &grid,
-        &image_to_floor,
-        None,
+        (&image_to_floor, None),
         1.0 / px,
         source,
+        (&classes, width),
     )?;
     // A blob of a colour between the robots' (or goals') and another's, as large as a robot.
     let smallest = robots
@@ -784,6 +784,13 @@ pub fn read_aerial_image(
                 crate::limits::MAX_AGENTS
             ),
         ));
+    }
+    // Pieces set aside as what an obstacle's edge or a mark it hides leaves: had one been a
+    // mark that should be read, its pair would be left over.
+    if let Some(e) = robots_aside.or(goals_aside) {
+        if goals.len() != robots.len() {
+            return Err(e);
+        }
     }
     if goals.len() < robots.len() {
         return Err(whole(
@@ -836,11 +843,11 @@ fn marks(
     found: Vec<blobs::Blob>,
     kind: &str,
     grid: &Grid,
-    image_to_floor: &Homography,
-    nadir: Option<Point>,
+    (image_to_floor, nadir): (&Homography, Option<Point>),
     px_on_floor: f64,
     source: &str,
-) -> Result<Vec<Mark>, CrewError> {
+    (classes, width): (&[u8], usize),
+) -> Result<(Vec<Mark>, Option<CrewError>), CrewError> {
     let mut sorted = blobs::sort(found);
     for b in std::mem::take(&mut sorted.merged) {
         let Some(pieces) = blobs::split(&b, sorted.median_area) else {
@@ -857,8 +864,8 @@ fn marks(
         };
         sorted.kept.extend(pieces);
     }
-    if let Some(b) = sorted.doubtful.first() {
-        return Err(at_pixel(
+    let doubt = |b: &blobs::Blob| {
+        at_pixel(
             source,
             b.centroid(),
             format!(
@@ -866,7 +873,25 @@ fn marks(
                 b.area(),
                 sorted.median_area
             ),
-        ));
+        )
+    };
+    // Pieces that only an obstacle's edge or a mark it hides leaves (see
+    // `blobs::behind_obstacle`) are set aside; the first is refused later unless the view
+    // then has exactly as many goals as robots (see `read_aerial_image`).
+    let behind = blobs::behind_obstacle(
+        &sorted.doubtful,
+        sorted.median_area,
+        (classes, width),
+        (blobs::OBSTACLE_CELLS / (px_on_floor * px_on_floor)).ceil() as usize,
+    );
+    let set_aside = sorted
+        .doubtful
+        .iter()
+        .zip(&behind)
+        .find(|(_, &b)| b)
+        .map(|(b, _)| doubt(b));
+    if let Some(b) = sorted.doubtful.iter().zip(&behind).find(|(_, &b)| !b) {
+        return Err(doubt(b.0));
     }
     // A blob well under the median is a partly hidden one, or a single one among pairs
     // touching that made the median: then a blob of the median's size splits in two.
@@ -942,7 +967,7 @@ fn marks(
             confidence,
         });
     }
-    Ok(out)
+    Ok((out, set_aside))
 }
 
 #[cfg(test)]
