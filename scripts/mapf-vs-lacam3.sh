@@ -98,3 +98,4 @@ for spec in room-32-32-4:341 warehouse-10-20-10-2-1:800 warehouse-10-20-10-2-1:1
   point "${spec%%:*}" "${spec#*:}" 30 0
 done
 for s in 1 2 3; do point room-32-32-4 341 10 "$s"; done
+for s in 1 2 3; do point random-32-32-20 409 10 "$s"; done
