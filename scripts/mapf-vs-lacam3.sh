@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Runs lacam3 and `mason crew --resolve lacam` side by side (at the same time, so that both see
-# the same machine load) on a representative subset of the MovingAI benchmark, at time limits
+# the same machine load) on a representative subset of the MovingAI benchmark (or, --wide, on
+# the rest of its maps), at time limits
 # of 1, 10 and 30 s, and writes one tab-separated line per run and solver.
 #
 # usage: scripts/mapf-vs-lacam3.sh LACAM3_BINARY MASON_BINARY DATA_DIR OUT_PREFIX [--wide]
 #   DATA_DIR holds maps/NAME.map and scen/NAME-random-1.scen (MovingAI layout).
 #   --wide: instead, the other 24 maps of the MovingAI benchmark (every map family) at 1 and
-#   10 s, and the 1000-agent points of eight of them at 30 s. A map whose random-1 scenario is not in DATA_DIR gets one from
-#   `mason generate scen --map MAP --agents MAX --seed 1` (the same pairs on every run; both
-#   solvers read the first N pairs of that one file).
+#   10 s, and the 1000-agent points of eight of them at 30 s. A map whose random-1 scenario is
+#   not in DATA_DIR gets one from `mason generate scen --map MAP --agents MAX --seed 1` (MAX:
+#   the map's largest count; the same pairs on every run; both solvers read the first N pairs
+#   of that one file).
 #   Writes OUT_PREFIX-lacam3.tsv and OUT_PREFIX-mason.tsv with the columns
 #   map agents limit_s seed solved soc soc_lb makespan first_ms
 # lacam3 (Kei18/lacam3) is built outside this repository; its `soc` is the same measure as
