@@ -128,6 +128,10 @@ fn dev_zero_folders_and_fifos_are_refused_without_reading() {
         &["/dev/zero", "not a regular file"],
     );
     assert_input_error(&mason(&["plan", &folder]), &["a folder"]);
+    assert_input_error(
+        &mason(&["generate", "scen", "--map", "/dev/zero", "--agents", "3"]),
+        &["/dev/zero", "not a regular file"],
+    );
     let fifo = dir.join("wall.fifo");
     let made = Command::new("mkfifo").arg(&fifo).status();
     if made.is_ok_and(|s| s.success()) {
@@ -139,6 +143,10 @@ fn dev_zero_folders_and_fifos_are_refused_without_reading() {
         );
         assert_input_error(
             &mason(&["simulate", "builtin:thesis-2x5", "--faults", &f]),
+            &["wall.fifo", "not a regular file"],
+        );
+        assert_input_error(
+            &mason(&["generate", "scen", "--map", &f, "--agents", "3"]),
             &["wall.fifo", "not a regular file"],
         );
     }
