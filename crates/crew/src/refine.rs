@@ -35,6 +35,19 @@
 //! - *area*: the robots that pass through the cells nearest a random cell;
 //! - *random*: robots drawn at random.
 //!
+//! The cap on states expanded per robot replanned is chosen per neighbourhood too, among
+//! `RefineConfig::node_limit` and its half, quarter, eighth and sixteenth (`Caps`): each is
+//! drawn with a probability proportional to the sum of costs it has gained per state expanded
+//! (sums that fade by 0.5 % per neighbourhood). Where rounds mostly fail, a failing search
+//! runs to its cap, and a smaller cap buys many more rounds; where the gains come from long
+//! searches, the large caps keep them. Measured 2026-11-28 on the loaded 2-core machine (10 s,
+//! seed 0, 4-connected; the gain of refinement over LaCAM's plan, main against adaptive caps,
+//! runs alternating): warehouse-10-20-10-2-1 1000 agents 7 211 against 15 006 (rounds 760
+//! against 3 824); lak303d 1000 (generated scenario) 720 against 1 328; den520d 1000 3 334
+//! against 6 149; random-32-32-20 409 seed 3 21 084 against 21 123. With the cap fixed at
+//! 30 000, searches that failed at the cap took 87 % of the states expanded on lak303d and
+//! 78 % on the warehouse; with it fixed at 7 500 den520d gained half as much.
+//!
 //! Space-time A* ([`crate::spacetime`]) is optimal for one robot given the others: states
 //! (cell, step), waits allowed, the true step distance as heuristic (ties to the state nearer
 //! the goal, then the deeper), and the robot may stop on its goal only after the last time
@@ -85,7 +98,9 @@ pub struct RefineConfig {
     pub rounds: Option<u64>,
     /// Stop after this many rounds in a row without improvement (`None`: never).
     pub stall: Option<u64>,
-    /// Cap on space-time states expanded per robot replanned.
+    /// Cap on space-time states expanded per robot replanned: the largest of the caps a
+    /// neighbourhood may get (it, half, a quarter, an eighth, a sixteenth; chosen by how much
+    /// each has gained per state expanded, see the module notes).
     pub node_limit: u64,
     /// Neighbourhoods drawn per batch and planned side by side (at least 1; see the module
     /// notes). The plan depends on it and on the seed, never on the number of cores.
@@ -192,6 +207,67 @@ const BATCH: usize = 4;
 /// Rounds in a row without a gain before the neighbourhood grows (see [`size_ladder`]).
 const SIZE_PATIENCE: u64 = 200;
 
+/// Arms of [`Caps`]: the configured cap on states per robot, then halved this many times.
+const CAP_ARMS: usize = 5;
+
+/// How fast [`Caps`] forgets: each record scales the sums before it by this.
+const CAP_MEMORY: f64 = 0.995;
+
+/// The cap on states expanded per robot replanned, chosen per neighbourhood among the
+/// configured cap and its halves (see the module notes): each arm is drawn with a probability
+/// proportional to what it has gained per state expanded, in sums that fade with
+/// [`CAP_MEMORY`]; before any record, each arm counts one unit of gain over its own cap.
+struct Caps {
+    caps: Vec<u64>,
+    gain: Vec<f64>,
+    spent: Vec<f64>,
+}
+
+impl Caps {
+    fn new(node_limit: u64) -> Self {
+        let mut caps: Vec<u64> = (0..CAP_ARMS).map(|j| (node_limit >> j).max(1)).collect();
+        caps.dedup();
+        let n = caps.len();
+        Caps {
+            caps,
+            gain: vec![0.0; n],
+            spent: vec![0.0; n],
+        }
+    }
+
+    fn cap(&self, arm: usize) -> u64 {
+        self.caps[arm]
+    }
+
+    /// Gain per state expanded of `arm`, with the prior of one unit over its cap.
+    fn rate(&self, arm: usize) -> f64 {
+        (self.gain[arm] + 1.0) / (self.spent[arm] + self.caps[arm] as f64)
+    }
+
+    fn pick(&self, rng: &mut ChaCha8Rng) -> usize {
+        let total: f64 = (0..self.caps.len()).map(|a| self.rate(a)).sum();
+        let mut pick = rng.gen::<f64>() * total;
+        for a in 0..self.caps.len() - 1 {
+            let r = self.rate(a);
+            if pick < r {
+                return a;
+            }
+            pick -= r;
+        }
+        self.caps.len() - 1
+    }
+
+    /// A neighbourhood planned under `arm`'s cap gained `gain` and expanded `expanded` states.
+    fn record(&mut self, arm: usize, gain: u64, expanded: u64) {
+        for a in 0..self.caps.len() {
+            self.gain[a] *= CAP_MEMORY;
+            self.spent[a] *= CAP_MEMORY;
+        }
+        self.gain[arm] += gain as f64;
+        self.spent[arm] += expanded as f64;
+    }
+}
+
 /// The neighbourhood sizes refinement climbs through, smallest first, for a configured size
 /// `k` (at least 1): half of it, it, and twice it, without repeats.
 fn size_ladder(k: usize) -> Vec<usize> {
@@ -205,6 +281,8 @@ fn size_ladder(k: usize) -> Vec<usize> {
 /// them again gave.
 struct Candidate {
     kind: usize,
+    /// The arm of [`Caps`] that gave this neighbourhood its cap on states per robot.
+    arm: usize,
     group: Vec<usize>,
     /// The new paths of `group`'s first robots, in order; all of them unless a search failed.
     fresh: Vec<Vec<u32>>,
@@ -334,6 +412,7 @@ pub fn refine(
     // as many as threads ran at once, and one thread keeps reusing the same (warm) one.
     let scratch: Mutex<Vec<Search<OpenEntry>>> = Mutex::new(Vec::new());
     let mut weights = [1.0f64; 3];
+    let mut caps = Caps::new(config.node_limit);
     let mut stall = 0u64;
     let lower: u64 = (0..n)
         .map(|i| u64::from(dist[i][pos(&paths[i], 0) as usize]))
@@ -372,6 +451,7 @@ pub fn refine(
         batch.clear();
         let mut taken: Vec<usize> = Vec::new();
         for c in 0..size as usize {
+            let arm = caps.pick(&mut rng);
             let total: f64 = weights.iter().sum();
             let mut pick = rng.gen::<f64>() * total;
             let mut kind = 0;
@@ -390,6 +470,7 @@ pub fn refine(
                     taken.extend_from_slice(&group);
                     batch.push(Candidate {
                         kind,
+                        arm,
                         group,
                         fresh: Vec::new(),
                         expanded: 0,
@@ -415,7 +496,7 @@ pub fn refine(
                 dist,
                 goals,
                 (shared.0, shared.1, &cost),
-                (config.node_limit, config.ties),
+                (caps.cap(cand.arm), config.ties),
             );
             if let Ok(mut s) = scratch.lock() {
                 s.push(search);
@@ -434,6 +515,7 @@ pub fn refine(
                 }
                 _ => None,
             };
+            caps.record(cand.arm, kept.unwrap_or(0), cand.expanded);
             match kept {
                 Some(gain) => {
                     for (&r, p) in cand.group.iter().zip(&cand.fresh) {
@@ -872,6 +954,7 @@ mod tests {
             }
             let cand = Candidate {
                 kind: 0,
+                arm: 0,
                 group,
                 fresh,
                 expanded: 0,
@@ -963,6 +1046,37 @@ mod tests {
                 assert_eq!(sideways, 0);
             }
         }
+    }
+
+    #[test]
+    fn the_caps_halve_and_the_arm_that_gains_most_per_state_is_drawn_most() {
+        assert_eq!(
+            Caps::new(30_000).caps,
+            vec![30_000, 15_000, 7_500, 3_750, 1_875]
+        );
+        assert_eq!(Caps::new(2).caps, vec![2, 1]);
+        let mut caps = Caps::new(16_000);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let drawn = |caps: &Caps, rng: &mut ChaCha8Rng| {
+            let mut n = vec![0; caps.caps.len()];
+            for _ in 0..10_000 {
+                n[caps.pick(rng)] += 1;
+            }
+            n
+        };
+        // Before any record the smaller caps come first (one unit over each cap), but every
+        // arm is drawn.
+        let before = drawn(&caps, &mut rng);
+        assert!(before.windows(2).all(|w| w[0] < w[1]), "{before:?}");
+        // The largest cap gains 10 per 16 000 states, the smallest nothing: the largest
+        // becomes the most drawn, and the smallest is still tried.
+        for _ in 0..200 {
+            caps.record(0, 10, 16_000);
+            caps.record(4, 0, 1_000);
+        }
+        let after = drawn(&caps, &mut rng);
+        assert!(after.iter().all(|&n| n <= after[0]), "{after:?}");
+        assert!(after[4] > 0 && after[4] < before[4], "{after:?}");
     }
 
     #[test]
