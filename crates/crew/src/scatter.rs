@@ -26,11 +26,9 @@
 
 use crate::moves::{MoveGraph, NIL};
 use crate::outcome::Budget;
-use crate::spacetime::key;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -53,7 +51,7 @@ pub fn guide_paths(
     let mut paths: Vec<Vec<u32>> = (0..n)
         .map(|i| shortest(graph, &dist[i], starts[i], goals[i]))
         .collect();
-    let mut table = Usage::default();
+    let mut table = Usage::new(graph.cells());
     for p in &paths {
         table.add(p, 1);
     }
@@ -84,48 +82,60 @@ pub fn guide_paths(
     paths
 }
 
-/// Robots on each (cell, step) and along each (edge, step) of the guide paths, and the step
-/// from which each robot rests on its goal.
-#[derive(Default)]
+/// The guide paths by cell: each visit of a cell with the step and the cell moved to next, and
+/// the step from which each robot rests on its goal. One short list per cell, scanned whole:
+/// far fewer cache misses than hash maps keyed by (cell, step), which took half the time of
+/// the guide paths on 1000 robots.
 pub(crate) struct Usage {
-    at: FxHashMap<u64, u32>,
-    along: FxHashMap<(u32, u32, u32), u32>,
+    /// cell → (step, next cell, or `NIL` at the path's last step) of every visit.
+    visits: Vec<Vec<(u32, u32)>>,
     /// goal cell → the last steps of the paths ending there.
-    resting: FxHashMap<u32, Vec<u32>>,
+    resting: Vec<Vec<u32>>,
 }
 
 impl Usage {
+    /// No paths, on `cells` cells.
+    pub(crate) fn new(cells: usize) -> Self {
+        Usage {
+            visits: vec![Vec::new(); cells],
+            resting: vec![Vec::new(); cells],
+        }
+    }
+
+    /// Adds path `p` (`by` > 0) or takes it away (`by` ≤ 0; it must have been added).
     pub(crate) fn add(&mut self, p: &[u32], by: i32) {
         let (goal, last) = (p[p.len() - 1], p.len() as u32 - 1);
-        let here = self.resting.entry(goal).or_default();
+        let here = &mut self.resting[goal as usize];
         if by > 0 {
             here.push(last);
         } else if let Some(k) = here.iter().position(|&l| l == last) {
             here.swap_remove(k);
         }
         for (t, &c) in p.iter().enumerate() {
-            let e = self.at.entry(key(c, t as u32)).or_default();
-            *e = e.wrapping_add_signed(by);
-            if t + 1 < p.len() && p[t + 1] != c {
-                let e = self.along.entry((c, p[t + 1], t as u32)).or_default();
-                *e = e.wrapping_add_signed(by);
+            let visit = (t as u32, p.get(t + 1).copied().unwrap_or(NIL));
+            let v = &mut self.visits[c as usize];
+            if by > 0 {
+                v.push(visit);
+            } else if let Some(k) = v.iter().position(|&x| x == visit) {
+                v.swap_remove(k);
             }
         }
     }
 
-    /// The robots met moving from `a` at step `t` to `b` at step `t + 1`.
+    /// The robots met moving from `a` at step `t` to `b` at step `t + 1`: on `b` then, coming
+    /// the other way along the edge, or resting on `b` by then.
     pub(crate) fn meets(&self, a: u32, b: u32, t: u32) -> u32 {
-        let here = self.at.get(&key(b, t + 1)).copied().unwrap_or(0);
-        let crossing = if a == b {
-            0
-        } else {
-            self.along.get(&(b, a, t)).copied().unwrap_or(0)
-        };
-        let rest = self
-            .resting
-            .get(&b)
-            .map_or(0, |r| r.iter().filter(|&&last| t + 1 > last).count() as u32);
-        here + crossing + rest
+        let mut met = 0;
+        for &(s, next) in &self.visits[b as usize] {
+            if s == t + 1 || (s == t && next == a && a != b) {
+                met += 1;
+            }
+        }
+        let rest = self.resting[b as usize]
+            .iter()
+            .filter(|&&last| t + 1 > last)
+            .count() as u32;
+        met + rest
     }
 }
 
@@ -250,6 +260,63 @@ mod tests {
     }
 
     #[test]
+    fn meetings_are_counted_as_defined_after_paths_come_and_go() {
+        // Random walks on an open 6×5 grid; some are taken away again. For every move, the
+        // count must be: walks on the target cell one step later, walks coming the other way
+        // along the edge, and walks ending on the target cell by then.
+        use rand::Rng;
+        let g = Grid::open(6, 5);
+        let m = MoveGraph::new(&g, Connectivity::Four);
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let walk = |rng: &mut ChaCha8Rng| {
+            let mut p = vec![rng.gen_range(0..m.cells() as u32)];
+            for _ in 0..rng.gen_range(0..12) {
+                let c = p[p.len() - 1];
+                let moves = m.neighbours(c);
+                p.push(if rng.gen_bool(0.2) {
+                    c
+                } else {
+                    moves[rng.gen_range(0..moves.len())]
+                });
+            }
+            p
+        };
+        let mut usage = Usage::new(m.cells());
+        let mut kept = Vec::new();
+        for k in 0..60 {
+            let p = walk(&mut rng);
+            usage.add(&p, 1);
+            if k % 3 == 0 {
+                usage.add(&p, -1);
+            } else {
+                kept.push(p);
+            }
+        }
+        let at = |p: &Vec<u32>, t: usize| p[t.min(p.len() - 1)];
+        for a in 0..m.cells() as u32 {
+            for &b in m.neighbours(a).iter().chain([a].iter()) {
+                for t in 0..14u32 {
+                    let want = kept
+                        .iter()
+                        .map(|p| {
+                            let on = (t as usize + 1 < p.len() && p[t as usize + 1] == b) as u32;
+                            let crossing = (a != b
+                                && (t as usize + 1) < p.len()
+                                && p[t as usize] == b
+                                && p[t as usize + 1] == a)
+                                as u32;
+                            let resting =
+                                (at(p, usize::MAX) == b && t + 1 > p.len() as u32 - 1) as u32;
+                            on + crossing + resting
+                        })
+                        .sum::<u32>();
+                    assert_eq!(usage.meets(a, b, t), want, "{a} → {b} at {t}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn guide_paths_meet_fewer_robots_than_shortest_paths() {
         let grid = crate::generate::warehouse(40, 30, 0.05, 2);
         let (robots, goals) = crate::generate::random_tasks(&grid, 60, 3);
@@ -264,7 +331,7 @@ mod tests {
         let met = |paths: &[Vec<u32>]| -> u32 {
             (0..paths.len())
                 .map(|i| {
-                    let mut others = Usage::default();
+                    let mut others = Usage::new(m.cells());
                     for (j, p) in paths.iter().enumerate() {
                         if j != i {
                             others.add(p, 1);

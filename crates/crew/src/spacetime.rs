@@ -1,7 +1,6 @@
 //! Space-time A* (Silver 2005): one robot's quickest (or cheapest) path around the others,
 //! the search shared by prioritized planning ([`crate::st`]) and anytime refinement
-//! ([`crate::refine`]); the guide paths ([`crate::scatter`]) search cells, not states, and
-//! share only [`key`].
+//! ([`crate::refine`]); the guide paths ([`crate::scatter`]) search cells, not states.
 //!
 //! States are (cell, step). From each, the robot waits or makes one move of the
 //! [`MoveGraph`]. The caller's [`Rules`] say what the rest of the world does: the cost of a
