@@ -67,6 +67,18 @@ FAMILIES = {
                              (0.28, 0.26, 0.23)),
               shelf_height=(0.3, 1.8), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 170),
               sun_elevation=(20, 60), sun_power=(2.2, 3.6)),
+    # K: held out from the eighth round of issue #29 (rendered after its reader was finished,
+    # scored once). Puck, box-with-a-dome and box robots, ellipse, ring and diamond goals,
+    # green-grey, pale warm and dark blue-grey floors tiled every fifth of a cell, pale lilac,
+    # cardboard tan, steel blue-grey, petrol and mustard shelves from 0.4 to 2.2 high inset
+    # 0.08 cell, a sun 30-75 degrees up of strength 2.5-4.0, warmer and cooler light, and a
+    # camera from 40 to 150 cells per 24 high.
+    "K": dict(robot_shapes=("puck", "boxdome", "box"), goal_shapes=("ellipse", "ring", "diamond"),
+              floors=((0.48, 0.52, 0.50), (0.76, 0.74, 0.68), (0.30, 0.33, 0.38)),
+              shelf_colours=((0.70, 0.62, 0.80), (0.72, 0.58, 0.40), (0.42, 0.50, 0.62), (0.05, 0.30, 0.35),
+                             (0.75, 0.60, 0.15)),
+              shelf_height=(0.4, 2.2), tiles=0.2, shelf_inset=0.08, warm=0.35, camera_height=(40, 150),
+              sun_elevation=(30, 75), sun_power=(2.5, 4.0)),
 }
 
 

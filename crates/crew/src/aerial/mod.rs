@@ -58,6 +58,7 @@ pub mod pixels;
 pub mod shadows;
 pub mod shelves;
 pub mod tinted;
+pub mod tops;
 
 use crate::error::{CrewError, Location};
 use crate::grid::{Cell, Grid};
@@ -569,6 +570,73 @@ pub fn read_aerial_image(
             })
             .collect()
     };
+    // A half-covered cell with no covered neighbour toward the nadir (whose top could lean
+    // over it) is blocked when what covers it stands on it (a block inside the cell, away from
+    // the borders toward the nadir: cartons on a pale shelf's top) or when its floor-coloured
+    // pixels are a pale shade of its obstacle pixels (a pale top read partly as floor); see
+    // `tops`.
+    let own_top = |i: usize| -> bool {
+        let Some(n) = nadir else { return false };
+        let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
+        let share_at = |x: i64, y: i64| {
+            (x >= 0 && y >= 0 && x < i64::from(gw) && y < i64::from(gh))
+                .then(|| shares[(y * i64::from(gw) + x) as usize])
+        };
+        let toward = |c: i64, at: f64| -> &'static [i64] {
+            if at >= c as f64 + 1.0 {
+                &[0, 1]
+            } else if at < c as f64 {
+                &[-1, 0]
+            } else {
+                &[-1, 0, 1]
+            }
+        };
+        let leaned = toward(x, n.0).iter().any(|&dx| {
+            toward(y, n.1).iter().any(|&dy| {
+                (dx, dy) != (0, 0) && share_at(x + dx, y + dy).is_some_and(|s| s > HALF_COVERED.0)
+            })
+        });
+        if leaned {
+            return false;
+        }
+        let colours = |x: i64, y: i64| {
+            tops::window_colours(
+                img,
+                &classes,
+                &classifier,
+                maps,
+                nadir,
+                (x as u32, y as u32),
+            )
+        };
+        let mut ring = Vec::with_capacity(8);
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                if (dx, dy) != (0, 0)
+                    && share_at(x + dx, y + dy).is_some_and(|s| s <= HALF_COVERED.0)
+                {
+                    ring.extend(colours(x + dx, y + dy).lit_floor_saturation());
+                }
+            }
+        }
+        let side = |c: i64, at: f64| {
+            if at >= c as f64 + 1.0 {
+                1
+            } else if at < c as f64 {
+                -1
+            } else {
+                0
+            }
+        };
+        let bins = cover::bins(
+            &classes,
+            width,
+            &floor_to_image,
+            &image_to_floor,
+            (x as u32, y as u32),
+        );
+        tops::standing(&bins, (side(x, n.0), side(y, n.1))) || colours(x, y).pale_top(&ring)
+    };
     let mut blocked = vec![false; cells];
     for (i, b) in blocked.iter_mut().enumerate() {
         let share = shares[i];
@@ -590,7 +658,7 @@ pub fn read_aerial_image(
                 ),
             ));
         }
-        if share < HALF_COVERED.1 {
+        if share < HALF_COVERED.1 && !own_top(i) {
             return Err(at_pixel(
                 source,
                 cell_centre_px(i),

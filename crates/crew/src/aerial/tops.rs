@@ -1,0 +1,247 @@
+//! A half-covered cell that something stands on: a block inside it, or a pale shelf's top.
+//!
+//! A shelf with cartons on a pale top reads as a block of obstacle inside a frame read as
+//! floor; a shelf's top of a pale colour reads partly as obstacle and partly as floor. Either
+//! cell's window reads 30–70 % covered, and no neighbour's leaning top explains it, so it was
+//! refused. Two kinds of evidence that the cover stands on the cell itself:
+//! - [`standing`]: the covered bins (see [`super::cover`]) stay off the cell's outer row and
+//!   column of bins on the sides toward the nadir. A neighbour's top leaning over the cell
+//!   enters it across the border it shares with that neighbour, on the side toward the
+//!   nadir; a block in the middle of the cell does not reach that border.
+//! - [`Window::pale_top`]: the pixels read as floor are a paler shade of the obstacle pixels
+//!   beside them, as follows.
+//!
+//! The pixels of the window read as floor tell it apart from a free cell half under a
+//! shelf's edge: on a shelf's top they are lit (no shadow), clearly tinted after white
+//! balance ([`TINT`]; the lit floor is grey, and the floor pixels of the half-covered free
+//! cells of the eighth round's family G scenes read 0.01–0.14), more tinted than the lit
+//! free floor around the cell ([`ABOVE_RING`]), and of the hue of the obstacle pixels beside
+//! them ([`SAME_HUE`]): one surface, not floor beside a shelf.
+//!
+//! A free cell under the leaning top of a pale shelf, or of one with cartons on a pale top,
+//! would look the same, so either evidence counts only when no neighbour on the cell's side
+//! toward the nadir (whose top could lean over it) is covered more than
+//! [`super::HALF_COVERED`]'s lower bound; otherwise the cell is refused as before. That is
+//! the limit: in a rack two or more cells deep, or a run of cells along the nadir's
+//! direction, the cells beyond the first are leaned on by their own shelf's cells and stay
+//! refused (the lean k of the neighbour's top is not known: a camera's height is not
+//! recovered from the corners).
+
+use super::colour::{hue_saturation, Class, Classifier};
+use super::cover::{Bins, BINS};
+use super::homography::Homography;
+use super::pixels::window;
+use image::RgbImage;
+
+/// The least saturation after white balance of a pale top's floor-coloured pixels (mean
+/// colour of the window's floor pixels).
+pub const TINT: f64 = 0.2;
+/// The least saturation above the lit free floor around the cell.
+pub const ABOVE_RING: f64 = 0.12;
+/// The largest hue difference (degrees) between the window's floor pixels and its obstacle
+/// pixels.
+pub const SAME_HUE: f64 = 30.0;
+/// At least this bright (the brightest channel of the mean colour, 1 for the lit floor).
+pub const LIT: f64 = 0.85;
+/// The fewest floor and obstacle pixels the window must show.
+pub const MIN_PIXELS: usize = 12;
+/// The fewest lit free neighbours (of the eight) the cell is compared with.
+pub const RING_MIN: usize = 2;
+
+/// The mean colours after white balance of a cell's window (the part counted by
+/// [`super::pixels::coverage`]): its obstacle pixels and its floor pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Window {
+    /// Mean colour and count of the obstacle pixels.
+    pub obstacle: ([f64; 3], usize),
+    /// Mean colour and count of the floor pixels.
+    pub floor: ([f64; 3], usize),
+}
+
+impl Window {
+    /// The floor pixels' saturation, when they are lit and enough (a free neighbour's
+    /// measure for the ring).
+    pub fn lit_floor_saturation(&self) -> Option<f64> {
+        let (rgb, n) = self.floor;
+        let bright = rgb[0].max(rgb[1]).max(rgb[2]);
+        (n >= MIN_PIXELS && bright >= LIT).then(|| hue_saturation(rgb).1)
+    }
+
+    /// Whether the floor pixels are a pale shade of the obstacle pixels (see the module's
+    /// comment), against `ring`, the saturations of the lit free neighbours.
+    pub fn pale_top(&self, ring: &[f64]) -> bool {
+        if self.obstacle.1 < MIN_PIXELS || ring.len() < RING_MIN {
+            return false;
+        }
+        let Some(s) = self.lit_floor_saturation() else {
+            return false;
+        };
+        let mut ring = ring.to_vec();
+        ring.sort_by(f64::total_cmp);
+        let median = ring[ring.len() / 2];
+        let (hf, _) = hue_saturation(self.floor.0);
+        let (ho, so) = hue_saturation(self.obstacle.0);
+        let d = (hf - ho).rem_euclid(360.0);
+        s >= TINT && s - median >= ABOVE_RING && so >= s && d.min(360.0 - d) <= SAME_HUE
+    }
+}
+
+/// The fewest covered bins (of [`BINS`]²) of an object standing on the cell.
+pub const STANDING: usize = 25;
+/// A bin is covered at this share of obstacle pixels (as in [`super::cover`]).
+const COVERED: f64 = 0.6;
+
+/// Whether a cell's cover stands on it: at least [`STANDING`] covered bins, none of them in the
+/// outer row or column of bins on a side toward the nadir `toward` (−1, 0 or 1 along each
+/// axis; 0: the nadir is level with the cell, both sides). A neighbour's top leaning over the
+/// cell covers it from the border it shares with that neighbour, on the side toward the
+/// nadir; cartons on a pale shelf's top, read as obstacle inside a frame read as floor, do
+/// not reach it.
+pub fn standing(bins: &Bins, toward: (i32, i32)) -> bool {
+    let last = BINS - 1;
+    let mut covered = 0;
+    for v in 0..BINS {
+        for u in 0..BINS {
+            let k = v * BINS + u;
+            let (o, f) = (bins.obstacle[k], bins.floor[k]);
+            if o + f == 0 || f64::from(o) < COVERED * f64::from(o + f) {
+                continue;
+            }
+            let near = |at: usize, side: i32| (at == 0 && side <= 0) || (at == last && side >= 0);
+            if near(u, toward.0) || near(v, toward.1) {
+                return false;
+            }
+            covered += 1;
+        }
+    }
+    covered >= STANDING
+}
+
+/// The mean colours of cell `(cx, cy)`'s window (see [`Window`]).
+pub fn window_colours(
+    img: &RgbImage,
+    classes: &[u8],
+    classifier: &Classifier,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    nadir: Option<(f64, f64)>,
+    (cx, cy): (u32, u32),
+) -> Window {
+    let width = img.width() as usize;
+    let (fx, fy) = (f64::from(cx), f64::from(cy));
+    let (wu, wv) = (
+        window(fx, nadir.map(|n| n.0)),
+        window(fy, nadir.map(|n| n.1)),
+    );
+    let mut sums = [[0.0; 3]; 2];
+    let mut counts = [0usize; 2];
+    if let Some((x0, y0, x1, y1)) = floor_to_image.cell_box((cx, cy), width, img.height() as usize)
+    {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let k = match classes[y * width + x] {
+                    c if c == Class::Obstacle as u8 => 0,
+                    c if c == Class::Floor as u8 => 1,
+                    _ => continue,
+                };
+                let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+                    continue;
+                };
+                let (du, dv) = (u - fx, v - fy);
+                if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 {
+                    continue;
+                }
+                let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
+                for c in 0..3 {
+                    sums[k][c] += rgb[c];
+                }
+                counts[k] += 1;
+            }
+        }
+    }
+    let mean = |k: usize| {
+        let n = counts[k].max(1) as f64;
+        ([sums[k][0] / n, sums[k][1] / n, sums[k][2] / n], counts[k])
+    };
+    Window {
+        obstacle: mean(0),
+        floor: mean(1),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn win(obstacle: [f64; 3], floor: [f64; 3]) -> Window {
+        Window {
+            obstacle: (obstacle, 100),
+            floor: (floor, 100),
+        }
+    }
+
+    #[test]
+    fn a_pale_lilac_top_is_one_surface() {
+        // G0004's cell (13, 11): lilac read partly as obstacle, partly as floor.
+        let w = win([1.26, 0.99, 1.33], [1.27, 1.02, 1.33]);
+        assert!(w.pale_top(&[0.04, 0.02, 0.05]));
+    }
+
+    fn bins(covered: impl Fn(usize, usize) -> bool) -> Bins {
+        let mut b = Bins {
+            obstacle: [0; BINS * BINS],
+            floor: [0; BINS * BINS],
+        };
+        for v in 0..BINS {
+            for u in 0..BINS {
+                if covered(u, v) {
+                    b.obstacle[v * BINS + u] = 4;
+                } else {
+                    b.floor[v * BINS + u] = 4;
+                }
+            }
+        }
+        b
+    }
+
+    #[test]
+    fn a_carton_inside_a_pale_frame_stands_on_the_cell() {
+        // G0001's cell (2, 6): a carton in rows 1-6, columns 2-7; the nadir lies left and below.
+        let carton = bins(|u, v| (2..=7).contains(&u) && (1..=6).contains(&v));
+        assert!(standing(&carton, (-1, 1)));
+        assert!(standing(&carton, (0, 0)));
+        // Touching the top row is allowed when the nadir is below.
+        let top = bins(|u, v| (2..=7).contains(&u) && v <= 5);
+        assert!(standing(&top, (-1, 1)));
+        assert!(!standing(&top, (0, -1)));
+    }
+
+    #[test]
+    fn a_leaning_top_or_a_speck_does_not() {
+        // A band along the border toward the nadir (left), a small speck.
+        assert!(!standing(&bins(|u, _| u <= 4), (-1, 0)));
+        assert!(!standing(
+            &bins(|u, v| u == 0 || (3..=6).contains(&u) && v < 8),
+            (-1, 0)
+        ));
+        assert!(!standing(
+            &bins(|u, v| (4..=6).contains(&u) && (4..=6).contains(&v)),
+            (0, 0)
+        ));
+    }
+
+    #[test]
+    fn floor_beside_a_shelf_is_not() {
+        // Grey floor (G0011's free cells), a shadow, another hue, a tinted ring, too few.
+        let amber = [1.20, 1.0, 0.83];
+        assert!(!win(amber, [1.14, 1.10, 1.05]).pale_top(&[0.03, 0.0, 0.02]));
+        assert!(!win(amber, [0.70, 0.60, 0.50]).pale_top(&[0.03, 0.0, 0.02]));
+        assert!(!win(amber, [0.95, 0.80, 1.10]).pale_top(&[0.03, 0.0, 0.02]));
+        assert!(!win(amber, [1.2, 1.0, 0.9]).pale_top(&[0.15, 0.12, 0.14]));
+        assert!(!win(amber, [1.2, 1.0, 0.9]).pale_top(&[0.03]));
+        let few = Window {
+            obstacle: (amber, 5),
+            floor: ([1.2, 1.0, 0.9], 100),
+        };
+        assert!(!few.pale_top(&[0.03, 0.0, 0.02]));
+    }
+}
