@@ -527,13 +527,11 @@ pub fn read_aerial_image(
     // Cells whose window is mostly covered; those among them, and the half-covered cells,
     // that a neighbour's leaning top explains are free (see `cover`).
     let sure: Vec<bool> = shares.iter().map(|&s| s >= HALF_COVERED.1).collect();
-    let is_sure = |x: i64, y: i64| {
-        x >= 0
-            && y >= 0
-            && x < i64::from(gw)
-            && y < i64::from(gh)
-            && sure[(y * i64::from(gw) + x) as usize]
+    let index = |x: i64, y: i64| {
+        (x >= 0 && y >= 0 && x < i64::from(gw) && y < i64::from(gh))
+            .then(|| (y * i64::from(gw) + x) as usize)
     };
+    let is_sure = |x: i64, y: i64| index(x, y).is_some_and(|k| sure[k]);
     // The fits, on all cores (each cell's alone: the result does not depend on the cores).
     let fits: Vec<Option<cover::Fit>> = {
         use rayon::prelude::*;
@@ -547,21 +545,9 @@ pub fn read_aerial_image(
                 let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
                 // A mostly covered cell can only be free under a top leaning from a blocked
                 // neighbour on its side toward the nadir (or level with it).
-                let side = |c: u32, at: f64| -> &'static [i64] {
-                    if at >= f64::from(c) + 1.0 {
-                        &[0, 1]
-                    } else if at < f64::from(c) {
-                        &[-1, 0]
-                    } else {
-                        &[-1, 0, 1]
-                    }
-                };
                 let (xi, yi) = (i64::from(x), i64::from(y));
-                let leaned_on = side(x, n.0).iter().any(|&dx| {
-                    side(y, n.1)
-                        .iter()
-                        .any(|&dy| (dx, dy) != (0, 0) && is_sure(xi + dx, yi + dy))
-                });
+                let leaned_on = neighbours_toward(nadir_side((xi, yi), n))
+                    .any(|(dx, dy)| is_sure(xi + dx, yi + dy));
                 if shares[i] >= HALF_COVERED.1 && !leaned_on {
                     return None;
                 }
@@ -578,24 +564,10 @@ pub fn read_aerial_image(
     let own_top = |i: usize| -> bool {
         let Some(n) = nadir else { return false };
         let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
-        let share_at = |x: i64, y: i64| {
-            (x >= 0 && y >= 0 && x < i64::from(gw) && y < i64::from(gh))
-                .then(|| shares[(y * i64::from(gw) + x) as usize])
-        };
-        let toward = |c: i64, at: f64| -> &'static [i64] {
-            if at >= c as f64 + 1.0 {
-                &[0, 1]
-            } else if at < c as f64 {
-                &[-1, 0]
-            } else {
-                &[-1, 0, 1]
-            }
-        };
-        let leaned = toward(x, n.0).iter().any(|&dx| {
-            toward(y, n.1).iter().any(|&dy| {
-                (dx, dy) != (0, 0) && share_at(x + dx, y + dy).is_some_and(|s| s > HALF_COVERED.0)
-            })
-        });
+        let share_at = |x: i64, y: i64| index(x, y).map(|k| shares[k]);
+        let side = nadir_side((x, y), n);
+        let leaned = neighbours_toward(side)
+            .any(|(dx, dy)| share_at(x + dx, y + dy).is_some_and(|s| s > HALF_COVERED.0));
         if leaned {
             return false;
         }
@@ -619,15 +591,6 @@ pub fn read_aerial_image(
                 }
             }
         }
-        let side = |c: i64, at: f64| {
-            if at >= c as f64 + 1.0 {
-                1
-            } else if at < c as f64 {
-                -1
-            } else {
-                0
-            }
-        };
         let bins = cover::bins(
             &classes,
             width,
@@ -635,7 +598,7 @@ pub fn read_aerial_image(
             &image_to_floor,
             (x as u32, y as u32),
         );
-        tops::standing(&bins, (side(x, n.0), side(y, n.1))) || colours(x, y).pale_top(&ring)
+        tops::standing(&bins, side) || colours(x, y).pale_top(&ring)
     };
     let mut blocked = vec![false; cells];
     for (i, b) in blocked.iter_mut().enumerate() {
@@ -898,6 +861,31 @@ pub fn read_aerial_image(
 }
 
 /// Mean cell side in pixels over the floor.
+/// On which side of cell `(x, y)` the nadir `n` lies, along each axis: −1 (before the
+/// cell), 1 (beyond it) or 0 (level with it).
+fn nadir_side((x, y): (i64, i64), n: Point) -> (i32, i32) {
+    let side = |c: i64, at: f64| {
+        if at >= c as f64 + 1.0 {
+            1
+        } else if at < c as f64 {
+            -1
+        } else {
+            0
+        }
+    };
+    (side(x, n.0), side(y, n.1))
+}
+
+/// The offsets of a cell's eight neighbours on its side `side` toward the nadir (see
+/// [`nadir_side`]; level with it along an axis: both ways along that axis).
+fn neighbours_toward(side: (i32, i32)) -> impl Iterator<Item = (i64, i64)> {
+    (-1i64..=1)
+        .flat_map(|dy| (-1i64..=1).map(move |dx| (dx, dy)))
+        .filter(move |&(dx, dy)| {
+            (dx, dy) != (0, 0) && dx * i64::from(side.0) >= 0 && dy * i64::from(side.1) >= 0
+        })
+}
+
 fn cell_size_px(floor_to_image: &Homography, (w, h): (f64, f64)) -> f64 {
     let c = [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)].map(|p| floor_to_image.apply(p).unwrap_or(p));
     let side = |a: Point, b: Point| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();

@@ -392,3 +392,15 @@ fn crc32(bytes: &[u8]) -> u32 {
     }
     !crc
 }
+
+#[test]
+fn the_neighbours_toward_the_nadir_are_those_on_its_side() {
+    // The nadir beyond the cell along x, level with it along y; then before it along both.
+    assert_eq!(nadir_side((3, 4), (5.5, 4.5)), (1, 0));
+    assert_eq!(nadir_side((3, 4), (2.9, 3.0)), (-1, -1));
+    let beyond: Vec<(i64, i64)> = neighbours_toward((1, 0)).collect();
+    assert_eq!(beyond, [(0, -1), (1, -1), (1, 0), (0, 1), (1, 1)]);
+    let before: Vec<(i64, i64)> = neighbours_toward((-1, -1)).collect();
+    assert_eq!(before, [(-1, -1), (0, -1), (-1, 0)]);
+    assert_eq!(neighbours_toward((0, 0)).count(), 8);
+}
