@@ -259,11 +259,22 @@ fn a_restarted_agent_rejoins_without_placing_a_brick_twice() {
         .any(|e| e["uav"] == 2 && e["t"].as_f64().unwrap() > 210.0 && e["state"] == "TakeOff"));
 }
 
+/// Three ports in a row, free for TCP and UDP (QUIC listens on UDP), below Linux's range of
+/// ephemeral ports (32768 and up by default): the agents' own outgoing QUIC and TCP sockets
+/// take ephemeral ports, so a base port from that range (as `bind(0)` gives) could be taken
+/// by another team's socket between this check and the agent's listen. Each call of a test
+/// process starts from another place, so that tests running side by side pick apart.
 fn free_base_port() -> u16 {
-    for _ in 0..50 {
-        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-        let p = l.local_addr().unwrap().port();
-        if p < 65000 && (1..3).all(|i| std::net::TcpListener::bind(("127.0.0.1", p + i)).is_ok()) {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    static CALLS: AtomicU32 = AtomicU32::new(0);
+    let start = std::process::id().wrapping_mul(97) + 1_000 * CALLS.fetch_add(1, Ordering::Relaxed);
+    let free = |p: u16| {
+        std::net::TcpListener::bind(("127.0.0.1", p)).is_ok()
+            && std::net::UdpSocket::bind(("127.0.0.1", p)).is_ok()
+    };
+    for k in 0..2_000u32 {
+        let p = 20_000 + ((start + 3 * k) % 12_000) as u16;
+        if (0..3).all(|i| free(p + i)) {
             return p;
         }
     }
