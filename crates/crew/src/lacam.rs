@@ -74,18 +74,47 @@ pub fn lacam_guided(
     budget: &Budget,
     seed: u64,
 ) -> (LacamEnd, u64) {
-    lacam_search(graph, dist, starts, goals, guide, budget, seed, false)
+    lacam_search(
+        graph,
+        dist,
+        starts,
+        goals,
+        guide,
+        budget,
+        seed,
+        SearchRules::default(),
+    )
 }
 
-/// [`lacam_guided`], where `revisit` chooses what happens when a step leads to a configuration
-/// already reached. Off: the step is dropped and the same configuration tries its next
-/// constraint set (LaCAM). On: the search goes on from the configuration reached, which is
-/// put on top of the stack again (as LaCAM* does, without its costs): the search follows the
-/// robots' motion instead of working through the constraints of a configuration it keeps
-/// coming back to. Both are complete (every push of a known configuration uses up one
-/// constraint set, of which there are finitely many). Measured on small dense maps (see
-/// [`crate::restart`]), revisiting finds much shorter first plans, but on some seeds it needs
-/// many more configurations.
+/// The rules a [`lacam_search`] follows besides its advice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SearchRules {
+    /// What happens when a step leads to a configuration already reached. Off: the step is
+    /// dropped and the same configuration tries its next constraint set (LaCAM). On: the
+    /// search goes on from the configuration reached, which is put on top of the stack again
+    /// (as LaCAM* does, without its costs): the search follows the robots' motion instead of
+    /// working through the constraints of a configuration it keeps coming back to. Both are
+    /// complete (every push of a known configuration uses up one constraint set, of which
+    /// there are finitely many). Measured on small dense maps (see [`crate::restart`]),
+    /// revisiting finds much shorter first plans, but on some seeds it needs many more
+    /// configurations.
+    pub revisit: bool,
+    /// Whether PIBT's last tie-break before chance goes to a free cell
+    /// ([`crate::pibt::Pibt::set_prefer_free`]).
+    pub prefer_free: bool,
+}
+
+impl Default for SearchRules {
+    /// LaCAM as published, with free cells preferred.
+    fn default() -> Self {
+        SearchRules {
+            revisit: false,
+            prefer_free: true,
+        }
+    }
+}
+
+/// [`lacam_guided`] under the given [`SearchRules`].
 #[allow(clippy::too_many_arguments)]
 pub fn lacam_search(
     graph: &MoveGraph,
@@ -95,7 +124,7 @@ pub fn lacam_search(
     guide: &[Vec<u32>],
     budget: &Budget,
     seed: u64,
-    revisit: bool,
+    rules: SearchRules,
 ) -> (LacamEnd, u64) {
     let n = starts.len();
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x1aca_0001);
@@ -103,6 +132,8 @@ pub fn lacam_search(
     if !guide.is_empty() {
         pibt.set_guide(guide);
     }
+    pibt.set_prefer_free(rules.prefer_free);
+    let revisit = rules.revisit;
     let max_d = (0..n)
         .map(|i| dist[i][starts[i] as usize])
         .max()
@@ -267,7 +298,11 @@ mod tests {
             let ends: Vec<LacamEnd> = [false, true]
                 .iter()
                 .map(|&revisit| {
-                    lacam_search(&graph, &dist, &s, &g, &[], &capped, k as u64, revisit).0
+                    let rules = SearchRules {
+                        revisit,
+                        ..SearchRules::default()
+                    };
+                    lacam_search(&graph, &dist, &s, &g, &[], &capped, k as u64, rules).0
                 })
                 .collect();
             for end in &ends {

@@ -28,6 +28,18 @@
 //! warehouse-10-20-10-2-1 500 50 305 / 49 167 / 50 285 against 50 933 / 49 611 / 50 285 and
 //! 1000 151 563 / 146 090 / 153 661 against 151 951 / 150 530 / 151 217.
 //!
+//! They differ in PIBT's last tie-break too ([`crate::pibt::Pibt::set_prefer_free`]): the
+//! guided attempt sends a robot to a free cell among equally good ones, the unguided one
+//! chooses at random. Measured 2026-11-28 on the first descents alone (LaCAM without
+//! restarts, cap 20 000, seeds 3, 1003, 2003, 3003, 4-connected, random-1), unguided attempts
+//! preferring free cells against choosing at random: random-32-32-20 409 agents configurations
+//! 140–1 123, mean sum of costs 42 411, against 98–131 and 28 220; maze-32-32-2 333 76 466
+//! against 72 780; room-32-32-4 341 42 171 against 42 207; warehouse-10-20-10-2-1 1000
+//! 239 724 against 251 684 (there the guided attempt's 155 031 wins the pair anyway). Guided
+//! attempts choosing at random were worse on the large maps (seeds 0, 1000, 2000: room-64-64-8
+//! 700 agents 149 105 against 154 191; random-64-64-20 1000 84 130 against 88 562;
+//! warehouse-10-20-10-2-1 1000 155 031 against 157 729), so they keep the rule.
+//!
 //! In the extra pairs the even attempt also revisits ([`crate::lacam::lacam_search`]): a step
 //! that reaches a known configuration continues from it, as LaCAM* does, instead of trying the
 //! next constraint set of the configuration it came from. On small dense maps this gives far
@@ -49,7 +61,7 @@
 //! search makes the result depend on speed. Cost: at most about twice the iterations of the
 //! attempt that succeeds, per core, plus the extra pairs.
 
-use crate::lacam::{lacam_search, LacamEnd};
+use crate::lacam::{lacam_search, LacamEnd, SearchRules};
 use crate::moves::MoveGraph;
 use crate::outcome::Budget;
 use std::time::Instant;
@@ -79,6 +91,15 @@ fn attempt_seed(seed: u64, k: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
+}
+
+/// Attempt `k`'s rules: even attempts (guided) prefer free cells and, in the extra pairs,
+/// revisit; odd ones (unguided) break ties at random and never revisit (see the module).
+fn rules_of(k: u64, extra_pair: bool) -> SearchRules {
+    SearchRules {
+        revisit: extra_pair && k % 2 == 0,
+        prefer_free: k % 2 == 0,
+    }
 }
 
 fn sum_of_costs(paths: &[Vec<u32>]) -> u64 {
@@ -139,7 +160,7 @@ pub fn lacam_restarts(
                 advice,
                 &b,
                 attempt_seed(seed, k),
-                extra_pair && k % 2 == 0,
+                rules_of(k, extra_pair),
             )
         };
         let ((e0, c0), (e1, c1)) = rayon::join(|| run(k), || run(k + 1));
@@ -219,7 +240,8 @@ mod tests {
                 node_limit: Some(4 * longest + 64),
                 ..Budget::unlimited()
             };
-            let guided = lacam_search(&m, &dist, &s, &t, &guide, &capped, seed, false).0;
+            let guided =
+                lacam_search(&m, &dist, &s, &t, &guide, &capped, seed, rules_of(0, false)).0;
             let plain = lacam_search(
                 &m,
                 &dist,
@@ -228,7 +250,7 @@ mod tests {
                 &[],
                 &capped,
                 attempt_seed(seed, 1),
-                false,
+                rules_of(1, false),
             )
             .0;
             let (LacamEnd::Found(a), LacamEnd::Found(b)) = (guided, plain) else {
