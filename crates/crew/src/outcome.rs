@@ -98,6 +98,8 @@ pub struct CrewStats {
     pub refine_rounds: u64,
     /// Refinement rounds whose new paths were kept.
     pub improvements: u64,
+    /// New LaCAM plans refined after the first one's refinement stalled (`lacam`).
+    pub restarts: u64,
     /// Σ of each robot's fewest steps to its assigned goal, when the solver computed it on the
     /// way (`lacam`, `joint`).
     pub lower_bound: Option<u64>,

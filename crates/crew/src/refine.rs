@@ -137,6 +137,8 @@ pub struct RefineStats {
     pub sideways: u64,
     /// Space-time states expanded.
     pub expanded: u64,
+    /// Whether it stopped because `RefineConfig::stall` rounds in a row brought no gain.
+    pub stalled: bool,
 }
 
 /// Everyone's paths indexed by (cell, step), kept in step with `paths`.
@@ -447,11 +449,12 @@ pub fn refine(
             rung_stall = 0;
         }
         let k = ladder[rung];
-        if soc <= lower
-            || budget.out_of_time()
-            || config.rounds.is_some_and(|r| stats.rounds >= r)
-            || config.stall.is_some_and(|s| stall >= s)
+        if soc <= lower || budget.out_of_time() || config.rounds.is_some_and(|r| stats.rounds >= r)
         {
+            return stats;
+        }
+        if config.stall.is_some_and(|s| stall >= s) {
+            stats.stalled = true;
             return stats;
         }
         let per_batch = config.batch.max(1) as u64;

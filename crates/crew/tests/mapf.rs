@@ -334,6 +334,47 @@ fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
 }
 
 #[test]
+fn lacam_starts_again_when_refinement_stalls_and_stays_deterministic() {
+    // A crowded warehouse where refinement soon runs out of gains: with a short stall and no
+    // deadline the solve refines new LaCAM plans (at most 8), keeps the cheapest, and gives
+    // the same plan for the same seed.
+    let grid = mason_crew::generate::warehouse(24, 16, 0.05, 2);
+    let n = 90;
+    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, 4);
+    let inst = Instance::new(
+        grid,
+        Connectivity::Four,
+        robots,
+        goals,
+        Some((0..n).collect()),
+        "warehouse",
+    )
+    .unwrap();
+    let mut config = lacam_config(0, 9);
+    config.refine.rounds = None;
+    config.refine.stall = Some(40);
+    let a = solve(&inst, &config, &capped()).unwrap();
+    let b = solve(&inst, &config, &capped()).unwrap();
+    assert_eq!(a.paths, b.paths);
+    assert_eq!(a.stats.restarts, b.stats.restarts);
+    assert!(
+        (1..=8).contains(&a.stats.restarts),
+        "{} restarts",
+        a.stats.restarts
+    );
+    let m = validate(
+        &inst.grid,
+        inst.connectivity,
+        &inst.robots,
+        &a.goals,
+        a.paths.as_ref().unwrap(),
+    )
+    .unwrap();
+    assert!(m.sum_of_costs <= a.stats.first_sum_of_costs.unwrap());
+    assert!(m.sum_of_costs >= a.stats.lower_bound.unwrap());
+}
+
+#[test]
 fn joint_plans_are_valid_for_their_final_assignment() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     for k in 0..60 {

@@ -72,7 +72,8 @@ pub struct CrewArgs {
     #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub seed: u64,
     /// lacam: refinement rounds at most (0: the first plan as it is; default: until
-    /// --time-limit, or 1000 rounds in a row without improvement)
+    /// --time-limit, or 1000 rounds in a row without improvement, then up to 8 new LaCAM plans
+    /// refined the same way)
     #[arg(long)]
     pub refine_rounds: Option<u64>,
     /// lacam: refinement neighbourhoods planned side by side in one batch, on all cores
@@ -461,6 +462,7 @@ pub fn crew_json(
             "configurations": o.stats.configurations,
             "refine_rounds": o.stats.refine_rounds,
             "improvements": o.stats.improvements,
+            "restarts": o.stats.restarts,
             "expanded": o.stats.expanded,
             "waits": o.stats.waits,
             "peak_memory_mb": peak_memory_mb(),
