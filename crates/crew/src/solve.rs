@@ -436,7 +436,8 @@ fn solve_lacam(
             stats.expanded += r.expanded;
             let lower = stats.lower_bound.unwrap_or(0);
             let mut best = plan_cost(&paths);
-            let mut stalled = r.stalled;
+            // Only an open-ended refinement starts again: a fixed `rounds` is the caller's.
+            let mut stalled = r.stalled && config.refine.rounds.is_none();
             let mut k = 0;
             while stalled && k < RESTARTS && best > lower && !budget.out_of_time() {
                 k += 1;
