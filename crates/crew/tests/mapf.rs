@@ -258,16 +258,7 @@ fn lacam_proves_a_blocked_corridor_infeasible() {
 fn lacam_same_seed_same_plan() {
     let mut rng = ChaCha8Rng::seed_from_u64(99);
     let grid = mason_crew::generate::warehouse(60, 40, 0.05, 2);
-    let (robots, goals) = mason_crew::generate::random_tasks(&grid, 60, 4);
-    let inst = Instance::new(
-        grid,
-        Connectivity::Four,
-        robots,
-        goals,
-        Some((0..60).collect()),
-        "warehouse",
-    )
-    .unwrap();
+    let inst = random_tasks_on(grid, 60, 4, "warehouse");
     let seed = rng.gen();
     let a = solve(&inst, &lacam_config(60, seed), &capped()).unwrap();
     let b = solve(&inst, &lacam_config(60, seed), &capped()).unwrap();
@@ -291,17 +282,7 @@ fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
     // Refinement plans two neighbourhoods at a time on rayon's pool; a fixed round count must
     // give the same plan however many threads run them.
     let grid = mason_crew::generate::warehouse(60, 40, 0.05, 3);
-    let n = 100;
-    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, 8);
-    let inst = Instance::new(
-        grid,
-        Connectivity::Four,
-        robots,
-        goals,
-        Some((0..n).collect()),
-        "warehouse",
-    )
-    .unwrap();
+    let inst = random_tasks_on(grid, 100, 8, "warehouse");
     for (seed, batch) in [(1, 4), (2, 4), (3, 1), (4, 2)] {
         let mut config = lacam_config(301, seed);
         config.refine.batch = batch;
@@ -339,17 +320,7 @@ fn lacam_starts_again_when_refinement_stalls_and_stays_deterministic() {
     // deadline the solve refines new LaCAM plans (at most 8), keeps the cheapest, and gives
     // the same plan for the same seed.
     let grid = mason_crew::generate::warehouse(24, 16, 0.05, 2);
-    let n = 90;
-    let (robots, goals) = mason_crew::generate::random_tasks(&grid, n, 4);
-    let inst = Instance::new(
-        grid,
-        Connectivity::Four,
-        robots,
-        goals,
-        Some((0..n).collect()),
-        "warehouse",
-    )
-    .unwrap();
+    let inst = random_tasks_on(grid, 90, 4, "warehouse");
     let mut config = lacam_config(0, 9);
     config.refine.rounds = None;
     config.refine.stall = Some(40);
