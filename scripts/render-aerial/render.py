@@ -79,6 +79,18 @@ FAMILIES = {
                              (0.75, 0.60, 0.15)),
               shelf_height=(0.4, 2.2), tiles=0.2, shelf_inset=0.08, warm=0.35, camera_height=(40, 150),
               sun_elevation=(30, 75), sun_power=(2.5, 4.0)),
+    # L: held out from the ninth round of issue #29 (pale obstacles, shadows against the light
+    # around them; rendered after its reader was finished, scored once). Yawed-box, dome and
+    # puck robots, ring, square and cross goals, warm mid-grey, slate and light cool-grey
+    # floors tiled every quarter cell, cream, plum, navy, light steel and dark brown shelves
+    # from 0.3 to 2.0 high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8,
+    # warmer and cooler light, and a camera from 45 to 160 cells per 24 high.
+    "L": dict(robot_shapes=("rotbox", "dome", "puck"), goal_shapes=("ring", "square", "cross"),
+              floors=((0.58, 0.56, 0.52), (0.40, 0.44, 0.46), (0.70, 0.70, 0.72)),
+              shelf_colours=((0.85, 0.80, 0.65), (0.55, 0.30, 0.60), (0.20, 0.30, 0.55), (0.65, 0.68, 0.70),
+                             (0.35, 0.25, 0.15)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
