@@ -10,7 +10,9 @@
 //! [`OPENING`] of a cell wide. [`super::pixels::classify`] marks the floor-coloured pixels
 //! that lean that way ([`is_leaning`], loose limits), and the specks of a mark's colour whose
 //! surroundings lean that way (the reddest pixels of a tan top). A square is pale when at least
-//! [`FULL`] of its pixels lean that way and the mean colour of its floor-coloured pixels
+//! [`FULL`] of its pixels lean that way or are already an obstacle's (or of a colour that
+//! cannot be told: the rest of a top whose colour noise splits between floor and obstacle),
+//! none is a robot's or a goal's (marks stand on the floor, not on a shelf's top), and the mean colour of its floor-coloured pixels
 //! (leaning or not) is pale ([`is_pale`]: brighter
 //! than [`BRIGHTER`] times the lit floor, or lit and tinted). The leaning pixels of pale
 //! squares are an obstacle's; the others are floor. Painted lines (at most a tenth of a cell
@@ -91,6 +93,58 @@ pub fn square_px(cell_px: f64) -> usize {
     (OPENING * cell_px).round().max(3.0) as usize
 }
 
+/// The counts of a column (or a square) of pixels: see [`settle`].
+#[derive(Clone, Copy, Debug, Default)]
+struct Column {
+    /// Pixels that lean pale or are already not floor (an obstacle's, or a colour that
+    /// cannot be told), and specks of a mark's colour on pale surroundings.
+    leaning: u32,
+    /// Pixels of a robot or a goal.
+    marks: u32,
+    /// Floor-coloured pixels, leaning pale or not, and their colour sums.
+    floor: u32,
+    sums: [u32; 3],
+}
+
+impl Column {
+    /// Adds (`sign` 1) or takes away (−1) a pixel of class code `c` and colour `p`.
+    fn add(&mut self, c: u8, p: [u8; 3], sign: i32) {
+        let step = |v: &mut u32, by: u32| {
+            *v = if sign > 0 { *v + by } else { *v - by };
+        };
+        match c {
+            _ if c == Class::Obstacle as u8 || c == Class::Unsure as u8 => {
+                step(&mut self.leaning, 1)
+            }
+            PALE_ROBOT | PALE_GOAL => step(&mut self.leaning, 1),
+            _ if c == Class::Robot as u8 || c == Class::Goal as u8 => step(&mut self.marks, 1),
+            _ if c == PALE || c == Class::Floor as u8 => {
+                if c == PALE {
+                    step(&mut self.leaning, 1);
+                }
+                step(&mut self.floor, 1);
+                for k in 0..3 {
+                    step(&mut self.sums[k], u32::from(p[k]));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Adds (`sign` 1) or takes away (−1) another column's counts.
+    fn merge(&mut self, o: &Column, sign: i32) {
+        let step = |v: &mut u32, by: u32| {
+            *v = if sign > 0 { *v + by } else { *v - by };
+        };
+        step(&mut self.leaning, o.leaning);
+        step(&mut self.marks, o.marks);
+        step(&mut self.floor, o.floor);
+        for k in 0..3 {
+            step(&mut self.sums[k], o.sums[k]);
+        }
+    }
+}
+
 /// Turns [`PALE`], [`PALE_ROBOT`] and [`PALE_GOAL`] pixels into obstacle pixels where they
 /// lie in a pale `side` × `side` square (see the module's comment), and into floor, robot
 /// and goal pixels elsewhere.
@@ -103,55 +157,38 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side:
     let side = side.max(1);
     let raw = img.as_raw();
     let need = (FULL * (side * side) as f64).ceil() as u32;
-    // Squares by their top-left corner: the counts of their leaning pixels, and of their
-    // floor-coloured pixels (leaning or not) with their colour sums, over `side` rows (column
-    // sums, moved down a row at a time), then along the row.
+    // Squares by their top-left corner: the counts of their leaning pixels (or already not
+    // floor), of their marks' pixels, and of their floor-coloured pixels (leaning or not) with
+    // their colour sums, over `side` rows (column sums, moved down a row at a time), then
+    // along the row.
     let mut corner = vec![false; classes.len()];
     if height >= side && width >= side {
-        let mut leaning = vec![0u32; width];
-        let mut floor = vec![0u32; width];
-        let mut sums = vec![[0u32; 3]; width];
-        let add = |y: usize, put: bool, cols: (&mut [u32], &mut [u32], &mut [[u32; 3]])| {
-            let (leaning, floor, sums) = cols;
-            for x in 0..width {
+        let mut cols = vec![Column::default(); width];
+        let add = |y: usize, sign: i32, cols: &mut [Column]| {
+            for (x, col) in cols.iter_mut().enumerate() {
                 let i = y * width + x;
                 let c = classes[i];
-                if !leaning_code(c) && c != Class::Floor as u8 {
-                    continue;
-                }
                 let p = &raw[3 * i..3 * i + 3];
-                let pale = u32::from(leaning_code(c));
-                if put {
-                    leaning[x] += pale;
-                    floor[x] += 1;
-                    (0..3).for_each(|k| sums[x][k] += u32::from(p[k]));
-                } else {
-                    leaning[x] -= pale;
-                    floor[x] -= 1;
-                    (0..3).for_each(|k| sums[x][k] -= u32::from(p[k]));
-                }
+                col.add(c, [p[0], p[1], p[2]], sign);
             }
         };
         for y in 0..side {
-            add(y, true, (&mut leaning, &mut floor, &mut sums));
+            add(y, 1, &mut cols);
         }
         for top in 0..=height - side {
             if top > 0 {
-                add(top - 1, false, (&mut leaning, &mut floor, &mut sums));
-                add(top + side - 1, true, (&mut leaning, &mut floor, &mut sums));
+                add(top - 1, -1, &mut cols);
+                add(top + side - 1, 1, &mut cols);
             }
-            let (mut n, mut f, mut sum) = (0u32, 0u32, [0u32; 3]);
+            let mut sq = Column::default();
             for x in 0..width {
-                n += leaning[x];
-                f += floor[x];
-                (0..3).for_each(|k| sum[k] += sums[x][k]);
+                sq.merge(&cols[x], 1);
                 if x >= side {
-                    n -= leaning[x - side];
-                    f -= floor[x - side];
-                    (0..3).for_each(|k| sum[k] -= sums[x - side][k]);
+                    sq.merge(&cols[x - side], -1);
                 }
-                if x + 1 >= side && n >= need {
-                    let mean = sum.map(|v| ((v + f / 2) / f).min(255) as u8);
+                if x + 1 >= side && sq.leaning >= need && sq.marks == 0 && sq.floor > 0 {
+                    let f = sq.floor;
+                    let mean = sq.sums.map(|v| ((v + f / 2) / f).min(255) as u8);
                     corner[top * width + x + 1 - side] = is_pale(classifier.balanced(mean));
                 }
             }
@@ -253,6 +290,28 @@ mod tests {
                 assert_eq!(c[y * 10 + x], want, "pixel ({x}, {y})");
             }
         }
+    }
+
+    #[test]
+    fn a_square_with_a_mark_in_it_is_no_shelf_top() {
+        // A white block with a goal's pixel in its middle: every 3 × 3 square of it holds
+        // the goal's pixel, so none is a pale top; the 4 × 4 block without it is.
+        let rows = [
+            "wwwww.wwww",
+            "wwwww.wwww",
+            "wwgww.wwww",
+            "wwwww.wwww",
+            "wwwww.....",
+        ];
+        let (mut c, img, classifier) = scene(&rows);
+        let g = 2 * 10 + 2;
+        c[g] = Class::Goal as u8;
+        settle(&mut c, &img, &classifier, 5);
+        assert_eq!(c[g], Class::Goal as u8);
+        assert!((0..5).all(|y| (0..5).all(|x| c[y * 10 + x] != O || (x, y) == (2, 2))));
+        let (mut c, img, classifier) = scene(&rows);
+        settle(&mut c, &img, &classifier, 4);
+        assert!((0..4).all(|y| (6..10).all(|x| c[y * 10 + x] == O)));
     }
 
     #[test]
