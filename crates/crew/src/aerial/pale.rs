@@ -123,8 +123,8 @@ impl Column {
                     step(&mut self.leaning, 1);
                 }
                 step(&mut self.floor, 1);
-                for k in 0..3 {
-                    step(&mut self.sums[k], u32::from(p[k]));
+                for (sum, v) in self.sums.iter_mut().zip(p) {
+                    step(sum, u32::from(v));
                 }
             }
             _ => {}
@@ -139,8 +139,8 @@ impl Column {
         step(&mut self.leaning, o.leaning);
         step(&mut self.marks, o.marks);
         step(&mut self.floor, o.floor);
-        for k in 0..3 {
-            step(&mut self.sums[k], o.sums[k]);
+        for (sum, v) in self.sums.iter_mut().zip(o.sums) {
+            step(sum, v);
         }
     }
 }
