@@ -91,6 +91,18 @@ FAMILIES = {
                              (0.35, 0.25, 0.15)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # M: held out from the ninth round of issue #29, rendered after its last change to the reader
+    # (after L was scored) and scored once. Box, box-with-a-dome and cylinder robots, diamond,
+    # ellipse and disc goals, warm light, dark green-grey and cool blue-grey floors tiled every
+    # third of a cell, off-white, forest green, ochre, slate violet and sage-grey shelves from
+    # 0.3 to 1.9 high inset 0.06 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 40 to 170 cells per 24 high.
+    "M": dict(robot_shapes=("box", "boxdome", "cylinder"), goal_shapes=("diamond", "ellipse", "disc"),
+              floors=((0.64, 0.62, 0.56), (0.36, 0.38, 0.36), (0.52, 0.56, 0.62)),
+              shelf_colours=((0.80, 0.78, 0.74), (0.25, 0.45, 0.25), (0.70, 0.45, 0.20), (0.30, 0.30, 0.45),
+                             (0.60, 0.62, 0.55)),
+              shelf_height=(0.3, 1.9), tiles=1 / 3, shelf_inset=0.06, warm=0.25, camera_height=(40, 170),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
