@@ -9,23 +9,25 @@
 //! Pixel by pixel that difference drowns in noise and texture, so it is judged over squares
 //! [`OPENING`] of a cell wide. [`super::pixels::classify`] marks the floor-coloured pixels
 //! that lean that way ([`is_leaning`], loose limits), and the specks of a mark's colour whose
-//! surroundings lean that way (the reddest pixels of a tan top). A square is pale when at least
-//! [`FULL`] of its pixels lean that way or are already an obstacle's (or of a colour that
-//! cannot be told: the rest of a top whose colour noise splits between floor and obstacle),
-//! none is a robot's or a goal's (marks stand on the floor, not on a shelf's top), and the mean colour of its floor-coloured pixels
-//! (leaning or not) is pale ([`is_pale`]: brighter
-//! than [`BRIGHTER`] times the lit floor, or lit and tinted). The leaning pixels of pale
-//! squares are an obstacle's; the others are floor. Painted lines (at most a tenth of a cell
-//! wide, a little more with blur) fill less than half of such a square, and specks of noise
-//! less still, so they stay floor.
+//! surroundings lean that way (the reddest pixels of a tan top). A square is pale when
+//! - at least [`FULL`] of its pixels lean that way or are already an obstacle's (or of a
+//!   colour that cannot be told: the rest of a top whose colour noise splits between floor
+//!   and obstacle),
+//! - none is a robot's or a goal's (marks stand on the floor, not on a shelf's top), and
+//! - the mean colour of its floor-coloured pixels (leaning or not) is pale ([`is_pale`]:
+//!   brighter than [`BRIGHTER`] times the lit floor, or lit and tinted).
+//!
+//! The leaning pixels of pale squares are an obstacle's; the others are floor, robot or goal
+//! pixels again. Painted lines (at most a tenth of a cell wide, a little more with blur) fill
+//! less than half of such a square, and specks of noise less still, so they stay floor.
 //!
 //! Pixels as bright as the lit floor or darker, and grey ones, are not judged here: a shelf
 //! of the floor's own colour and brightness shows only by its shadow ([`super::shadows`]),
 //! and a region of free cells brighter or more tinted than the floor around it, below these
 //! limits, is refused by [`super::looks`].
 //!
-//! Cost: O(pixels) when some pixels lean pale (running sums over each band of rows, then along
-//! the row), nothing otherwise.
+//! Cost: O(pixels) time and two flags a pixel of memory when some pixels lean pale (running
+//! sums down the columns, then along each row), nothing otherwise.
 
 use super::colour::{Class, Classifier};
 use image::RgbImage;
