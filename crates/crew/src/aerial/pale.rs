@@ -26,11 +26,16 @@
 //! and a region of free cells brighter or more tinted than the floor around it, below these
 //! limits, is refused by [`super::looks`].
 //!
-//! Cost: O(pixels) time and two flags a pixel of memory when some pixels lean pale (running
-//! sums down the columns, then along each row), nothing otherwise.
+//! Cost: O(pixels) time, on all cores in bands of rows, and a flag a pixel of memory when
+//! some pixels lean pale (running sums down the columns, then along each row), nothing
+//! otherwise.
 
 use super::colour::{Class, Classifier};
 use image::RgbImage;
+use rayon::prelude::*;
+
+/// Rows per band of the passes on all cores (the result does not depend on the cores).
+const BAND_ROWS: usize = 64;
 
 /// A pixel class used only between [`super::pixels::classify`] and [`settle`]: floor by its
 /// colour class, but leaning pale.
@@ -159,76 +164,120 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side:
     let side = side.max(1);
     let raw = img.as_raw();
     let need = (FULL * (side * side) as f64).ceil() as u32;
-    // Squares by their top-left corner: the counts of their leaning pixels (or already not
-    // floor), of their marks' pixels, and of their floor-coloured pixels (leaning or not) with
-    // their colour sums, over `side` rows (column sums, moved down a row at a time), then
+    // Rows with a leaning pixel, counted: a square without one changes nothing, and neither
+    // does a row without one in the last pass.
+    let has: Vec<bool> = classes
+        .par_chunks(width)
+        .map(|row| row.iter().any(|&c| leaning_code(c)))
+        .collect();
+    let mut before = vec![0usize; height + 1];
+    for y in 0..height {
+        before[y + 1] = before[y] + usize::from(has[y]);
+    }
+    let any_in = |y0: usize, y1: usize| before[y1.min(height)] > before[y0.min(height)];
+    // Squares by their top-left corner, in bands of rows on all cores: the counts of their
+    // pixels (see `Column`) over `side` rows (column sums, moved down a row at a time), then
     // along the row.
     let mut corner = vec![false; classes.len()];
     if height >= side && width >= side {
-        let mut cols = vec![Column::default(); width];
+        let tops = height - side + 1;
         let add = |y: usize, sign: i32, cols: &mut [Column]| {
             for (x, col) in cols.iter_mut().enumerate() {
                 let i = y * width + x;
-                let c = classes[i];
-                let p = &raw[3 * i..3 * i + 3];
-                col.add(c, [p[0], p[1], p[2]], sign);
+                col.add(
+                    classes[i],
+                    [raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]],
+                    sign,
+                );
             }
         };
-        for y in 0..side {
-            add(y, 1, &mut cols);
-        }
-        for top in 0..=height - side {
-            if top > 0 {
-                add(top - 1, -1, &mut cols);
-                add(top + side - 1, 1, &mut cols);
+        let corners_of = |band: usize, out: &mut [bool]| {
+            let t0 = band * BAND_ROWS;
+            if t0 >= tops {
+                return;
             }
-            let mut sq = Column::default();
-            for x in 0..width {
-                sq.merge(&cols[x], 1);
-                if x >= side {
-                    sq.merge(&cols[x - side], -1);
+            let t1 = (t0 + BAND_ROWS).min(tops);
+            if !any_in(t0, t1 + side - 1) {
+                return;
+            }
+            let mut cols = vec![Column::default(); width];
+            for y in t0..t0 + side {
+                add(y, 1, &mut cols);
+            }
+            for top in t0..t1 {
+                if top > t0 {
+                    add(top - 1, -1, &mut cols);
+                    add(top + side - 1, 1, &mut cols);
                 }
-                if x + 1 >= side && sq.leaning >= need && sq.marks == 0 && sq.floor > 0 {
-                    let f = sq.floor;
-                    let mean = sq.sums.map(|v| ((v + f / 2) / f).min(255) as u8);
-                    corner[top * width + x + 1 - side] = is_pale(classifier.balanced(mean));
+                let mut sq = Column::default();
+                for x in 0..width {
+                    sq.merge(&cols[x], 1);
+                    if x >= side {
+                        sq.merge(&cols[x - side], -1);
+                    }
+                    if x + 1 >= side && sq.leaning >= need && sq.marks == 0 && sq.floor > 0 {
+                        let f = sq.floor;
+                        let mean = sq.sums.map(|v| ((v + f / 2) / f).min(255) as u8);
+                        out[(top - t0) * width + x + 1 - side] = is_pale(classifier.balanced(mean));
+                    }
                 }
             }
-        }
+        };
+        corner
+            .par_chunks_mut(width * BAND_ROWS)
+            .enumerate()
+            .for_each(|(band, out)| corners_of(band, out));
     }
     // A pixel is in a pale square when a corner lies within `side` − 1 up and to the left of
-    // it: spread the corners right along rows, then down along columns.
-    let mut right = vec![false; classes.len()];
-    for y in 0..height {
+    // it: spread the corners right along rows, then down along columns (each band of rows
+    // looking back `side` − 1 rows).
+    // In place: each row's corners become the pixels they spread to.
+    corner.par_chunks_mut(width).for_each(|row| {
         let mut last: Option<usize> = None;
-        for x in 0..width {
-            let i = y * width + x;
-            if corner[i] {
+        for (x, flag) in row.iter_mut().enumerate() {
+            if *flag {
                 last = Some(x);
             }
-            right[i] = last.is_some_and(|l| x - l < side);
+            *flag = last.is_some_and(|l| x - l < side);
         }
-    }
-    drop(corner);
-    for x in 0..width {
-        let mut last: Option<usize> = None;
-        for y in 0..height {
-            let i = y * width + x;
-            if right[i] {
-                last = Some(y);
+    });
+    let right = corner;
+    classes
+        .par_chunks_mut(width * BAND_ROWS)
+        .enumerate()
+        .for_each(|(band, out)| {
+            let y0 = band * BAND_ROWS;
+            if !any_in(y0, y0 + BAND_ROWS) {
+                return;
             }
-            let c = classes[i];
-            if leaning_code(c) {
-                let covered = last.is_some_and(|l| y - l < side);
-                classes[i] = match c {
-                    _ if covered => Class::Obstacle as u8,
-                    PALE_ROBOT => Class::Robot as u8,
-                    PALE_GOAL => Class::Goal as u8,
-                    _ => Class::Floor as u8,
-                };
+            // The last row (absolute) at or above each pixel of the band's first row where
+            // the spread corners reach.
+            let mut last: Vec<Option<usize>> = vec![None; width];
+            for y in y0.saturating_sub(side - 1)..y0 {
+                for (x, l) in last.iter_mut().enumerate() {
+                    if right[y * width + x] {
+                        *l = Some(y);
+                    }
+                }
             }
-        }
-    }
+            for (row, line) in out.chunks_mut(width).enumerate() {
+                let y = y0 + row;
+                for (x, c) in line.iter_mut().enumerate() {
+                    if right[y * width + x] {
+                        last[x] = Some(y);
+                    }
+                    if leaning_code(*c) {
+                        let covered = last[x].is_some_and(|l| y - l < side);
+                        *c = match *c {
+                            _ if covered => Class::Obstacle as u8,
+                            PALE_ROBOT => Class::Robot as u8,
+                            PALE_GOAL => Class::Goal as u8,
+                            _ => Class::Floor as u8,
+                        };
+                    }
+                }
+            }
+        });
 }
 
 #[cfg(test)]
