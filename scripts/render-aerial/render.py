@@ -103,6 +103,18 @@ FAMILIES = {
                              (0.60, 0.62, 0.55)),
               shelf_height=(0.3, 1.9), tiles=1 / 3, shelf_inset=0.06, warm=0.25, camera_height=(40, 170),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # N: held out from the ninth round of issue #29, rendered after its last change to the reader
+    # (the lean fit's misfit, after M was scored) and scored once. Puck, yawed-box and cylinder
+    # robots, cross, ring and ellipse goals, neutral mid-grey, light warm and dark cool floors
+    # tiled every half cell, pale grey, magenta-purple, teal-blue, tan and charcoal shelves from
+    # 0.3 to 2.1 high inset 0.07 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 45 to 165 cells per 24 high.
+    "N": dict(robot_shapes=("puck", "rotbox", "cylinder"), goal_shapes=("cross", "ring", "ellipse"),
+              floors=((0.50, 0.50, 0.48), (0.70, 0.64, 0.56), (0.30, 0.32, 0.36)),
+              shelf_colours=((0.82, 0.82, 0.78), (0.60, 0.20, 0.55), (0.15, 0.40, 0.55), (0.75, 0.60, 0.30),
+                             (0.20, 0.20, 0.22)),
+              shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
