@@ -115,6 +115,18 @@ FAMILIES = {
                              (0.20, 0.20, 0.22)),
               shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # O: held out from the ninth round of issue #29, rendered after its final reader (the two
+    # safety checks added after N's two wrong readings) and scored once. Dome, box and puck
+    # robots, disc, diamond and square goals, concrete, sand and slate floors tiled every
+    # quarter cell, cream, brick-brown, cobalt, olive and light grey shelves from 0.3 to 2.0
+    # high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "O": dict(robot_shapes=("dome", "box", "puck"), goal_shapes=("disc", "diamond", "square"),
+              floors=((0.60, 0.60, 0.58), (0.78, 0.72, 0.60), (0.34, 0.37, 0.42)),
+              shelf_colours=((0.86, 0.82, 0.70), (0.45, 0.28, 0.20), (0.12, 0.25, 0.65), (0.42, 0.45, 0.18),
+                             (0.75, 0.76, 0.76)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

@@ -36,6 +36,10 @@ pub const BRIGHTER: f64 = 1.35;
 pub const LIT: f64 = 0.85;
 /// The largest saturation after white balance of a lit free cell (the lit floor is grey).
 pub const TINTED: f64 = 0.17;
+/// The largest share of a free cell's middle's floor pixels that lean pale (their colour
+/// averaged as in [`super::pixels`]: at least 1.3 times as bright as the lit floor, or at
+/// least 0.8 with a saturation of 0.1; see [`super::pale`]) without making a pale obstacle.
+pub const LEANING: f64 = 0.5;
 /// The largest share of a free cell's middle of a colour that cannot be told.
 pub const UNSURE: f64 = 0.6;
 /// The band along a cell's border (each side, in cells) that is not judged: painted lines (up
@@ -213,6 +217,9 @@ pub struct Look {
     pub saturation: f64,
     /// The pixels of a colour that cannot be told, and all the pixels judged (not near a mark).
     pub unsure: (usize, usize),
+    /// Of its middle's floor pixels, those that leaned pale without making a pale square
+    /// ([`super::pale::settle`]), and all of them.
+    pub leaning: (usize, usize),
     /// The whole cell in [`shadows::SIDE`] × [`shadows::SIDE`] bins on the floor, row-major:
     /// what its pixels show, for the check that every shadow has a caster ([`shadows`]).
     pub bins: [shadows::Bin; shadows::BINS],
@@ -229,6 +236,11 @@ impl Look {
             Some(b) if b >= LIT && self.saturation > TINTED => Some(format!(
                 "lit ({b:.2} times as bright as the lit floor, no shadow) but tinted (saturation {:.2} after white balance on the floor, the lit floor's at most {TINTED:.2})",
                 self.saturation
+            )),
+            Some(_) if self.leaning.0 as f64 > LEANING * self.leaning.1 as f64 => Some(format!(
+                "{:.0} % of its middle's floor leans pale (brighter or more tinted than lit floor, over squares of half a cell, but not enough for a pale obstacle; at most {:.0} %): the top of a pale shelf may stand there",
+                100.0 * self.leaning.0 as f64 / self.leaning.1 as f64,
+                100.0 * LEANING
             )),
             _ if all >= MIN_PIXELS && unsure as f64 > UNSURE * all as f64 => Some(format!(
                 "{:.0} % of its middle is a colour that cannot be told (at most {:.0} %)",
@@ -281,6 +293,7 @@ pub fn look(
     image_to_floor: &Homography,
     nadir: Option<(f64, f64)>,
     near_mark: &[bool],
+    leaned: &[bool],
     (cx, cy): (u32, u32),
 ) -> Look {
     let width = img.width() as usize;
@@ -295,6 +308,7 @@ pub fn look(
         bright: None,
         saturation: 0.0,
         unsure: (0, 0),
+        leaning: (0, 0),
         bins: [shadows::Bin::default(); shadows::BINS],
     };
     let Some((x0, y0, x1, y1)) = floor_to_image.cell_box((cx, cy), width, height) else {
@@ -351,6 +365,10 @@ pub fn look(
                 c if c == Class::Unsure as u8 => out.unsure.0 += 1,
                 c if c == Class::Floor as u8 => {
                     seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
+                    out.leaning.1 += 1;
+                    if leaned.get(y * width + x) == Some(&true) {
+                        out.leaning.0 += 1;
+                    }
                 }
                 _ => {}
             }
@@ -449,6 +467,7 @@ mod tests {
             bright: Some(bright),
             saturation,
             unsure: (0, 100),
+            leaning: (0, 100),
             bins: Default::default(),
         }
     }
@@ -468,9 +487,24 @@ mod tests {
             bright: None,
             saturation: 0.0,
             unsure: (70, 100),
+            leaning: (0, 0),
             bins: Default::default(),
         };
         assert!(unsure.odd().unwrap().contains("70 %"));
+        // A lit grey cell most of whose floor leaned pale without making a pale obstacle.
+        let leaning = Look {
+            leaning: (60, 100),
+            ..lit(1.2, 0.05)
+        };
+        assert!(leaning
+            .odd()
+            .unwrap()
+            .contains("60 % of its middle's floor leans pale"));
+        let few = Look {
+            leaning: (40, 100),
+            ..lit(1.2, 0.05)
+        };
+        assert_eq!(few.odd(), None);
     }
 
     #[test]

@@ -498,7 +498,7 @@ pub fn read_aerial_image(
         pixels::denoise_radius(px),
     );
     let width = img.width() as usize;
-    pale::settle(&mut classes, img, &classifier, pale::square_px(px));
+    let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     enclosed::settle(&mut classes, width);
@@ -649,15 +649,25 @@ pub fn read_aerial_image(
         for i in 0..cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
-            if blocked[i]
-                && edge
-                && cover::edge_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y))
-            {
+            if !blocked[i] {
+                continue;
+            }
+            if edge && cover::edge_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y)) {
                 return Err(at_pixel(
                     source,
                     cell_centre_px(i),
                     format!(
                         "cell ({x}, {y}) on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends)"
+                    ),
+                ));
+            }
+            if !edge && cover::interior_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y))
+            {
+                return Err(at_pixel(
+                    source,
+                    cell_centre_px(i),
+                    format!(
+                        "cell ({x}, {y}) is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked"
                     ),
                 ));
             }
@@ -684,6 +694,7 @@ pub fn read_aerial_image(
                         &image_to_floor,
                         nadir,
                         &near_mark,
+                        &leaned,
                         (x, y),
                     )
                 })

@@ -154,11 +154,17 @@ impl Column {
 
 /// Turns [`PALE`], [`PALE_ROBOT`] and [`PALE_GOAL`] pixels into obstacle pixels where they
 /// lie in a pale `side` × `side` square (see the module's comment), and into floor, robot
-/// and goal pixels elsewhere.
-pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side: usize) {
+/// and goal pixels elsewhere. Returns the pixels that leaned pale and became floor (empty
+/// when none leaned): [`super::looks`] refuses a free cell whose floor mostly leans pale.
+pub fn settle(
+    classes: &mut [u8],
+    img: &RgbImage,
+    classifier: &Classifier,
+    side: usize,
+) -> Vec<bool> {
     let width = img.width() as usize;
     if width == 0 || !classes.iter().any(|&c| leaning_code(c)) {
-        return;
+        return Vec::new();
     }
     let height = classes.len() / width;
     let side = side.max(1);
@@ -242,10 +248,12 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side:
         }
     });
     let right = corner;
+    let mut leaned = vec![false; classes.len()];
     classes
         .par_chunks_mut(width * BAND_ROWS)
+        .zip(leaned.par_chunks_mut(width * BAND_ROWS))
         .enumerate()
-        .for_each(|(band, out)| {
+        .for_each(|(band, (out, out_leaned))| {
             let y0 = band * BAND_ROWS;
             if !any_in(y0, y0 + BAND_ROWS) {
                 return;
@@ -260,14 +268,19 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side:
                     }
                 }
             }
-            for (row, line) in out.chunks_mut(width).enumerate() {
+            for (row, (line, line_leaned)) in out
+                .chunks_mut(width)
+                .zip(out_leaned.chunks_mut(width))
+                .enumerate()
+            {
                 let y = y0 + row;
-                for (x, c) in line.iter_mut().enumerate() {
+                for (x, (c, was)) in line.iter_mut().zip(line_leaned.iter_mut()).enumerate() {
                     if right[y * width + x] {
                         last[x] = Some(y);
                     }
                     if leaning_code(*c) {
                         let covered = last[x].is_some_and(|l| y - l < side);
+                        *was = !covered && *c == PALE;
                         *c = match *c {
                             _ if covered => Class::Obstacle as u8,
                             PALE_ROBOT => Class::Robot as u8,
@@ -278,6 +291,7 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side:
                 }
             }
         });
+    leaned
 }
 
 #[cfg(test)]
@@ -328,7 +342,7 @@ mod tests {
             "..w.llll.l",
             "..w.......",
         ]);
-        settle(&mut c, &img, &classifier, 3);
+        let _ = settle(&mut c, &img, &classifier, 3);
         // The lilac block (its red speck too): obstacle; the white line and the speck of
         // lilac: floor.
         for y in 0..5 {
@@ -357,18 +371,18 @@ mod tests {
         let (mut c, img, classifier) = scene(&rows);
         let g = 2 * 10 + 2;
         c[g] = Class::Goal as u8;
-        settle(&mut c, &img, &classifier, 5);
+        let _ = settle(&mut c, &img, &classifier, 5);
         assert_eq!(c[g], Class::Goal as u8);
         assert!((0..5).all(|y| (0..5).all(|x| c[y * 10 + x] != O || (x, y) == (2, 2))));
         let (mut c, img, classifier) = scene(&rows);
-        settle(&mut c, &img, &classifier, 4);
+        let _ = settle(&mut c, &img, &classifier, 4);
         assert!((0..4).all(|y| (6..10).all(|x| c[y * 10 + x] == O)));
     }
 
     #[test]
     fn a_pale_l_keeps_only_what_a_square_fits_in() {
         let (mut c, img, classifier) = scene(&["www...", "www...", "wwwwww", "ww...r"]);
-        settle(&mut c, &img, &classifier, 3);
+        let _ = settle(&mut c, &img, &classifier, 3);
         let obstacle: Vec<usize> = (0..c.len()).filter(|&i| c[i] == O).collect();
         // The 3 × 3 square at the top-left, and the one below it, 8 of its 9 pixels white
         // ([`FULL`]); the rest of the arm along row 2 is narrower than a square; the red
@@ -388,7 +402,7 @@ mod tests {
         assert!(!is_pale(classifier.balanced(faint)));
         let img = RgbImage::from_pixel(6, 6, image::Rgb(faint));
         let mut c = vec![PALE; 36];
-        settle(&mut c, &img, &classifier, 3);
+        let _ = settle(&mut c, &img, &classifier, 3);
         assert!(c.iter().all(|&k| k == F));
     }
 
@@ -409,7 +423,7 @@ mod tests {
     fn nothing_pale_changes_nothing() {
         let (mut c, img, classifier) = scene(&["..x", "...", "x.."]);
         let before = c.clone();
-        settle(&mut c, &img, &classifier, 3);
+        let _ = settle(&mut c, &img, &classifier, 3);
         assert_eq!(c, before);
         assert_eq!(square_px(8.0), 4);
         assert_eq!(square_px(4.0), 3);
