@@ -73,6 +73,10 @@ fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]
         }
     }
     let rows = (y1 - y0 + 1) as u32;
+    // Division by the window's pixel count as a multiplication (see `rounded_mean`).
+    let inverse: Vec<u64> = (0..=rows * (2 * r as u32 + 1))
+        .map(|n| (1u64 << 32).div_ceil(u64::from(n.max(1))))
+        .collect();
     let mut sum = [0u32; 3];
     let mut count = 0u32;
     // The window [x - r, x + r] slides along the row.
@@ -92,11 +96,21 @@ fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]
         }
         if x >= r {
             let at = x - r;
+            let inverse = inverse[count as usize];
             for c in 0..3 {
-                out[3 * at + c] = ((sum[c] + count / 2) / count) as u8;
+                out[3 * at + c] = rounded_mean(sum[c], count, inverse);
             }
         }
     }
+}
+
+/// `(sum + count / 2) / count` (the rounded mean of `count` values of at most 255 that add up
+/// to `sum`) with `inverse` = ⌈2³² / count⌉: exact while (sum + count / 2) · count < 2³²
+/// (the error of the product is under (sum + count / 2) · count / 2³² < 1 of the count),
+/// which holds for every count up to 4000 (a window of 2·3 + 1 pixels squared is 49).
+#[inline]
+fn rounded_mean(sum: u32, count: u32, inverse: u64) -> u8 {
+    ((u64::from(sum + count / 2) * inverse) >> 32) as u8
 }
 
 /// Calls `visit(k, (u, v))` for every pixel `k` of row `y` inside the `w` × `h` floor, with
@@ -112,6 +126,18 @@ fn floor_row(
     let y = y as f64 + 0.5;
     // The homography's numerators and denominator are linear along a row.
     let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
+    if m[6] == 0.0 && bd == 1.0 {
+        // The denominator is 1 along the whole row (a view straight down): the same points
+        // without dividing by it.
+        for k in 0..width {
+            let x = k as f64 + 0.5;
+            let (u, v) = (m[0] * x + bu, m[3] * x + bv);
+            if u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h) {
+                visit(k, (u, v));
+            }
+        }
+        return;
+    }
     for k in 0..width {
         let x = k as f64 + 0.5;
         let d = m[6] * x + bd;
@@ -220,4 +246,22 @@ pub fn coverage(
         }
     }
     total
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_rounded_mean_by_multiplication_is_the_division() {
+        for count in 1..=49u32 {
+            let inverse = (1u64 << 32).div_ceil(u64::from(count));
+            for sum in 0..=255 * count {
+                let want = ((sum + count / 2) / count) as u8;
+                assert_eq!(
+                    super::rounded_mean(sum, count, inverse),
+                    want,
+                    "{sum} / {count}"
+                );
+            }
+        }
+    }
 }
