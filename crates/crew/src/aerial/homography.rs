@@ -73,10 +73,12 @@ impl Homography {
         if d.abs() < 1e-12 {
             return None;
         }
-        Some((
-            (m[0] * x + m[1] * y + m[2]) / d,
-            (m[3] * x + m[4] * y + m[5]) / d,
-        ))
+        let (u, v) = (m[0] * x + m[1] * y + m[2], m[3] * x + m[4] * y + m[5]);
+        // Dividing by 1 (an affine map, a view straight down) changes nothing: skip it.
+        if d == 1.0 {
+            return Some((u, v));
+        }
+        Some((u / d, v / d))
     }
 
     /// The inverse map, `None` when singular.

@@ -366,20 +366,31 @@ pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
             }
         }
     }
+    // Row by row (in memory order), each column's count of the rows within r marked there.
     let mut out = vec![false; classes.len()];
-    for x in 0..width {
-        let mut reach = 0usize; // rows below y still within r of a marked row
-        for y in 0..height {
-            if rows[y * width + x] {
-                for yy in y.saturating_sub(r)..y {
-                    out[yy * width + x] = true;
-                }
-                reach = r + 1;
-            }
-            if reach > 0 {
-                out[y * width + x] = true;
-                reach -= 1;
-            }
+    let mut count = vec![0u32; width];
+    let row = |y: usize| &rows[y * width..(y + 1) * width];
+    for y in 0..r.min(height) {
+        count
+            .iter_mut()
+            .zip(row(y))
+            .for_each(|(n, &m)| *n += u32::from(m));
+    }
+    for y in 0..height {
+        if y + r < height {
+            count
+                .iter_mut()
+                .zip(row(y + r))
+                .for_each(|(n, &m)| *n += u32::from(m));
+        }
+        if y > r {
+            count
+                .iter_mut()
+                .zip(row(y - r - 1))
+                .for_each(|(n, &m)| *n -= u32::from(m));
+        }
+        for (o, &n) in out[y * width..(y + 1) * width].iter_mut().zip(&count) {
+            *o = n > 0;
         }
     }
     out

@@ -170,13 +170,22 @@ pub fn classify(
         .for_each(|(band, out)| {
             let mut cols = vec![0u32; width * 3];
             let mut mean = vec![0u8; width * 3];
+            // Where the first test of `classify` already says floor, by the pixel's own
+            // colour and by the mean's (most pixels).
+            let (mut own_grey, mut mean_grey) = (vec![false; width], vec![true; width]);
             for (row, line) in out.chunks_mut(width).enumerate() {
                 let y = band * BAND_ROWS + row;
                 if radius > 0 {
                     mean_row(img, y, radius, &mut cols, &mut mean);
+                    classifier.greyish_row(&mean, &mut mean_grey);
                 }
                 let own = &raw[y * width * 3..(y + 1) * width * 3];
+                classifier.greyish_row(own, &mut own_grey);
                 floor_row(image_to_floor, floor, width, y, |k, _| {
+                    if own_grey[k] && mean_grey[k] {
+                        line[k] = Class::Floor as u8;
+                        return;
+                    }
                     let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
                     line[k] = match classifier.classify(colour(own)) {
                         mark @ (Class::Robot | Class::Goal) => mark,
