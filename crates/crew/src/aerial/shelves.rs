@@ -103,10 +103,19 @@ fn cell_of(
     image_to_floor: &Homography,
     (w, h): (u32, u32),
 ) -> Option<usize> {
-    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
-    let (u, v) = image_to_floor.apply((x, y))?;
+    let (x, y) = column_row(i, width);
+    let (u, v) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5))?;
     (u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h))
         .then(|| v.floor() as usize * w as usize + u.floor() as usize)
+}
+
+/// The column and row of pixel `i` of an image `width` pixels wide (in 32 bits when they
+/// fit, a faster division).
+fn column_row(i: usize, width: usize) -> (usize, usize) {
+    match (u32::try_from(i), u32::try_from(width)) {
+        (Ok(i), Ok(w)) if w > 0 => ((i % w) as usize, (i / w) as usize),
+        _ => (i % width, i / width),
+    }
 }
 
 /// The cell (index) whose middle holds pixel `i`, if any.
@@ -114,14 +123,24 @@ pub(crate) fn inner_cell(
     i: usize,
     width: usize,
     image_to_floor: &Homography,
+    floor: (u32, u32),
+) -> Option<usize> {
+    inner_cell_at(column_row(i, width), image_to_floor, floor)
+}
+
+/// The cell (index) whose middle holds the pixel at column `x`, row `y`, if any.
+fn inner_cell_at(
+    (x, y): (usize, usize),
+    image_to_floor: &Homography,
     (w, h): (u32, u32),
 ) -> Option<usize> {
-    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+    let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
     let (u, v) = image_to_floor.apply((x, y))?;
     if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
         return None;
     }
-    let (cu, cv) = (u.floor(), v.floor());
+    // u and v are not negative: truncating is flooring (without a call to libm's floor).
+    let (cu, cv) = (u as u64 as f64, v as u64 as f64);
     let inside = |f: f64| (INNER.0..=INNER.1).contains(&f);
     (inside(u - cu) && inside(v - cv)).then(|| cv as usize * w as usize + cu as usize)
 }
@@ -170,9 +189,8 @@ pub(crate) fn middle(
         );
         for y in y0..y1 {
             for x in x0..x1 {
-                let i = y * width + x;
-                let c = classes[i];
-                if c != OUTSIDE && inner_cell(i, width, image_to_floor, floor) == Some(cell) {
+                let c = classes[y * width + x];
+                if c != OUTSIDE && inner_cell_at((x, y), image_to_floor, floor) == Some(cell) {
                     out.pixels += 1;
                     out.obstacle += u32::from(c == Class::Obstacle as u8);
                 }
@@ -194,20 +212,24 @@ fn filled_cells(
     known: &mut std::collections::BTreeMap<usize, Middle>,
 ) -> Vec<usize> {
     let image_to_floor = maps.1;
-    let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
+    // The blob's pixels other than obstacle pixels in the middle of each cell it holds, by
+    // cell (the cells in increasing order).
+    let mut count = rustc_hash::FxHashMap::<usize, u32>::default();
     for &i in pixels {
         if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
-            *held.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
+            *count.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
         }
     }
+    let mut held: Vec<(usize, u32)> = count.into_iter().collect();
+    held.sort_unstable();
     // The obstacle pixels in the middles of those cells (the blob's own too) fill them.
     let filled: Vec<usize> = held
-        .iter()
-        .filter(|&(&c, &n)| {
+        .into_iter()
+        .filter(|&(c, n)| {
             let m = middle(known, classes, width, maps, floor, c);
             m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
         })
-        .map(|(&c, _)| c)
+        .map(|(c, _)| c)
         .collect();
     let w = floor.0 as usize;
     let side_by_side = filled.iter().any(|&c| {
@@ -232,7 +254,10 @@ pub fn absorb(
     let blobs_found = mixed_blobs(classes, width);
     // Only a blob at least two cells large can fill two.
     let cells = f64::from(floor.0) * f64::from(floor.1);
-    let inside = classes.iter().filter(|&&c| c != OUTSIDE).count() as f64;
+    let inside = classes
+        .iter()
+        .map(|&c| usize::from(c != OUTSIDE))
+        .sum::<usize>() as f64;
     let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
@@ -258,19 +283,22 @@ pub fn absorb(
             .cloned()
             .collect();
         let median = (robot_median_area(robots) as f64).max(blobs::MIN_AREA as f64);
-        let mut sized: Vec<usize> = found
+        // One bit a pixel.
+        let mut sized = vec![0u64; classes.len().div_ceil(64)];
+        for i in found
             .iter()
             .filter(|b| (SLIVER..LARGER).contains(&(b.area() as f64 / median)))
             .flat_map(index)
-            .collect();
-        sized.sort_unstable();
+        {
+            sized[i / 64] |= 1 << (i % 64);
+        }
         (median, sized)
     };
     let without_robots: Vec<Vec<usize>> = blobs_found
         .into_iter()
         .map(|b| {
             b.into_iter()
-                .filter(|i| robot_sized.binary_search(i).is_err())
+                .filter(|&i| robot_sized[i / 64] & (1 << (i % 64)) == 0)
                 .collect::<Vec<usize>>()
         })
         .filter(|b| b.len() >= two_cells && b.iter().any(|&i| classes[i] != Class::Obstacle as u8))
