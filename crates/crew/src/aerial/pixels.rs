@@ -13,7 +13,7 @@
 //! from the nadir (0.2–0.8 when the nadir is level with the cell, or unknown). An obstacle on
 //! the cell covers that window whole; a neighbour's top leaning less than 0.4 cell misses it.
 //! Robot and goal pixels cover floor, not obstacle. The pass runs on all cores, in bands of
-//! rows; the counts are summed in band order, so the result does not depend on the cores.
+//! rows; the counts are whole numbers, summed, so the result does not depend on the cores.
 
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
@@ -151,6 +151,54 @@ fn floor_row(
     }
 }
 
+/// The pixels of row `y` inside the `w` × `h` floor, the same as [`floor_row`] visits, as one
+/// range, when the row's denominator is 1 (a view straight down); `None` otherwise. Then u
+/// and v are each a product and a sum of x, both rounded monotonically, so each bound holds
+/// on a prefix or a suffix of the row, found by bisection with the same arithmetic.
+fn floor_span(
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+    width: usize,
+    y: usize,
+) -> Option<std::ops::Range<usize>> {
+    let m = image_to_floor.0;
+    let y = y as f64 + 0.5;
+    let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
+    if !(m[6] == 0.0 && bd == 1.0) || width == 0 {
+        return None;
+    }
+    let uv = |k: usize| {
+        let x = k as f64 + 0.5;
+        (m[0] * x + bu, m[3] * x + bv)
+    };
+    let bounds: [&dyn Fn(usize) -> bool; 4] = [
+        &|k| uv(k).0 >= 0.0,
+        &|k| uv(k).1 >= 0.0,
+        &|k| uv(k).0 < f64::from(w),
+        &|k| uv(k).1 < f64::from(h),
+    ];
+    let (mut lo, mut hi) = (0, width);
+    for holds in bounds {
+        // The first k (in 0..width) where `holds` differs from its value at 0.
+        let first = holds(0);
+        let (mut a, mut b) = (0, width);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if holds(mid) == first {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        if first {
+            hi = hi.min(a);
+        } else {
+            lo = lo.max(a);
+        }
+    }
+    Some(lo..hi.max(lo))
+}
+
 /// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) of a floor of `w` × `h`
 /// cells seen through `image_to_floor`, colours other than marks averaged over a square of
 /// radius `radius` (see [`denoise_radius`]).
@@ -181,7 +229,7 @@ pub fn classify(
                 }
                 let own = &raw[y * width * 3..(y + 1) * width * 3];
                 classifier.greyish_row(own, &mut own_grey);
-                floor_row(image_to_floor, floor, width, y, |k, _| {
+                let mut visit = |k: usize| {
                     if own_grey[k] && mean_grey[k] {
                         line[k] = Class::Floor as u8;
                         return;
@@ -192,7 +240,11 @@ pub fn classify(
                         c if radius == 0 => c,
                         _ => classifier.classify(colour(&mean)),
                     } as u8;
-                });
+                };
+                match floor_span(image_to_floor, floor, width, y) {
+                    Some(span) => span.for_each(visit),
+                    None => floor_row(image_to_floor, floor, width, y, |k, _| visit(k)),
+                }
             }
         });
     classes
@@ -215,16 +267,55 @@ pub fn coverage(
         windows(w, nadir.map(|n| n.0)),
         windows(h, nadir.map(|n| n.1)),
     );
-    let counts: Vec<Coverage> = classes
+    // u, v → the cell whose window holds them, along one axis.
+    let in_window = |t: f64, n: u32, windows: &[(f64, f64)]| -> Option<usize> {
+        if !(t >= 0.0 && t < f64::from(n)) {
+            return None;
+        }
+        // t is non-negative: the cast truncates toward zero = floor.
+        let c = t as usize;
+        let (f, o) = (t - c as f64, windows[c]);
+        (f >= o.0 && f <= o.1).then_some(c)
+    };
+    // A view straight down with the grid along the image's axes: u depends on the column
+    // alone and v on the row alone (as `floor_row` computes them, up to the sign of a
+    // zero), so each column's cell is found once.
+    let m = image_to_floor.0;
+    let columns: Option<Vec<Option<usize>>> =
+        (m[6] == 0.0 && m[7] == 0.0 && m[8] == 1.0 && m[1] == 0.0 && m[3] == 0.0).then(|| {
+            let bu = m[1] * 0.5 + m[2];
+            (0..width)
+                .map(|k| in_window(m[0] * (k as f64 + 0.5) + bu, w, &wu))
+                .collect()
+        });
+    let count = |cov: &mut Coverage, class: u8, cell: usize| match class {
+        c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
+        c if c == Class::Unsure as u8 || c == OUTSIDE => {}
+        _ => cov.floor[cell] += 1,
+    };
+    let empty = || Coverage {
+        obstacle: vec![0; cells],
+        floor: vec![0; cells],
+    };
+    // Counts per run of bands (as many as the cores split the rows into), then their sums:
+    // whole numbers, so the totals do not depend on how the rows were split.
+    classes
         .par_chunks(width * BAND_ROWS)
         .enumerate()
-        .map(|(band, out)| {
-            let mut cov = Coverage {
-                obstacle: vec![0; cells],
-                floor: vec![0; cells],
-            };
+        .fold(empty, |mut cov, (band, out)| {
             for (row, line) in out.chunks(width).enumerate() {
                 let y = band * BAND_ROWS + row;
+                if let Some(columns) = &columns {
+                    let v = m[3] * 0.5 + (m[4] * (y as f64 + 0.5) + m[5]);
+                    if let Some(cv) = in_window(v, h, &wv) {
+                        for (&class, &cu) in line.iter().zip(columns) {
+                            if let Some(cu) = cu {
+                                count(&mut cov, class, cv * w as usize + cu);
+                            }
+                        }
+                    }
+                    continue;
+                }
                 floor_row(image_to_floor, (w, h), width, y, |k, (u, v)| {
                     // u and v are non-negative here: the casts truncate toward zero = floor.
                     let (cu, cv) = (u as usize, v as usize);
@@ -233,32 +324,74 @@ pub fn coverage(
                     if fu < ou.0 || fu > ou.1 || fv < ov.0 || fv > ov.1 {
                         return;
                     }
-                    let cell = cv * w as usize + cu;
-                    match line[k] {
-                        c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
-                        c if c == Class::Unsure as u8 || c == OUTSIDE => {}
-                        _ => cov.floor[cell] += 1,
-                    }
+                    count(&mut cov, line[k], cv * w as usize + cu);
                 });
             }
             cov
         })
-        .collect();
-    let mut total = Coverage {
-        obstacle: vec![0; cells],
-        floor: vec![0; cells],
-    };
-    for c in counts {
-        for i in 0..cells {
-            total.obstacle[i] += c.obstacle[i];
-            total.floor[i] += c.floor[i];
-        }
-    }
-    total
+        .reduce(empty, |mut total, c| {
+            for (t, n) in total.obstacle.iter_mut().zip(&c.obstacle) {
+                *t += n;
+            }
+            for (t, n) in total.floor.iter_mut().zip(&c.floor) {
+                *t += n;
+            }
+            total
+        })
 }
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    #[test]
+    fn a_straight_down_row_s_span_is_the_pixels_its_row_visits() {
+        // Floors placed anyhow in the image (some partly outside it, some flipped), seen
+        // straight down: the span holds exactly the pixels `floor_row` visits.
+        let mut seed = 7u64;
+        let mut next = |lo: f64, hi: f64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            lo + (hi - lo) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let (mut spans, mut partial) = (0, 0);
+        for _ in 0..300 {
+            let (w, h) = (
+                next(1.0, 40.0).floor() as u32,
+                next(1.0, 40.0).floor() as u32,
+            );
+            let (x0, y0) = (next(-30.0, 60.0), next(-30.0, 60.0));
+            let (sx, sy) = (next(-9.0, 9.0), next(-9.0, 9.0));
+            let (fw, fh) = (f64::from(w), f64::from(h));
+            let corners = [
+                (x0, y0),
+                (x0 + sx * fw, y0),
+                (x0 + sx * fw, y0 + sy * fh),
+                (x0, y0 + sy * fh),
+            ];
+            let Some(to_image) = Homography::floor_to_image(fw, fh, corners) else {
+                continue;
+            };
+            let Some(to_floor) = to_image.inverse() else {
+                continue;
+            };
+            let width = 97;
+            for y in 0..90 {
+                let mut visited = Vec::new();
+                floor_row(&to_floor, (w, h), width, y, |k, _| visited.push(k));
+                if let Some(span) = floor_span(&to_floor, (w, h), width, y) {
+                    spans += 1;
+                    partial += usize::from(!visited.is_empty() && visited.len() < width);
+                    assert_eq!(span.collect::<Vec<_>>(), visited, "{corners:?} row {y}");
+                }
+            }
+        }
+        assert!(
+            spans > 10_000 && partial > 1_000,
+            "{spans} spans, {partial} partial"
+        );
+    }
     #[test]
     fn the_rounded_mean_by_multiplication_is_the_division() {
         for count in 1..=49u32 {
