@@ -273,9 +273,14 @@ pub fn look(
     // Floor pixels: (brightness, colour) after white balance.
     let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
     let side = shadows::SIDE as f64;
+    let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
     for y in y0..y1 {
         for x in x0..x1 {
-            let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+            let point = match &axes {
+                Some(axes) => Some(axes.at(x, y)),
+                None => image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)),
+            };
+            let Some((u, v)) = point else {
                 continue;
             };
             let (du, dv) = (u - fx, v - fy);
