@@ -219,7 +219,7 @@ pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
             bbox: (u32::MAX, u32::MAX, 0, 0),
         };
         while let Some(i) = stack.pop() {
-            let (x, y) = (i % width, i / width);
+            let (x, y) = column_row(i, width);
             let (px, py) = (x as u32, y as u32);
             blob.pixels.push((px, py));
             blob.bbox = (
@@ -240,10 +240,30 @@ pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
         }
         out.push(blob);
     }
-    for c in classes.iter_mut() {
-        *c &= !SEEN;
+    // Clear the marks: pixel by pixel when the blobs are few, else in one pass.
+    let marked: usize = out.iter().map(Blob::area).sum();
+    if marked < classes.len() / 16 {
+        for b in &out {
+            for &(x, y) in &b.pixels {
+                classes[y as usize * width + x as usize] &= !SEEN;
+            }
+        }
+    } else {
+        for c in classes.iter_mut() {
+            *c &= !SEEN;
+        }
     }
     out
+}
+
+/// The column and row of pixel `i` of an image `width` pixels wide (in 32 bits when they
+/// fit: a faster division).
+#[inline]
+pub(crate) fn column_row(i: usize, width: usize) -> (usize, usize) {
+    match (u32::try_from(i), u32::try_from(width)) {
+        (Ok(i), Ok(w)) if w > 0 => ((i % w) as usize, (i / w) as usize),
+        _ => (i % width, i / width),
+    }
 }
 
 /// The first index from `from` on whose value is `class`: 64 values at a time (the test of

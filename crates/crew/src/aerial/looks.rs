@@ -349,24 +349,14 @@ pub fn look(
 pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
     let width = width.max(1);
     let height = classes.len() / width;
-    let mut marked = vec![false; classes.len()];
+    // Along rows (from each marked pixel), then along columns.
+    let mut rows = vec![false; classes.len()];
     for class in [Class::Robot, Class::Goal] {
         for b in blobs::find(classes, width, class as u8) {
             if b.area() >= blobs::MIN_AREA {
                 for (x, y) in b.pixels {
-                    marked[y as usize * width + x as usize] = true;
-                }
-            }
-        }
-    }
-    // Along rows, then along columns.
-    let mut rows = vec![false; classes.len()];
-    for y in 0..height {
-        let row = y * width;
-        for x in 0..width {
-            if marked[row + x] {
-                for v in &mut rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)] {
-                    *v = true;
+                    let (x, row) = (x as usize, y as usize * width);
+                    rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)].fill(true);
                 }
             }
         }
