@@ -77,6 +77,36 @@ fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]
     let inverse: Vec<u64> = (0..=rows * (2 * r as u32 + 1))
         .map(|n| (1u64 << 32).div_ceil(u64::from(n.max(1))))
         .collect();
+    if width > 2 * r {
+        // The windows cut by the row's ends, each summed whole; then the window slides over
+        // the rest, always the same count of pixels, in a loop without the ends' tests.
+        for at in (0..r).chain(width - r..width) {
+            let (a, b) = (at.saturating_sub(r), (at + r).min(width - 1));
+            let count = rows * (b - a + 1) as u32;
+            for c in 0..3 {
+                let sum = (a..=b).map(|x| cols[3 * x + c]).sum();
+                out[3 * at + c] = rounded_mean(sum, count, inverse[count as usize]);
+            }
+        }
+        let full = rows * (2 * r as u32 + 1);
+        let inverse = inverse[full as usize];
+        let mut sum = [0u32; 3];
+        for x in 0..=2 * r {
+            for c in 0..3 {
+                sum[c] += cols[3 * x + c];
+            }
+        }
+        for c in 0..3 {
+            out[3 * r + c] = rounded_mean(sum[c], full, inverse);
+        }
+        for at in r + 1..width - r {
+            for c in 0..3 {
+                sum[c] = sum[c] + cols[3 * (at + r) + c] - cols[3 * (at - r - 1) + c];
+                out[3 * at + c] = rounded_mean(sum[c], full, inverse);
+            }
+        }
+        return;
+    }
     let mut sum = [0u32; 3];
     let mut count = 0u32;
     // The window [x - r, x + r] slides along the row.
@@ -392,6 +422,47 @@ mod tests {
             "{spans} spans, {partial} partial"
         );
     }
+    #[test]
+    fn a_row_s_means_are_the_square_s_rounded_means() {
+        let (w, h) = (23u32, 9u32);
+        let img = RgbImage::from_fn(w, h, |x, y| {
+            image::Rgb([
+                (x * 37 + y * 11) as u8,
+                (x * x + 3 * y) as u8,
+                (255 - x * y) as u8,
+            ])
+        });
+        for r in 0..=3usize {
+            for width in [w, 2 * r as u32 + 1, 2 * r as u32] {
+                let img = image::imageops::crop_imm(&img, 0, 0, width.max(1), h).to_image();
+                let wd = img.width() as usize;
+                let (mut cols, mut out) = (vec![0u32; wd * 3], vec![0u8; wd * 3]);
+                for y in 0..h as usize {
+                    mean_row(&img, y, r, &mut cols, &mut out);
+                    for x in 0..wd {
+                        let (xs, ys) = (
+                            x.saturating_sub(r)..=(x + r).min(wd - 1),
+                            y.saturating_sub(r)..=(y + r).min(h as usize - 1),
+                        );
+                        let n = (xs.clone().count() * ys.clone().count()) as u32;
+                        for c in 0..3 {
+                            let sum: u32 = ys
+                                .clone()
+                                .flat_map(|yy| xs.clone().map(move |xx| (xx, yy)))
+                                .map(|(xx, yy)| u32::from(img.get_pixel(xx as u32, yy as u32)[c]))
+                                .sum();
+                            assert_eq!(
+                                out[3 * x + c],
+                                ((sum + n / 2) / n) as u8,
+                                "r {r} ({x}, {y})"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn the_rounded_mean_by_multiplication_is_the_division() {
         for count in 1..=49u32 {
