@@ -79,6 +79,42 @@ FAMILIES = {
                              (0.75, 0.60, 0.15)),
               shelf_height=(0.4, 2.2), tiles=0.2, shelf_inset=0.08, warm=0.35, camera_height=(40, 150),
               sun_elevation=(30, 75), sun_power=(2.5, 4.0)),
+    # L: held out from the ninth round of issue #29 (pale obstacles, shadows against the light
+    # around them; rendered after its reader was finished, scored once). Yawed-box, dome and
+    # puck robots, ring, square and cross goals, warm mid-grey, slate and light cool-grey
+    # floors tiled every quarter cell, cream, plum, navy, light steel and dark brown shelves
+    # from 0.3 to 2.0 high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8,
+    # warmer and cooler light, and a camera from 45 to 160 cells per 24 high.
+    "L": dict(robot_shapes=("rotbox", "dome", "puck"), goal_shapes=("ring", "square", "cross"),
+              floors=((0.58, 0.56, 0.52), (0.40, 0.44, 0.46), (0.70, 0.70, 0.72)),
+              shelf_colours=((0.85, 0.80, 0.65), (0.55, 0.30, 0.60), (0.20, 0.30, 0.55), (0.65, 0.68, 0.70),
+                             (0.35, 0.25, 0.15)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # M: held out from the ninth round of issue #29, rendered after its last change to the reader
+    # (after L was scored) and scored once. Box, box-with-a-dome and cylinder robots, diamond,
+    # ellipse and disc goals, warm light, dark green-grey and cool blue-grey floors tiled every
+    # third of a cell, off-white, forest green, ochre, slate violet and sage-grey shelves from
+    # 0.3 to 1.9 high inset 0.06 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 40 to 170 cells per 24 high.
+    "M": dict(robot_shapes=("box", "boxdome", "cylinder"), goal_shapes=("diamond", "ellipse", "disc"),
+              floors=((0.64, 0.62, 0.56), (0.36, 0.38, 0.36), (0.52, 0.56, 0.62)),
+              shelf_colours=((0.80, 0.78, 0.74), (0.25, 0.45, 0.25), (0.70, 0.45, 0.20), (0.30, 0.30, 0.45),
+                             (0.60, 0.62, 0.55)),
+              shelf_height=(0.3, 1.9), tiles=1 / 3, shelf_inset=0.06, warm=0.25, camera_height=(40, 170),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # N: held out from the ninth round of issue #29, rendered after its last change to the reader
+    # (the lean fit's misfit, after M was scored) and scored once. Puck, yawed-box and cylinder
+    # robots, cross, ring and ellipse goals, neutral mid-grey, light warm and dark cool floors
+    # tiled every half cell, pale grey, magenta-purple, teal-blue, tan and charcoal shelves from
+    # 0.3 to 2.1 high inset 0.07 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 45 to 165 cells per 24 high.
+    "N": dict(robot_shapes=("puck", "rotbox", "cylinder"), goal_shapes=("cross", "ring", "ellipse"),
+              floors=((0.50, 0.50, 0.48), (0.70, 0.64, 0.56), (0.30, 0.32, 0.36)),
+              shelf_colours=((0.82, 0.82, 0.78), (0.60, 0.20, 0.55), (0.15, 0.40, 0.55), (0.75, 0.60, 0.30),
+                             (0.20, 0.20, 0.22)),
+              shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

@@ -113,12 +113,16 @@ fn painted_lines_give_the_grid_of_a_rendered_view() {
 }
 
 /// Small goals washed out by JPEG at 10 px per cell: fewer goals than robots are seen, and
-/// the view is refused rather than read wrongly.
+/// the view is refused rather than read wrongly. Since the pale-obstacle check (issue #29,
+/// ninth round) the refusal comes earlier, at a free cell whose window reads a third covered
+/// (pale pixels of this 10 px-per-cell JPEG); either reason refuses the view.
 #[test]
 fn a_view_with_goals_too_faint_is_refused() {
     let (image, truth) = scene("A0905");
     let e = read_aerial(&image, "A0905", &config(&truth, true))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("robots but only") && e.contains("goals"), "{e}");
+    let faint_goals = e.contains("robots but only") && e.contains("goals");
+    let half_covered = e.contains("covered by an obstacle") && e.contains("cannot tell");
+    assert!(faint_goals || half_covered, "{e}");
 }

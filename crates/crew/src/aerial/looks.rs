@@ -240,6 +240,36 @@ impl Look {
     }
 }
 
+/// How far (in cells, a square) [`local_levels`] looks around a cell.
+pub const LOCAL: usize = 3;
+/// The fewest free cells around a cell that give it a level of its own.
+pub const LOCAL_MIN: usize = 8;
+
+/// How bright the lit floor is around each cell: the upper quartile of the brightness of the
+/// free cells ([`Look::bright`]) within [`LOCAL`] cells, or 1 (the lit floor's median) with
+/// fewer than [`LOCAL_MIN`] of them. Lamps light a floor unevenly; a shadow is darker than
+/// the floor around it, wherever that is.
+pub fn local_levels(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<f64> {
+    let (w, h) = (gw as usize, gh as usize);
+    let mut around = Vec::with_capacity((2 * LOCAL + 1).pow(2));
+    (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            around.clear();
+            for ny in y.saturating_sub(LOCAL)..(y + LOCAL + 1).min(h) {
+                for nx in x.saturating_sub(LOCAL)..(x + LOCAL + 1).min(w) {
+                    around.extend(bright.get(ny * w + nx).copied().flatten());
+                }
+            }
+            if around.len() < LOCAL_MIN {
+                return 1.0;
+            }
+            let q = 3 * around.len() / 4;
+            *around.select_nth_unstable_by(q, f64::total_cmp).1
+        })
+        .collect()
+}
+
 /// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark` from
 /// [`near_marks`].
 #[allow(clippy::too_many_arguments)]
@@ -304,10 +334,16 @@ pub fn look(
             if class == Class::Floor as u8 {
                 if on_line {
                     // Painted lines and their blur: neither shadow nor lit floor.
-                } else if (rgb[0] + rgb[1] + rgb[2]) / 3.0 < shadows::DARK {
-                    bin.dark += 1;
                 } else {
-                    bin.lit += 1;
+                    let b = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+                    if b < shadows::DARK {
+                        bin.dark += 1;
+                    } else {
+                        bin.lit += 1;
+                    }
+                    bin.brightness = bin
+                        .brightness
+                        .saturating_add((b * 1000.0).round().min(1e6) as u32);
                 }
             } else {
                 bin.solid += 1;
@@ -394,6 +430,25 @@ pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn local_levels_follow_the_light_around_each_cell() {
+        // A 9 × 9 floor lit 1.0 on its left and 1.5 from column 5 on; a blocked cell (None)
+        // and a shadow (0.4) do not move the upper quartile much.
+        let mut bright: Vec<Option<f64>> = (0..81)
+            .map(|i| Some(if i % 9 >= 5 { 1.5 } else { 1.0 }))
+            .collect();
+        bright[4 * 9 + 7] = None;
+        bright[3 * 9 + 7] = Some(0.4);
+        let levels = local_levels(&bright, (9, 9));
+        assert_eq!(levels.len(), 81);
+        assert_eq!(levels[4 * 9], 1.0);
+        assert_eq!(levels[4 * 9 + 8], 1.5);
+        assert_eq!(levels[3 * 9 + 7], 1.5);
+        // Too few free cells around: the lit floor's median.
+        let sparse: Vec<Option<f64>> = (0..81).map(|i| (i == 40).then_some(2.0)).collect();
+        assert!(local_levels(&sparse, (9, 9)).iter().all(|&l| l == 1.0));
+    }
 
     fn lit(bright: f64, saturation: f64) -> Look {
         Look {

@@ -54,6 +54,7 @@ pub mod enclosed;
 pub mod homography;
 pub mod lines;
 pub mod looks;
+pub mod pale;
 pub mod pixels;
 pub mod shadows;
 pub mod shelves;
@@ -242,11 +243,13 @@ pub fn is_pixel_map(img: &RgbImage) -> bool {
     true
 }
 
-/// The floor's median colour, from every 4th pixel of every 4th row inside the floor.
+/// The floor's median colour, from every 4th pixel of every 4th row inside the floor, each
+/// row of samples shifted by one pixel from the one before (so that the samples do not fall
+/// on painted lines every 4th pixel apart, whatever the cell size).
 fn floor_colour(img: &RgbImage, image_to_floor: &Homography, (w, h): (f64, f64)) -> [f64; 3] {
     let mut chans: [Vec<u8>; 3] = Default::default();
     for y in (0..img.height()).step_by(4) {
-        for x in (0..img.width()).step_by(4) {
+        for x in ((y / 4) % 4..img.width()).step_by(4) {
             let inside = image_to_floor
                 .apply((f64::from(x) + 0.5, f64::from(y) + 0.5))
                 .is_some_and(|(u, v)| u >= 0.0 && v >= 0.0 && u < w && v < h);
@@ -495,6 +498,7 @@ pub fn read_aerial_image(
         pixels::denoise_radius(px),
     );
     let width = img.width() as usize;
+    pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     enclosed::settle(&mut classes, width);
@@ -740,8 +744,13 @@ pub fn read_aerial_image(
     let uncast = {
         let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
             looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
+        let bright: Vec<Option<f64>> = looks
+            .iter()
+            .map(|l| l.as_ref().and_then(|l| l.bright))
+            .collect();
         drop(looks);
-        shadows::uncast(&bins, (gw, gh)).map(|u| {
+        let levels = looks::local_levels(&bright, (gw, gh));
+        shadows::uncast(&bins, &levels, (gw, gh)).map(|u| {
             let (x, y) = u.cell;
             at_pixel(
                 source,

@@ -17,6 +17,7 @@
 
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
+use super::pale;
 use image::RgbImage;
 use rayon::prelude::*;
 
@@ -229,7 +230,8 @@ fn floor_span(
     Some(lo..hi.max(lo))
 }
 
-/// Classifies every pixel (class codes of [`Class`], or [`OUTSIDE`]) of a floor of `w` × `h`
+/// Classifies every pixel (class codes of [`Class`], [`pale::PALE`] for floor-coloured pixels
+/// that lean pale, to be settled by [`pale::settle`], or [`OUTSIDE`]) of a floor of `w` × `h`
 /// cells seen through `image_to_floor`, colours other than marks averaged over a square of
 /// radius `radius` (see [`denoise_radius`]).
 pub fn classify(
@@ -260,16 +262,40 @@ pub fn classify(
                 let own = &raw[y * width * 3..(y + 1) * width * 3];
                 classifier.greyish_row(own, &mut own_grey);
                 let mut visit = |k: usize| {
+                    let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
+                    let leaning = |p: [u8; 3]| pale::is_leaning(classifier.balanced(p));
                     if own_grey[k] && mean_grey[k] {
-                        line[k] = Class::Floor as u8;
+                        // Floor by its own colour and by the mean's (by its own alone when
+                        // colours are not averaged): pale or not, as below.
+                        let judged = if radius == 0 {
+                            colour(own)
+                        } else {
+                            colour(&mean)
+                        };
+                        line[k] = if leaning(judged) {
+                            pale::PALE
+                        } else {
+                            Class::Floor as u8
+                        };
                         return;
                     }
-                    let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
+                    let judged = |p: [u8; 3]| match classifier.classify(p) {
+                        Class::Floor if leaning(p) => pale::PALE,
+                        c => c as u8,
+                    };
                     line[k] = match classifier.classify(colour(own)) {
-                        mark @ (Class::Robot | Class::Goal) => mark,
-                        c if radius == 0 => c,
-                        _ => classifier.classify(colour(&mean)),
-                    } as u8;
+                        // A speck of a mark's colour on a pale shelf (a tan top's reddest
+                        // pixels): the mark's class unless `pale::settle` finds the shelf.
+                        mark @ (Class::Robot | Class::Goal) if radius > 0 => {
+                            match judged(colour(&mean)) {
+                                pale::PALE => pale::speck(mark),
+                                _ => mark as u8,
+                            }
+                        }
+                        mark @ (Class::Robot | Class::Goal) => mark as u8,
+                        _ if radius == 0 => judged(colour(own)),
+                        _ => judged(colour(&mean)),
+                    };
                 };
                 match floor_span(image_to_floor, floor, width, y) {
                     Some(span) => span.for_each(visit),

@@ -28,6 +28,11 @@ pub const BINS: usize = SIDE * SIDE;
 /// is in a shadow. A shadow lit by the sky alone is at most about 0.8 of the lit floor after
 /// the sRGB curve (under a weak, low sun); the floor's stains and uneven light seldom go below.
 pub const DARK: f64 = 0.8;
+/// The lit floor around a cell this many times as bright as the lit floor's median, or more,
+/// is a pool of light (a lamp's): its shadows are judged against it. Below, the floor's
+/// stains and texture (a tenth either way) would pass for shadows against the light around
+/// them, and shadows are judged against the median.
+pub const POOL: f64 = 1.2;
 /// Floor pixels nearer than this to a cell's border (in cells) are not judged: painted lines
 /// lie there (up to 0.09 cell wide, and blurred).
 pub const LINE: f64 = 0.1;
@@ -50,6 +55,9 @@ pub struct Bin {
     pub mark: u32,
     /// Of those, the robot's own pixels.
     pub robot: u32,
+    /// The sum of the floor pixels' brightness (the mean of their channels after white
+    /// balance, 1 for the lit floor), in thousandths.
+    pub brightness: u32,
 }
 
 /// A bin judged by most of its pixels.
@@ -68,6 +76,24 @@ pub enum Kind {
 }
 
 impl Bin {
+    /// What most of the bin shows, where the lit floor around it is `level` times as bright as
+    /// the lit floor's median: from [`POOL`] on (a lamp's pool of light), its floor is in a
+    /// shadow when its mean brightness is under [`DARK`] times `level`.
+    pub fn kind_in(&self, level: f64) -> Kind {
+        let floor = self.dark + self.lit;
+        match self.kind() {
+            Kind::Dark | Kind::Lit if level >= POOL => {
+                let mean = f64::from(self.brightness) / 1000.0 / f64::from(floor);
+                if mean < DARK * level {
+                    Kind::Dark
+                } else {
+                    Kind::Lit
+                }
+            }
+            kind => kind,
+        }
+    }
+
     /// What most of the bin shows.
     pub fn kind(&self) -> Kind {
         let all = self.dark + self.lit + self.solid + self.mark;
@@ -98,8 +124,13 @@ pub struct Uncast {
 }
 
 /// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
-/// `i`'s bins (row-major), `None` for a blocked cell (a caster).
-pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Uncast> {
+/// `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright the
+/// lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
+pub fn uncast(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<Uncast> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
     if cells.len() != gw as usize * gh as usize || bw == 0 || bh == 0 {
         return None;
@@ -107,9 +138,12 @@ pub fn uncast(cells: &[Option<[Bin; BINS]>], (gw, gh): (u32, u32)) -> Option<Unc
     let kinds: Vec<Kind> = (0..bw * bh)
         .map(|i| {
             let (bx, by) = (i % bw, i / bw);
-            match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
+            let c = (by / SIDE) * gw as usize + bx / SIDE;
+            match &cells[c] {
                 None => Kind::Caster,
-                Some(b) => b[(by % SIDE) * SIDE + bx % SIDE].kind(),
+                Some(b) => {
+                    b[(by % SIDE) * SIDE + bx % SIDE].kind_in(levels.get(c).copied().unwrap_or(1.0))
+                }
             }
         })
         .collect();
@@ -189,6 +223,7 @@ mod tests {
         solid: 0,
         mark: 0,
         robot: 0,
+        brightness: 0,
     };
     const DARKENED: Bin = Bin {
         dark: 7,
@@ -196,6 +231,7 @@ mod tests {
         solid: 0,
         mark: 0,
         robot: 0,
+        brightness: 0,
     };
     const ROBOT: Bin = Bin {
         dark: 1,
@@ -203,6 +239,7 @@ mod tests {
         solid: 0,
         mark: 7,
         robot: 3,
+        brightness: 0,
     };
     const GOAL: Bin = Bin {
         dark: 1,
@@ -210,6 +247,7 @@ mod tests {
         solid: 0,
         mark: 7,
         robot: 0,
+        brightness: 0,
     };
 
     /// A floor of `w` × `h` cells, all lit and free, with the bins `dark` (floor bin
@@ -250,16 +288,40 @@ mod tests {
     }
 
     #[test]
+    fn in_a_pool_of_light_a_bin_is_dark_against_the_floor_around_it() {
+        // Nine pixels at 0.9: lit against the lit floor's median, dark under a lamp whose
+        // floor is 1.4 (0.9 < 0.8 × 1.4); where the light is 1.15, under [`POOL`], judged
+        // against the median (lit).
+        let bin = Bin {
+            lit: 9,
+            brightness: 9 * 900,
+            ..Bin::default()
+        };
+        assert_eq!(bin.kind_in(1.0), Kind::Lit);
+        assert_eq!(bin.kind_in(1.4), Kind::Dark);
+        assert_eq!(bin.kind_in(1.15), Kind::Lit);
+        // A dimmer area (level under 1) is judged as before: a darkened bin stays dark.
+        assert_eq!(DARKENED.kind_in(0.7), Kind::Dark);
+        // Casters and marks do not change with the light.
+        let shelf = Bin {
+            solid: 9,
+            ..Bin::default()
+        };
+        assert_eq!(shelf.kind_in(1.4), Kind::Caster);
+        assert_eq!(ROBOT.kind_in(1.4), Kind::Mark);
+    }
+
+    #[test]
     fn a_shadow_with_nothing_to_cast_it_is_found() {
         let cells = floor(5, 4, &band());
-        let u = uncast(&cells, (5, 4)).unwrap();
+        let u = uncast(&cells, &[], (5, 4)).unwrap();
         assert_eq!(u.cell, (2, 1));
         assert_eq!(u.bins, 24);
         assert!((u.at.0 - 2.125).abs() < 1e-9 && (u.at.1 - 1.125).abs() < 1e-9);
         // Lit floor alone, or a speck of seven bins, has none.
-        assert_eq!(uncast(&floor(5, 4, &[]), (5, 4)), None);
+        assert_eq!(uncast(&floor(5, 4, &[]), &[], (5, 4)), None);
         let speck: Vec<(usize, usize)> = (3..10).map(|x| (x, 3)).collect();
-        assert_eq!(uncast(&floor(5, 4, &speck), (5, 4)), None);
+        assert_eq!(uncast(&floor(5, 4, &speck), &[], (5, 4)), None);
     }
 
     #[test]
@@ -267,14 +329,14 @@ mod tests {
         // Cell (1, 1) blocked: the band's bins x 8.. touch its bins x 4..7 (x 7 next to 8).
         let mut cells = floor(5, 4, &band());
         cells[5 + 1] = None;
-        assert_eq!(uncast(&cells, (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4)), None);
         // Or an obstacle's pixels in a free cell, diagonally beside the band's last bin.
         let mut cells = floor(5, 4, &band());
         cells[3 * 5 + 2].as_mut().unwrap()[3] = Bin {
             solid: 9,
             ..Bin::default()
         };
-        assert_eq!(uncast(&cells, (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4)), None);
     }
 
     #[test]
@@ -287,29 +349,29 @@ mod tests {
         let small: Vec<(usize, usize)> =
             (4..8).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
         assert_eq!(
-            uncast(&floor(5, 4, &small), (5, 4)).map(|u| u.bins),
+            uncast(&floor(5, 4, &small), &[], (5, 4)).map(|u| u.bins),
             Some(12)
         );
         let mut cells = floor(5, 4, &small);
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4)), None);
         let mut cells = floor(5, 4, &band());
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4)), None);
         let large: Vec<(usize, usize)> =
             (4..16).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
         let mut cells = floor(5, 4, &large);
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(36));
+        assert_eq!(uncast(&cells, &[], (5, 4)).map(|u| u.bins), Some(36));
         // A goal lies flat: beside the band of 12 it casts nothing.
         let mut cells = floor(5, 4, &small);
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
-        assert_eq!(uncast(&cells, (5, 4)).map(|u| u.bins), Some(12));
+        assert_eq!(uncast(&cells, &[], (5, 4)).map(|u| u.bins), Some(12));
         // A robot's bin two bins away, behind the band of pixels near it, still casts it.
         let mut cells = floor(5, 4, &small);
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 2] = ROBOT; // bin (6, 7)
-        assert_eq!(uncast(&cells, (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4)), None);
     }
 
     #[test]
@@ -318,14 +380,14 @@ mod tests {
         let square = |o: usize| (o..o + 3).flat_map(move |y| (o..o + 2).map(move |x| (x, y)));
         let mut dark: Vec<(usize, usize)> = square(0).collect();
         dark.extend(square(2).map(|(x, y)| (x, y + 1)));
-        assert_eq!(uncast(&floor(3, 3, &dark), (3, 3)), None);
+        assert_eq!(uncast(&floor(3, 3, &dark), &[], (3, 3)), None);
         // Joined along a side they are one of 12.
         let mut dark: Vec<(usize, usize)> = square(0).collect();
         dark.extend(square(2).map(|(x, y)| (x, y - 2)));
-        let u = uncast(&floor(3, 3, &dark), (3, 3)).unwrap();
+        let u = uncast(&floor(3, 3, &dark), &[], (3, 3)).unwrap();
         assert_eq!((u.cell, u.bins), ((0, 0), 12));
         // A mismatched list of cells is no finding, not a panic.
-        assert_eq!(uncast(&floor(3, 3, &dark), (4, 3)), None);
-        assert_eq!(uncast(&[], (0, 0)), None);
+        assert_eq!(uncast(&floor(3, 3, &dark), &[], (4, 3)), None);
+        assert_eq!(uncast(&[], &[], (0, 0)), None);
     }
 }

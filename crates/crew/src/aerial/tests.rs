@@ -29,6 +29,8 @@ struct Paint {
     goals: Vec<Point>,
     radius: f64,
     lines: bool,
+    shelf: [f64; 3],
+    line: [f64; 3],
 }
 
 impl Paint {
@@ -40,6 +42,8 @@ impl Paint {
             goals: vec![],
             radius: 0.3,
             lines: false,
+            shelf: [40.0, 70.0, 170.0],
+            line: [40.0; 3],
         }
     }
 
@@ -75,12 +79,12 @@ impl Paint {
                 return sh([30.0, 170.0, 50.0]);
             }
             if self.blocked.contains(&(u as u32, v as u32)) {
-                return sh([40.0, 70.0, 170.0]);
+                return sh(self.shelf);
             }
             let line = self.lines
                 && (u.fract() < 0.05 || u.fract() > 0.95 || v.fract() < 0.05 || v.fract() > 0.95);
             sh(if line {
-                [40.0; 3]
+                self.line
             } else {
                 [170.0, 165.0, 155.0]
             })
@@ -177,6 +181,26 @@ fn reads_a_tilted_view_through_its_corners() {
     bad.corners = Some([corners[1], corners[0], corners[2], corners[3]]);
     let e = read_aerial(&png(&img), "t.png", &bad).unwrap_err();
     assert!(e.to_string().contains("convex"), "{e}");
+}
+
+#[test]
+fn a_pale_shelf_is_an_obstacle_and_white_lines_are_not() {
+    // A pale lilac shelf (saturation 0.18 after white balance, as bright as the floor: floor
+    // by its colour class) on a floor with white painted lines (half as bright again as the
+    // floor, a tenth of a cell wide).
+    let mut p = scene();
+    p.shelf = [190.0, 165.0, 190.0];
+    p.lines = true;
+    p.line = [255.0; 3];
+    for px in [12, 20] {
+        let r = read_aerial(&png(&p.straight(px)), "v.png", &grid(8, 5)).unwrap();
+        let blocked: Vec<(u32, u32)> = (0..40)
+            .filter(|&i| !r.grid.is_free(Cell(i)))
+            .map(|i| r.grid.xy(Cell(i)))
+            .collect();
+        assert_eq!(blocked, vec![(3, 1), (3, 2), (3, 3)], "{px} px per cell");
+        assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    }
 }
 
 #[test]

@@ -1,0 +1,418 @@
+//! Pale obstacles: a shelf whose colour after white balance is nearly grey.
+//!
+//! The colour classes of [`super::colour`] take an obstacle by its colour. A shelf of a pale
+//! colour (cream, pale lilac, light grey on a darker floor) is nearly grey after white
+//! balance, and its pixels read as floor. Yet its top, horizontal like the floor and lit by
+//! the same sun, differs from the floor by its reflectance: it is brighter than the lit
+//! floor can be, or, as bright as the lit floor (no shadow), it is tinted.
+//!
+//! Pixel by pixel that difference drowns in noise and texture, so it is judged over squares
+//! [`OPENING`] of a cell wide. [`super::pixels::classify`] marks the floor-coloured pixels
+//! that lean that way ([`is_leaning`], loose limits), and the specks of a mark's colour whose
+//! surroundings lean that way (the reddest pixels of a tan top). A square is pale when
+//! - at least [`FULL`] of its pixels lean that way or are already an obstacle's (or of a
+//!   colour that cannot be told: the rest of a top whose colour noise splits between floor
+//!   and obstacle),
+//! - none is a robot's or a goal's (marks stand on the floor, not on a shelf's top), and
+//! - the mean colour of its floor-coloured pixels (leaning or not) is pale ([`is_pale`]:
+//!   brighter than [`BRIGHTER`] times the lit floor, or lit and tinted).
+//!
+//! The leaning pixels of pale squares are an obstacle's; the others are floor, robot or goal
+//! pixels again. Painted lines (at most a tenth of a cell wide, a little more with blur) fill
+//! less than half of such a square, and specks of noise less still, so they stay floor.
+//!
+//! Pixels as bright as the lit floor or darker, and grey ones, are not judged here: a shelf
+//! of the floor's own colour and brightness shows only by its shadow ([`super::shadows`]),
+//! and a region of free cells brighter or more tinted than the floor around it, below these
+//! limits, is refused by [`super::looks`].
+//!
+//! Cost: O(pixels) time, on all cores in bands of rows, and a flag a pixel of memory when
+//! some pixels lean pale (running sums down the columns, then along each row), nothing
+//! otherwise.
+
+use super::colour::{Class, Classifier};
+use image::RgbImage;
+use rayon::prelude::*;
+
+/// Rows per band of the passes on all cores (the result does not depend on the cores).
+const BAND_ROWS: usize = 64;
+
+/// A pixel class used only between [`super::pixels::classify`] and [`settle`]: floor by its
+/// colour class, but leaning pale.
+pub const PALE: u8 = 6;
+
+/// Like [`PALE`], for a pixel of a robot's colour whose surroundings lean pale: a robot's
+/// pixel unless [`settle`] finds it in a pale square.
+pub const PALE_ROBOT: u8 = 7;
+/// Likewise for a goal's colour.
+pub const PALE_GOAL: u8 = 8;
+
+/// The code of a pixel of mark `mark`'s own colour whose surroundings lean pale.
+pub fn speck(mark: Class) -> u8 {
+    if mark == Class::Robot {
+        PALE_ROBOT
+    } else {
+        PALE_GOAL
+    }
+}
+
+fn leaning_code(c: u8) -> bool {
+    c == PALE || c == PALE_ROBOT || c == PALE_GOAL
+}
+
+/// The brightest the lit floor may be after white balance over a square (the lit floor's
+/// median is 1): its texture, uneven light and the camera's noise stay below this.
+pub const BRIGHTER: f64 = 1.5;
+/// At least this bright (relative to the lit floor) a tinted square is lit, not in a shadow
+/// (a shadow's tint depends on the light).
+pub const LIT: f64 = 0.9;
+/// The saturation after white balance from which a lit square is tinted (the lit floor is
+/// grey). [`super::colour`] takes a lit pixel as an obstacle's from a saturation of 0.25.
+pub const TINTED: f64 = 0.17;
+/// The loose limits of a pixel that leans pale: brightness, lit brightness and saturation.
+pub const LEANING: (f64, f64, f64) = (1.3, 0.8, 0.1);
+/// The share of a square's pixels that must lean pale.
+pub const FULL: f64 = 0.8;
+/// The side of the squares, in cells.
+pub const OPENING: f64 = 0.5;
+
+fn bright_and_saturation([r, g, b]: [f64; 3]) -> (f64, f64) {
+    let max = r.max(g).max(b);
+    let min = r.min(g).min(b);
+    (max, if max > 0.0 { (max - min) / max } else { 0.0 })
+}
+
+/// Whether a colour after white balance (the lit floor 1 in every channel) is pale: brighter
+/// than the lit floor can be, or lit and tinted.
+pub fn is_pale(rgb: [f64; 3]) -> bool {
+    let (max, s) = bright_and_saturation(rgb);
+    max >= BRIGHTER || (max >= LIT && s >= TINTED)
+}
+
+/// Whether a colour after white balance leans pale (the loose limits [`LEANING`]).
+pub fn is_leaning(rgb: [f64; 3]) -> bool {
+    let (max, s) = bright_and_saturation(rgb);
+    max >= LEANING.0 || (max >= LEANING.1 && s >= LEANING.2)
+}
+
+/// The side in pixels of the squares for cells `cell_px` wide: at least 3.
+pub fn square_px(cell_px: f64) -> usize {
+    (OPENING * cell_px).round().max(3.0) as usize
+}
+
+/// The counts of a column (or a square) of pixels: see [`settle`].
+#[derive(Clone, Copy, Debug, Default)]
+struct Column {
+    /// Pixels that lean pale or are already not floor (an obstacle's, or a colour that
+    /// cannot be told), and specks of a mark's colour on pale surroundings.
+    leaning: u32,
+    /// Pixels of a robot or a goal.
+    marks: u32,
+    /// Floor-coloured pixels, leaning pale or not, and their colour sums.
+    floor: u32,
+    sums: [u32; 3],
+}
+
+impl Column {
+    /// Adds (`sign` 1) or takes away (−1) a pixel of class code `c` and colour `p`.
+    fn add(&mut self, c: u8, p: [u8; 3], sign: i32) {
+        let step = |v: &mut u32, by: u32| {
+            *v = if sign > 0 { *v + by } else { *v - by };
+        };
+        match c {
+            _ if c == Class::Obstacle as u8 || c == Class::Unsure as u8 => {
+                step(&mut self.leaning, 1)
+            }
+            PALE_ROBOT | PALE_GOAL => step(&mut self.leaning, 1),
+            _ if c == Class::Robot as u8 || c == Class::Goal as u8 => step(&mut self.marks, 1),
+            _ if c == PALE || c == Class::Floor as u8 => {
+                if c == PALE {
+                    step(&mut self.leaning, 1);
+                }
+                step(&mut self.floor, 1);
+                for (sum, v) in self.sums.iter_mut().zip(p) {
+                    step(sum, u32::from(v));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Adds (`sign` 1) or takes away (−1) another column's counts.
+    fn merge(&mut self, o: &Column, sign: i32) {
+        let step = |v: &mut u32, by: u32| {
+            *v = if sign > 0 { *v + by } else { *v - by };
+        };
+        step(&mut self.leaning, o.leaning);
+        step(&mut self.marks, o.marks);
+        step(&mut self.floor, o.floor);
+        for (sum, v) in self.sums.iter_mut().zip(o.sums) {
+            step(sum, v);
+        }
+    }
+}
+
+/// Turns [`PALE`], [`PALE_ROBOT`] and [`PALE_GOAL`] pixels into obstacle pixels where they
+/// lie in a pale `side` × `side` square (see the module's comment), and into floor, robot
+/// and goal pixels elsewhere.
+pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side: usize) {
+    let width = img.width() as usize;
+    if width == 0 || !classes.iter().any(|&c| leaning_code(c)) {
+        return;
+    }
+    let height = classes.len() / width;
+    let side = side.max(1);
+    let raw = img.as_raw();
+    let need = (FULL * (side * side) as f64).ceil() as u32;
+    // Rows with a leaning pixel, counted: a square without one changes nothing, and neither
+    // does a row without one in the last pass.
+    let has: Vec<bool> = classes
+        .par_chunks(width)
+        .map(|row| row.iter().any(|&c| leaning_code(c)))
+        .collect();
+    let mut before = vec![0usize; height + 1];
+    for y in 0..height {
+        before[y + 1] = before[y] + usize::from(has[y]);
+    }
+    let any_in = |y0: usize, y1: usize| before[y1.min(height)] > before[y0.min(height)];
+    // Squares by their top-left corner, in bands of rows on all cores: the counts of their
+    // pixels (see `Column`) over `side` rows (column sums, moved down a row at a time), then
+    // along the row.
+    let mut corner = vec![false; classes.len()];
+    if height >= side && width >= side {
+        let tops = height - side + 1;
+        let add = |y: usize, sign: i32, cols: &mut [Column]| {
+            for (x, col) in cols.iter_mut().enumerate() {
+                let i = y * width + x;
+                col.add(
+                    classes[i],
+                    [raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]],
+                    sign,
+                );
+            }
+        };
+        let corners_of = |band: usize, out: &mut [bool]| {
+            let t0 = band * BAND_ROWS;
+            if t0 >= tops {
+                return;
+            }
+            let t1 = (t0 + BAND_ROWS).min(tops);
+            if !any_in(t0, t1 + side - 1) {
+                return;
+            }
+            let mut cols = vec![Column::default(); width];
+            for y in t0..t0 + side {
+                add(y, 1, &mut cols);
+            }
+            for top in t0..t1 {
+                if top > t0 {
+                    add(top - 1, -1, &mut cols);
+                    add(top + side - 1, 1, &mut cols);
+                }
+                let mut sq = Column::default();
+                for x in 0..width {
+                    sq.merge(&cols[x], 1);
+                    if x >= side {
+                        sq.merge(&cols[x - side], -1);
+                    }
+                    if x + 1 >= side && sq.leaning >= need && sq.marks == 0 && sq.floor > 0 {
+                        let f = sq.floor;
+                        let mean = sq.sums.map(|v| ((v + f / 2) / f).min(255) as u8);
+                        out[(top - t0) * width + x + 1 - side] = is_pale(classifier.balanced(mean));
+                    }
+                }
+            }
+        };
+        corner
+            .par_chunks_mut(width * BAND_ROWS)
+            .enumerate()
+            .for_each(|(band, out)| corners_of(band, out));
+    }
+    // A pixel is in a pale square when a corner lies within `side` − 1 up and to the left of
+    // it: spread the corners right along rows, then down along columns (each band of rows
+    // looking back `side` − 1 rows).
+    // In place: each row's corners become the pixels they spread to.
+    corner.par_chunks_mut(width).for_each(|row| {
+        let mut last: Option<usize> = None;
+        for (x, flag) in row.iter_mut().enumerate() {
+            if *flag {
+                last = Some(x);
+            }
+            *flag = last.is_some_and(|l| x - l < side);
+        }
+    });
+    let right = corner;
+    classes
+        .par_chunks_mut(width * BAND_ROWS)
+        .enumerate()
+        .for_each(|(band, out)| {
+            let y0 = band * BAND_ROWS;
+            if !any_in(y0, y0 + BAND_ROWS) {
+                return;
+            }
+            // The last row (absolute) at or above each pixel of the band's first row where
+            // the spread corners reach.
+            let mut last: Vec<Option<usize>> = vec![None; width];
+            for y in y0.saturating_sub(side - 1)..y0 {
+                for (x, l) in last.iter_mut().enumerate() {
+                    if right[y * width + x] {
+                        *l = Some(y);
+                    }
+                }
+            }
+            for (row, line) in out.chunks_mut(width).enumerate() {
+                let y = y0 + row;
+                for (x, c) in line.iter_mut().enumerate() {
+                    if right[y * width + x] {
+                        last[x] = Some(y);
+                    }
+                    if leaning_code(*c) {
+                        let covered = last[x].is_some_and(|l| y - l < side);
+                        *c = match *c {
+                            _ if covered => Class::Obstacle as u8,
+                            PALE_ROBOT => Class::Robot as u8,
+                            PALE_GOAL => Class::Goal as u8,
+                            _ => Class::Floor as u8,
+                        };
+                    }
+                }
+            }
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aerial::colour::Hue;
+    use crate::aerial::pixels::OUTSIDE;
+
+    const F: u8 = Class::Floor as u8;
+    const O: u8 = Class::Obstacle as u8;
+    const R: u8 = Class::Robot as u8;
+
+    /// An image of grey floor (150) with, by the letters of `rows`: `l` lilac (pale by its
+    /// tint), `w` white (brighter than the floor can be), `r` a red speck on lilac, `x`
+    /// outside the floor; the classes as [`super::super::pixels::classify`] gives them.
+    fn scene(rows: &[&str]) -> (Vec<u8>, RgbImage, Classifier) {
+        let (w, h) = (rows[0].len() as u32, rows.len() as u32);
+        let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
+        let colour = |c: u8| match c {
+            b'l' => [168, 145, 175],
+            b'w' => [240, 240, 240],
+            b'r' => [200, 40, 40],
+            _ => [150, 150, 150],
+        };
+        let img = RgbImage::from_fn(w, h, |x, y| {
+            image::Rgb(colour(rows[y as usize].as_bytes()[x as usize]))
+        });
+        let classes = rows
+            .iter()
+            .flat_map(|r| {
+                r.bytes().map(|b| match b {
+                    b'x' => OUTSIDE,
+                    b'r' => PALE_ROBOT,
+                    _ if is_leaning(classifier.balanced(colour(b))) => PALE,
+                    _ => F,
+                })
+            })
+            .collect();
+        (classes, img, classifier)
+    }
+
+    #[test]
+    fn a_pale_square_becomes_an_obstacle_and_a_thin_line_stays_floor() {
+        let (mut c, img, classifier) = scene(&[
+            "..w.......",
+            "..w.llll..",
+            "..w.lrll..",
+            "..w.llll.l",
+            "..w.......",
+        ]);
+        settle(&mut c, &img, &classifier, 3);
+        // The lilac block (its red speck too): obstacle; the white line and the speck of
+        // lilac: floor.
+        for y in 0..5 {
+            for x in 0..10 {
+                let want = if (1..=3).contains(&y) && (4..=7).contains(&x) {
+                    O
+                } else {
+                    F
+                };
+                assert_eq!(c[y * 10 + x], want, "pixel ({x}, {y})");
+            }
+        }
+    }
+
+    #[test]
+    fn a_square_with_a_mark_in_it_is_no_shelf_top() {
+        // A white block with a goal's pixel in its middle: every 3 × 3 square of it holds
+        // the goal's pixel, so none is a pale top; the 4 × 4 block without it is.
+        let rows = [
+            "wwwww.wwww",
+            "wwwww.wwww",
+            "wwgww.wwww",
+            "wwwww.wwww",
+            "wwwww.....",
+        ];
+        let (mut c, img, classifier) = scene(&rows);
+        let g = 2 * 10 + 2;
+        c[g] = Class::Goal as u8;
+        settle(&mut c, &img, &classifier, 5);
+        assert_eq!(c[g], Class::Goal as u8);
+        assert!((0..5).all(|y| (0..5).all(|x| c[y * 10 + x] != O || (x, y) == (2, 2))));
+        let (mut c, img, classifier) = scene(&rows);
+        settle(&mut c, &img, &classifier, 4);
+        assert!((0..4).all(|y| (6..10).all(|x| c[y * 10 + x] == O)));
+    }
+
+    #[test]
+    fn a_pale_l_keeps_only_what_a_square_fits_in() {
+        let (mut c, img, classifier) = scene(&["www...", "www...", "wwwwww", "ww...r"]);
+        settle(&mut c, &img, &classifier, 3);
+        let obstacle: Vec<usize> = (0..c.len()).filter(|&i| c[i] == O).collect();
+        // The 3 × 3 square at the top-left, and the one below it, 8 of its 9 pixels white
+        // ([`FULL`]); the rest of the arm along row 2 is narrower than a square; the red
+        // speck alone is a robot's pixel again.
+        assert_eq!(obstacle, vec![0, 1, 2, 6, 7, 8, 12, 13, 14, 18, 19]);
+        assert_eq!(c[23], R);
+        assert!(!c.iter().any(|&k| leaning_code(k)));
+    }
+
+    #[test]
+    fn a_square_must_be_pale_on_average_not_only_lean() {
+        // Pixels that lean pale (saturation 0.13, as bright as the floor) but whose mean is
+        // not tinted enough (under 0.17) stay floor.
+        let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
+        let faint = [150u8, 130, 150];
+        assert!(is_leaning(classifier.balanced(faint)));
+        assert!(!is_pale(classifier.balanced(faint)));
+        let img = RgbImage::from_pixel(6, 6, image::Rgb(faint));
+        let mut c = vec![PALE; 36];
+        settle(&mut c, &img, &classifier, 3);
+        assert!(c.iter().all(|&k| k == F));
+    }
+
+    #[test]
+    fn pale_means_brighter_than_the_floor_or_lit_and_tinted() {
+        assert!(!is_pale([1.0, 1.0, 1.0]));
+        assert!(!is_pale([1.3, 1.32, 1.28]));
+        assert!(is_pale([1.6, 1.6, 1.55]));
+        // Lit and tinted: lilac at the floor's brightness.
+        assert!(is_pale([1.0, 0.85, 1.05]));
+        // Tinted but dark: a shadow under a blue sky, not judged here.
+        assert!(!is_pale([0.4, 0.5, 0.7]));
+        assert!(!is_leaning([0.4, 0.5, 0.7]));
+        assert!(is_leaning([1.35, 1.3, 1.3]));
+    }
+
+    #[test]
+    fn nothing_pale_changes_nothing() {
+        let (mut c, img, classifier) = scene(&["..x", "...", "x.."]);
+        let before = c.clone();
+        settle(&mut c, &img, &classifier, 3);
+        assert_eq!(c, before);
+        assert_eq!(square_px(8.0), 4);
+        assert_eq!(square_px(4.0), 3);
+        assert_eq!(square_px(30.0), 15);
+    }
+}
