@@ -140,7 +140,11 @@ fn inner_cell_at(
     (w, h): (u32, u32),
 ) -> Option<usize> {
     let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
-    let (u, v) = image_to_floor.apply((x, y))?;
+    inner_cell_of(image_to_floor.apply((x, y))?, (w, h))
+}
+
+/// The cell (index) whose middle holds the floor point `(u, v)`, if any.
+fn inner_cell_of((u, v): (f64, f64), (w, h): (u32, u32)) -> Option<usize> {
     if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
         return None;
     }
@@ -192,10 +196,16 @@ pub(crate) fn middle(
             clamp(y0.floor() - 1.0, height),
             clamp(y1.ceil() + 1.0, height),
         );
+        // A view straight down along the image's axes: the points from a row and a column.
+        let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
         for y in y0..y1 {
             for x in x0..x1 {
                 let c = classes[y * width + x];
-                if c != OUTSIDE && inner_cell_at((x, y), image_to_floor, floor) == Some(cell) {
+                let inner = match &axes {
+                    Some(axes) => inner_cell_of(axes.at(x, y), floor),
+                    None => inner_cell_at((x, y), image_to_floor, floor),
+                };
+                if c != OUTSIDE && inner == Some(cell) {
                     out.pixels += 1;
                     out.obstacle += u32::from(c == Class::Obstacle as u8);
                 }
@@ -320,13 +330,19 @@ pub fn absorb(
         return 0;
     }
     // The median goal among the goal pixels outside those blobs.
-    let mut goals_only: Vec<u8> = classes.to_vec();
-    for (b, _) in &shaped {
-        for &i in b.iter() {
-            goals_only[i] = OUTSIDE;
-        }
+    // (Those blobs' goal pixels are set aside for the search and given back.)
+    let hidden: Vec<usize> = shaped
+        .iter()
+        .flat_map(|(b, _)| b.iter().copied())
+        .filter(|&i| classes[i] == Class::Goal as u8)
+        .collect();
+    for &i in &hidden {
+        classes[i] = OUTSIDE;
     }
-    let median = blobs::sort(blobs::find(&mut goals_only, width, Class::Goal as u8)).median_area;
+    let median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
+    for &i in &hidden {
+        classes[i] = Class::Goal as u8;
+    }
     let mut turned = 0;
     for (b, cells) in shaped {
         if (b.len() as f64) < LARGER * median as f64 {
