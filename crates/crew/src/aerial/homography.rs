@@ -13,6 +13,24 @@ pub struct Homography(pub [f64; 9]);
 /// A point of a plane.
 pub type Point = (f64, f64);
 
+/// The floor points of a box of pixel centres under a map straight down along the image's
+/// axes ([`Homography::along_axes`]).
+#[derive(Clone, Debug)]
+pub struct AxisPoints {
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    x0: usize,
+    y0: usize,
+}
+
+impl AxisPoints {
+    /// The point of pixel `(x, y)` of the box.
+    #[inline]
+    pub fn at(&self, x: usize, y: usize) -> Point {
+        (self.us[x - self.x0], self.vs[y - self.y0])
+    }
+}
+
 impl Homography {
     /// The homography that sends `from[i]` to `to[i]`, or `None` when three of the points are
     /// (nearly) on one line.
@@ -73,10 +91,38 @@ impl Homography {
         if d.abs() < 1e-12 {
             return None;
         }
-        Some((
-            (m[0] * x + m[1] * y + m[2]) / d,
-            (m[3] * x + m[4] * y + m[5]) / d,
-        ))
+        let (u, v) = (m[0] * x + m[1] * y + m[2], m[3] * x + m[4] * y + m[5]);
+        // Dividing by 1 (an affine map, a view straight down) changes nothing: skip it.
+        if d == 1.0 {
+            return Some((u, v));
+        }
+        Some((u / d, v / d))
+    }
+
+    /// The points of the pixel centres of the image box `x0..x1` × `y0..y1` under this map
+    /// (image → floor), when it is straight down along the image's axes: u then depends on
+    /// the column alone and v on the row alone, each computed once. Each point equals
+    /// [`Homography::apply`]'s (up to the sign of a zero). `None` for any other map.
+    pub fn along_axes(
+        &self,
+        (x0, x1): (usize, usize),
+        (y0, y1): (usize, usize),
+    ) -> Option<AxisPoints> {
+        let m = &self.0;
+        if !(m[1] == 0.0 && m[3] == 0.0 && m[6] == 0.0 && m[7] == 0.0 && m[8] == 1.0) {
+            return None;
+        }
+        let centre = |i: usize| i as f64 + 0.5;
+        Some(AxisPoints {
+            us: (x0..x1)
+                .map(|x| self.apply((centre(x), 0.5)).map_or(0.0, |p| p.0))
+                .collect(),
+            vs: (y0..y1)
+                .map(|y| self.apply((0.5, centre(y))).map_or(0.0, |p| p.1))
+                .collect(),
+            x0,
+            y0,
+        })
     }
 
     /// The inverse map, `None` when singular.
@@ -233,6 +279,34 @@ mod tests {
 
     /// A pinhole camera at a known place: the nadir found from the four corners is where it
     /// stands.
+    #[test]
+    fn points_along_the_axes_are_the_applied_points() {
+        let straight = Homography::floor_to_image(
+            7.0,
+            5.0,
+            [(3.0, 2.0), (143.0, 2.0), (143.0, 102.0), (3.0, 102.0)],
+        )
+        .unwrap()
+        .inverse()
+        .unwrap();
+        let points = straight.along_axes((0, 150), (0, 110)).unwrap();
+        for y in 0..110 {
+            for x in 0..150 {
+                let want = straight.apply((x as f64 + 0.5, y as f64 + 0.5)).unwrap();
+                assert_eq!(points.at(x, y), want, "({x}, {y})");
+            }
+        }
+        let tilted = Homography::floor_to_image(
+            7.0,
+            5.0,
+            [(3.0, 2.0), (143.0, 9.0), (150.0, 102.0), (0.0, 95.0)],
+        )
+        .unwrap()
+        .inverse()
+        .unwrap();
+        assert!(tilted.along_axes((0, 150), (0, 110)).is_none());
+    }
+
     #[test]
     fn finds_the_nadir_of_a_tilted_camera() {
         let (w, h) = (24.0, 16.0);

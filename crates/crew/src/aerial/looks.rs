@@ -317,9 +317,14 @@ pub fn look(
     // Floor pixels: (brightness, colour) after white balance.
     let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
     let side = shadows::SIDE as f64;
+    let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
     for y in y0..y1 {
         for x in x0..x1 {
-            let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+            let point = match &axes {
+                Some(axes) => Some(axes.at(x, y)),
+                None => image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)),
+            };
+            let Some((u, v)) = point else {
                 continue;
             };
             let (du, dv) = (u - fx, v - fy);
@@ -398,42 +403,43 @@ pub fn look(
 pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
     let width = width.max(1);
     let height = classes.len() / width;
-    let mut marked = vec![false; classes.len()];
+    // Along rows (from each marked pixel), then along columns.
+    let mut rows = vec![false; classes.len()];
     for class in [Class::Robot, Class::Goal] {
         for b in blobs::find(classes, width, class as u8) {
             if b.area() >= blobs::MIN_AREA {
                 for (x, y) in b.pixels {
-                    marked[y as usize * width + x as usize] = true;
+                    let (x, row) = (x as usize, y as usize * width);
+                    rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)].fill(true);
                 }
             }
         }
     }
-    // Along rows, then along columns.
-    let mut rows = vec![false; classes.len()];
-    for y in 0..height {
-        let row = y * width;
-        for x in 0..width {
-            if marked[row + x] {
-                for v in &mut rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)] {
-                    *v = true;
-                }
-            }
-        }
-    }
+    // Row by row (in memory order), each column's count of the rows within r marked there.
     let mut out = vec![false; classes.len()];
-    for x in 0..width {
-        let mut reach = 0usize; // rows below y still within r of a marked row
-        for y in 0..height {
-            if rows[y * width + x] {
-                for yy in y.saturating_sub(r)..y {
-                    out[yy * width + x] = true;
-                }
-                reach = r + 1;
-            }
-            if reach > 0 {
-                out[y * width + x] = true;
-                reach -= 1;
-            }
+    let mut count = vec![0u32; width];
+    let row = |y: usize| &rows[y * width..(y + 1) * width];
+    for y in 0..r.min(height) {
+        count
+            .iter_mut()
+            .zip(row(y))
+            .for_each(|(n, &m)| *n += u32::from(m));
+    }
+    for y in 0..height {
+        if y + r < height {
+            count
+                .iter_mut()
+                .zip(row(y + r))
+                .for_each(|(n, &m)| *n += u32::from(m));
+        }
+        if y > r {
+            count
+                .iter_mut()
+                .zip(row(y - r - 1))
+                .for_each(|(n, &m)| *n -= u32::from(m));
+        }
+        for (o, &n) in out[y * width..(y + 1) * width].iter_mut().zip(&count) {
+            *o = n > 0;
         }
     }
     out

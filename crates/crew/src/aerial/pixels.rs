@@ -13,7 +13,7 @@
 //! from the nadir (0.2–0.8 when the nadir is level with the cell, or unknown). An obstacle on
 //! the cell covers that window whole; a neighbour's top leaning less than 0.4 cell misses it.
 //! Robot and goal pixels cover floor, not obstacle. The pass runs on all cores, in bands of
-//! rows; the counts are summed in band order, so the result does not depend on the cores.
+//! rows; the counts are whole numbers, summed, so the result does not depend on the cores.
 
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
@@ -74,6 +74,40 @@ fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]
         }
     }
     let rows = (y1 - y0 + 1) as u32;
+    // Division by the window's pixel count as a multiplication (see `rounded_mean`).
+    let inverse: Vec<u64> = (0..=rows * (2 * r as u32 + 1))
+        .map(|n| (1u64 << 32).div_ceil(u64::from(n.max(1))))
+        .collect();
+    if width > 2 * r {
+        // The windows cut by the row's ends, each summed whole; then the window slides over
+        // the rest, always the same count of pixels, in a loop without the ends' tests.
+        for at in (0..r).chain(width - r..width) {
+            let (a, b) = (at.saturating_sub(r), (at + r).min(width - 1));
+            let count = rows * (b - a + 1) as u32;
+            for c in 0..3 {
+                let sum = (a..=b).map(|x| cols[3 * x + c]).sum();
+                out[3 * at + c] = rounded_mean(sum, count, inverse[count as usize]);
+            }
+        }
+        let full = rows * (2 * r as u32 + 1);
+        let inverse = inverse[full as usize];
+        let mut sum = [0u32; 3];
+        for x in 0..=2 * r {
+            for c in 0..3 {
+                sum[c] += cols[3 * x + c];
+            }
+        }
+        for c in 0..3 {
+            out[3 * r + c] = rounded_mean(sum[c], full, inverse);
+        }
+        for at in r + 1..width - r {
+            for c in 0..3 {
+                sum[c] = sum[c] + cols[3 * (at + r) + c] - cols[3 * (at - r - 1) + c];
+                out[3 * at + c] = rounded_mean(sum[c], full, inverse);
+            }
+        }
+        return;
+    }
     let mut sum = [0u32; 3];
     let mut count = 0u32;
     // The window [x - r, x + r] slides along the row.
@@ -93,11 +127,21 @@ fn mean_row(img: &RgbImage, y: usize, r: usize, cols: &mut [u32], out: &mut [u8]
         }
         if x >= r {
             let at = x - r;
+            let inverse = inverse[count as usize];
             for c in 0..3 {
-                out[3 * at + c] = ((sum[c] + count / 2) / count) as u8;
+                out[3 * at + c] = rounded_mean(sum[c], count, inverse);
             }
         }
     }
+}
+
+/// `(sum + count / 2) / count` (the rounded mean of `count` values of at most 255 that add up
+/// to `sum`) with `inverse` = ⌈2³² / count⌉: exact while (sum + count / 2) · count < 2³²
+/// (the error of the product is under (sum + count / 2) · count / 2³² < 1 of the count),
+/// which holds for every count up to 4000 (a window of 2·3 + 1 pixels squared is 49).
+#[inline]
+fn rounded_mean(sum: u32, count: u32, inverse: u64) -> u8 {
+    ((u64::from(sum + count / 2) * inverse) >> 32) as u8
 }
 
 /// Calls `visit(k, (u, v))` for every pixel `k` of row `y` inside the `w` × `h` floor, with
@@ -113,6 +157,18 @@ fn floor_row(
     let y = y as f64 + 0.5;
     // The homography's numerators and denominator are linear along a row.
     let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
+    if m[6] == 0.0 && bd == 1.0 {
+        // The denominator is 1 along the whole row (a view straight down): the same points
+        // without dividing by it.
+        for k in 0..width {
+            let x = k as f64 + 0.5;
+            let (u, v) = (m[0] * x + bu, m[3] * x + bv);
+            if u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h) {
+                visit(k, (u, v));
+            }
+        }
+        return;
+    }
     for k in 0..width {
         let x = k as f64 + 0.5;
         let d = m[6] * x + bd;
@@ -124,6 +180,54 @@ fn floor_row(
             visit(k, (u, v));
         }
     }
+}
+
+/// The pixels of row `y` inside the `w` × `h` floor, the same as [`floor_row`] visits, as one
+/// range, when the row's denominator is 1 (a view straight down); `None` otherwise. Then u
+/// and v are each a product and a sum of x, both rounded monotonically, so each bound holds
+/// on a prefix or a suffix of the row, found by bisection with the same arithmetic.
+fn floor_span(
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+    width: usize,
+    y: usize,
+) -> Option<std::ops::Range<usize>> {
+    let m = image_to_floor.0;
+    let y = y as f64 + 0.5;
+    let (bu, bv, bd) = (m[1] * y + m[2], m[4] * y + m[5], m[7] * y + m[8]);
+    if !(m[6] == 0.0 && bd == 1.0) || width == 0 {
+        return None;
+    }
+    let uv = |k: usize| {
+        let x = k as f64 + 0.5;
+        (m[0] * x + bu, m[3] * x + bv)
+    };
+    let bounds: [&dyn Fn(usize) -> bool; 4] = [
+        &|k| uv(k).0 >= 0.0,
+        &|k| uv(k).1 >= 0.0,
+        &|k| uv(k).0 < f64::from(w),
+        &|k| uv(k).1 < f64::from(h),
+    ];
+    let (mut lo, mut hi) = (0, width);
+    for holds in bounds {
+        // The first k (in 0..width) where `holds` differs from its value at 0.
+        let first = holds(0);
+        let (mut a, mut b) = (0, width);
+        while a < b {
+            let mid = a + (b - a) / 2;
+            if holds(mid) == first {
+                a = mid + 1;
+            } else {
+                b = mid;
+            }
+        }
+        if first {
+            hi = hi.min(a);
+        } else {
+            lo = lo.max(a);
+        }
+    }
+    Some(lo..hi.max(lo))
 }
 
 /// Classifies every pixel (class codes of [`Class`], [`pale::PALE`] for floor-coloured pixels
@@ -146,16 +250,37 @@ pub fn classify(
         .for_each(|(band, out)| {
             let mut cols = vec![0u32; width * 3];
             let mut mean = vec![0u8; width * 3];
+            // Where the first test of `classify` already says floor, by the pixel's own
+            // colour and by the mean's (most pixels).
+            let (mut own_grey, mut mean_grey) = (vec![false; width], vec![true; width]);
             for (row, line) in out.chunks_mut(width).enumerate() {
                 let y = band * BAND_ROWS + row;
                 if radius > 0 {
                     mean_row(img, y, radius, &mut cols, &mut mean);
+                    classifier.greyish_row(&mean, &mut mean_grey);
                 }
                 let own = &raw[y * width * 3..(y + 1) * width * 3];
-                floor_row(image_to_floor, floor, width, y, |k, _| {
+                classifier.greyish_row(own, &mut own_grey);
+                let mut visit = |k: usize| {
                     let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
+                    let leaning = |p: [u8; 3]| pale::is_leaning(classifier.balanced(p));
+                    if own_grey[k] && mean_grey[k] {
+                        // Floor by its own colour and by the mean's (by its own alone when
+                        // colours are not averaged): pale or not, as below.
+                        let judged = if radius == 0 {
+                            colour(own)
+                        } else {
+                            colour(&mean)
+                        };
+                        line[k] = if leaning(judged) {
+                            pale::PALE
+                        } else {
+                            Class::Floor as u8
+                        };
+                        return;
+                    }
                     let judged = |p: [u8; 3]| match classifier.classify(p) {
-                        Class::Floor if pale::is_leaning(classifier.balanced(p)) => pale::PALE,
+                        Class::Floor if leaning(p) => pale::PALE,
                         c => c as u8,
                     };
                     line[k] = match classifier.classify(colour(own)) {
@@ -171,7 +296,11 @@ pub fn classify(
                         _ if radius == 0 => judged(colour(own)),
                         _ => judged(colour(&mean)),
                     };
-                });
+                };
+                match floor_span(image_to_floor, floor, width, y) {
+                    Some(span) => span.for_each(visit),
+                    None => floor_row(image_to_floor, floor, width, y, |k, _| visit(k)),
+                }
             }
         });
     classes
@@ -194,16 +323,55 @@ pub fn coverage(
         windows(w, nadir.map(|n| n.0)),
         windows(h, nadir.map(|n| n.1)),
     );
-    let counts: Vec<Coverage> = classes
+    // u, v → the cell whose window holds them, along one axis.
+    let in_window = |t: f64, n: u32, windows: &[(f64, f64)]| -> Option<usize> {
+        if !(t >= 0.0 && t < f64::from(n)) {
+            return None;
+        }
+        // t is non-negative: the cast truncates toward zero = floor.
+        let c = t as usize;
+        let (f, o) = (t - c as f64, windows[c]);
+        (f >= o.0 && f <= o.1).then_some(c)
+    };
+    // A view straight down with the grid along the image's axes: u depends on the column
+    // alone and v on the row alone (as `floor_row` computes them, up to the sign of a
+    // zero), so each column's cell is found once.
+    let m = image_to_floor.0;
+    let columns: Option<Vec<Option<usize>>> =
+        (m[6] == 0.0 && m[7] == 0.0 && m[8] == 1.0 && m[1] == 0.0 && m[3] == 0.0).then(|| {
+            let bu = m[1] * 0.5 + m[2];
+            (0..width)
+                .map(|k| in_window(m[0] * (k as f64 + 0.5) + bu, w, &wu))
+                .collect()
+        });
+    let count = |cov: &mut Coverage, class: u8, cell: usize| match class {
+        c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
+        c if c == Class::Unsure as u8 || c == OUTSIDE => {}
+        _ => cov.floor[cell] += 1,
+    };
+    let empty = || Coverage {
+        obstacle: vec![0; cells],
+        floor: vec![0; cells],
+    };
+    // Counts per run of bands (as many as the cores split the rows into), then their sums:
+    // whole numbers, so the totals do not depend on how the rows were split.
+    classes
         .par_chunks(width * BAND_ROWS)
         .enumerate()
-        .map(|(band, out)| {
-            let mut cov = Coverage {
-                obstacle: vec![0; cells],
-                floor: vec![0; cells],
-            };
+        .fold(empty, |mut cov, (band, out)| {
             for (row, line) in out.chunks(width).enumerate() {
                 let y = band * BAND_ROWS + row;
+                if let Some(columns) = &columns {
+                    let v = m[3] * 0.5 + (m[4] * (y as f64 + 0.5) + m[5]);
+                    if let Some(cv) = in_window(v, h, &wv) {
+                        for (&class, &cu) in line.iter().zip(columns) {
+                            if let Some(cu) = cu {
+                                count(&mut cov, class, cv * w as usize + cu);
+                            }
+                        }
+                    }
+                    continue;
+                }
                 floor_row(image_to_floor, (w, h), width, y, |k, (u, v)| {
                     // u and v are non-negative here: the casts truncate toward zero = floor.
                     let (cu, cv) = (u as usize, v as usize);
@@ -212,26 +380,127 @@ pub fn coverage(
                     if fu < ou.0 || fu > ou.1 || fv < ov.0 || fv > ov.1 {
                         return;
                     }
-                    let cell = cv * w as usize + cu;
-                    match line[k] {
-                        c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
-                        c if c == Class::Unsure as u8 || c == OUTSIDE => {}
-                        _ => cov.floor[cell] += 1,
-                    }
+                    count(&mut cov, line[k], cv * w as usize + cu);
                 });
             }
             cov
         })
-        .collect();
-    let mut total = Coverage {
-        obstacle: vec![0; cells],
-        floor: vec![0; cells],
-    };
-    for c in counts {
-        for i in 0..cells {
-            total.obstacle[i] += c.obstacle[i];
-            total.floor[i] += c.floor[i];
+        .reduce(empty, |mut total, c| {
+            for (t, n) in total.obstacle.iter_mut().zip(&c.obstacle) {
+                *t += n;
+            }
+            for (t, n) in total.floor.iter_mut().zip(&c.floor) {
+                *t += n;
+            }
+            total
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_straight_down_row_s_span_is_the_pixels_its_row_visits() {
+        // Floors placed anyhow in the image (some partly outside it, some flipped), seen
+        // straight down: the span holds exactly the pixels `floor_row` visits.
+        let mut seed = 7u64;
+        let mut next = |lo: f64, hi: f64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            lo + (hi - lo) * ((seed >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let (mut spans, mut partial) = (0, 0);
+        for _ in 0..300 {
+            let (w, h) = (
+                next(1.0, 40.0).floor() as u32,
+                next(1.0, 40.0).floor() as u32,
+            );
+            let (x0, y0) = (next(-30.0, 60.0), next(-30.0, 60.0));
+            let (sx, sy) = (next(-9.0, 9.0), next(-9.0, 9.0));
+            let (fw, fh) = (f64::from(w), f64::from(h));
+            let corners = [
+                (x0, y0),
+                (x0 + sx * fw, y0),
+                (x0 + sx * fw, y0 + sy * fh),
+                (x0, y0 + sy * fh),
+            ];
+            let Some(to_image) = Homography::floor_to_image(fw, fh, corners) else {
+                continue;
+            };
+            let Some(to_floor) = to_image.inverse() else {
+                continue;
+            };
+            let width = 97;
+            for y in 0..90 {
+                let mut visited = Vec::new();
+                floor_row(&to_floor, (w, h), width, y, |k, _| visited.push(k));
+                if let Some(span) = floor_span(&to_floor, (w, h), width, y) {
+                    spans += 1;
+                    partial += usize::from(!visited.is_empty() && visited.len() < width);
+                    assert_eq!(span.collect::<Vec<_>>(), visited, "{corners:?} row {y}");
+                }
+            }
+        }
+        assert!(
+            spans > 10_000 && partial > 1_000,
+            "{spans} spans, {partial} partial"
+        );
+    }
+    #[test]
+    fn a_row_s_means_are_the_square_s_rounded_means() {
+        let (w, h) = (23u32, 9u32);
+        let img = RgbImage::from_fn(w, h, |x, y| {
+            image::Rgb([
+                (x * 37 + y * 11) as u8,
+                (x * x + 3 * y) as u8,
+                (255 - x * y) as u8,
+            ])
+        });
+        for r in 0..=3usize {
+            for width in [w, 2 * r as u32 + 1, 2 * r as u32] {
+                let img = image::imageops::crop_imm(&img, 0, 0, width.max(1), h).to_image();
+                let wd = img.width() as usize;
+                let (mut cols, mut out) = (vec![0u32; wd * 3], vec![0u8; wd * 3]);
+                for y in 0..h as usize {
+                    mean_row(&img, y, r, &mut cols, &mut out);
+                    for x in 0..wd {
+                        let (xs, ys) = (
+                            x.saturating_sub(r)..=(x + r).min(wd - 1),
+                            y.saturating_sub(r)..=(y + r).min(h as usize - 1),
+                        );
+                        let n = (xs.clone().count() * ys.clone().count()) as u32;
+                        for c in 0..3 {
+                            let sum: u32 = ys
+                                .clone()
+                                .flat_map(|yy| xs.clone().map(move |xx| (xx, yy)))
+                                .map(|(xx, yy)| u32::from(img.get_pixel(xx as u32, yy as u32)[c]))
+                                .sum();
+                            assert_eq!(
+                                out[3 * x + c],
+                                ((sum + n / 2) / n) as u8,
+                                "r {r} ({x}, {y})"
+                            );
+                        }
+                    }
+                }
+            }
         }
     }
-    total
+
+    #[test]
+    fn the_rounded_mean_by_multiplication_is_the_division() {
+        for count in 1..=49u32 {
+            let inverse = (1u64 << 32).div_ceil(u64::from(count));
+            for sum in 0..=255 * count {
+                let want = ((sum + count / 2) / count) as u8;
+                assert_eq!(
+                    super::rounded_mean(sum, count, inverse),
+                    want,
+                    "{sum} / {count}"
+                );
+            }
+        }
+    }
 }

@@ -34,7 +34,7 @@
 //! Cost: O(pixels) to label the blobs, and O(pixels of the cells they touch) for the cells'
 //! pixel counts when a blob is large.
 
-use super::blobs;
+use super::blobs::{self, column_row};
 use super::colour::Class;
 use super::homography::Homography;
 use super::pixels::OUTSIDE;
@@ -67,7 +67,21 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
     let mut seen = vec![false; classes.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();
-    for start in 0..classes.len() {
+    const BLOCK: usize = 64;
+    let mut next = 0;
+    while next < classes.len() {
+        let start = next;
+        // Past a block of pixels none of which takes part (one test without branches).
+        if start % BLOCK == 0
+            && start + BLOCK <= classes.len()
+            && !classes[start..start + BLOCK]
+                .iter()
+                .fold(false, |any, &c| any | part(c))
+        {
+            next += BLOCK;
+            continue;
+        }
+        next += 1;
         if seen[start] || !part(classes[start]) {
             continue;
         }
@@ -78,7 +92,7 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
         while let Some(i) = stack.pop() {
             pixels.push(i);
             mixed |= classes[i] != Class::Obstacle as u8;
-            let (x, y) = (i % width, i / width);
+            let (x, y) = column_row(i, width);
             for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
                     let j = ny * width + nx;
@@ -103,8 +117,8 @@ fn cell_of(
     image_to_floor: &Homography,
     (w, h): (u32, u32),
 ) -> Option<usize> {
-    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
-    let (u, v) = image_to_floor.apply((x, y))?;
+    let (x, y) = column_row(i, width);
+    let (u, v) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5))?;
     (u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h))
         .then(|| v.floor() as usize * w as usize + u.floor() as usize)
 }
@@ -114,14 +128,28 @@ pub(crate) fn inner_cell(
     i: usize,
     width: usize,
     image_to_floor: &Homography,
+    floor: (u32, u32),
+) -> Option<usize> {
+    inner_cell_at(column_row(i, width), image_to_floor, floor)
+}
+
+/// The cell (index) whose middle holds the pixel at column `x`, row `y`, if any.
+fn inner_cell_at(
+    (x, y): (usize, usize),
+    image_to_floor: &Homography,
     (w, h): (u32, u32),
 ) -> Option<usize> {
-    let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
-    let (u, v) = image_to_floor.apply((x, y))?;
+    let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
+    inner_cell_of(image_to_floor.apply((x, y))?, (w, h))
+}
+
+/// The cell (index) whose middle holds the floor point `(u, v)`, if any.
+fn inner_cell_of((u, v): (f64, f64), (w, h): (u32, u32)) -> Option<usize> {
     if !(u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h)) {
         return None;
     }
-    let (cu, cv) = (u.floor(), v.floor());
+    // u and v are not negative: truncating is flooring (without a call to libm's floor).
+    let (cu, cv) = (u as u64 as f64, v as u64 as f64);
     let inside = |f: f64| (INNER.0..=INNER.1).contains(&f);
     (inside(u - cu) && inside(v - cv)).then(|| cv as usize * w as usize + cu as usize)
 }
@@ -168,11 +196,16 @@ pub(crate) fn middle(
             clamp(y0.floor() - 1.0, height),
             clamp(y1.ceil() + 1.0, height),
         );
+        // A view straight down along the image's axes: the points from a row and a column.
+        let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
         for y in y0..y1 {
             for x in x0..x1 {
-                let i = y * width + x;
-                let c = classes[i];
-                if c != OUTSIDE && inner_cell(i, width, image_to_floor, floor) == Some(cell) {
+                let c = classes[y * width + x];
+                let inner = match &axes {
+                    Some(axes) => inner_cell_of(axes.at(x, y), floor),
+                    None => inner_cell_at((x, y), image_to_floor, floor),
+                };
+                if c != OUTSIDE && inner == Some(cell) {
                     out.pixels += 1;
                     out.obstacle += u32::from(c == Class::Obstacle as u8);
                 }
@@ -194,20 +227,24 @@ fn filled_cells(
     known: &mut std::collections::BTreeMap<usize, Middle>,
 ) -> Vec<usize> {
     let image_to_floor = maps.1;
-    let mut held: std::collections::BTreeMap<usize, u32> = std::collections::BTreeMap::new();
+    // The blob's pixels other than obstacle pixels in the middle of each cell it holds, by
+    // cell (the cells in increasing order).
+    let mut count = rustc_hash::FxHashMap::<usize, u32>::default();
     for &i in pixels {
         if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
-            *held.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
+            *count.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
         }
     }
+    let mut held: Vec<(usize, u32)> = count.into_iter().collect();
+    held.sort_unstable();
     // The obstacle pixels in the middles of those cells (the blob's own too) fill them.
     let filled: Vec<usize> = held
-        .iter()
-        .filter(|&(&c, &n)| {
+        .into_iter()
+        .filter(|&(c, n)| {
             let m = middle(known, classes, width, maps, floor, c);
             m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
         })
-        .map(|(&c, _)| c)
+        .map(|(c, _)| c)
         .collect();
     let w = floor.0 as usize;
     let side_by_side = filled.iter().any(|&c| {
@@ -232,7 +269,10 @@ pub fn absorb(
     let blobs_found = mixed_blobs(classes, width);
     // Only a blob at least two cells large can fill two.
     let cells = f64::from(floor.0) * f64::from(floor.1);
-    let inside = classes.iter().filter(|&&c| c != OUTSIDE).count() as f64;
+    let inside = classes
+        .iter()
+        .map(|&c| usize::from(c != OUTSIDE))
+        .sum::<usize>() as f64;
     let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
@@ -258,19 +298,22 @@ pub fn absorb(
             .cloned()
             .collect();
         let median = (robot_median_area(robots) as f64).max(blobs::MIN_AREA as f64);
-        let mut sized: Vec<usize> = found
+        // One bit a pixel.
+        let mut sized = vec![0u64; classes.len().div_ceil(64)];
+        for i in found
             .iter()
             .filter(|b| (SLIVER..LARGER).contains(&(b.area() as f64 / median)))
             .flat_map(index)
-            .collect();
-        sized.sort_unstable();
+        {
+            sized[i / 64] |= 1 << (i % 64);
+        }
         (median, sized)
     };
     let without_robots: Vec<Vec<usize>> = blobs_found
         .into_iter()
         .map(|b| {
             b.into_iter()
-                .filter(|i| robot_sized.binary_search(i).is_err())
+                .filter(|&i| robot_sized[i / 64] & (1 << (i % 64)) == 0)
                 .collect::<Vec<usize>>()
         })
         .filter(|b| b.len() >= two_cells && b.iter().any(|&i| classes[i] != Class::Obstacle as u8))
@@ -287,13 +330,19 @@ pub fn absorb(
         return 0;
     }
     // The median goal among the goal pixels outside those blobs.
-    let mut goals_only: Vec<u8> = classes.to_vec();
-    for (b, _) in &shaped {
-        for &i in b.iter() {
-            goals_only[i] = OUTSIDE;
-        }
+    // (Those blobs' goal pixels are set aside for the search and given back.)
+    let hidden: Vec<usize> = shaped
+        .iter()
+        .flat_map(|(b, _)| b.iter().copied())
+        .filter(|&i| classes[i] == Class::Goal as u8)
+        .collect();
+    for &i in &hidden {
+        classes[i] = OUTSIDE;
     }
-    let median = blobs::sort(blobs::find(&mut goals_only, width, Class::Goal as u8)).median_area;
+    let median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
+    for &i in &hidden {
+        classes[i] = Class::Goal as u8;
+    }
     let mut turned = 0;
     for (b, cells) in shaped {
         if (b.len() as f64) < LARGER * median as f64 {
