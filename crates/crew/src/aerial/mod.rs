@@ -6,7 +6,9 @@
 //!    corners through a [`homography`], and the grid: given (W × H cells or the cell size in
 //!    pixels) or found from painted [`lines`];
 //! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
-//!    and each cell's obstacle coverage, in one pass over the [`pixels`]; a cell the window
+//!    and each cell's obstacle coverage, in one pass over the [`pixels`]; floor-coloured
+//!    pixels that make a square half a cell wide brighter or more tinted than the lit floor
+//!    can be are a pale shelf's ([`pale`]); a cell the window
 //!    count leaves in doubt is judged on its [`cover`] in finer bins, against what the
 //!    leaning tops of the obstacles next to it would cover; a blob that fills whole cells is
 //!    an obstacle whatever its colour ([`shelves`]), and a colour that cannot be told inside
@@ -14,8 +16,9 @@
 //!    and has a mark's colour before white balance is that mark ([`tinted`]); every free
 //!    cell must look like the floor (no brighter than its texture and light allow, not tinted
 //!    where lit, and no three side by side brighter or more tinted than the lit floor around
-//!    them: [`looks`]), and every shadow on the free floor must touch what casts it
-//!    ([`shadows`]: a shelf of the floor's own colour shows by its shadow);
+//!    them, and not mostly leaning pale: [`looks`]), and every shadow on the free floor must
+//!    touch what casts it ([`shadows`]: a shelf of the floor's own colour shows by its shadow;
+//!    in a lamp's pool of light a shadow is judged against the light around it);
 //! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
@@ -23,7 +26,8 @@
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
 //! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
 //! colour between the robots' or goals' and another, a cell half covered that no leaning top
-//! explains, a covered cell on the floor's far edge that a leaning top may cover, a free cell
+//! explains, a covered cell on the floor's far edge, or at the far end of a run of blocked
+//! cells, that a leaning top may cover whole, a free cell
 //! that does not look like the floor, a shadow that nothing casts, a grid that does not fit
 //! the image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
 //! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks.
@@ -640,7 +644,9 @@ pub fn read_aerial_image(
         *b = true;
     }
     // A covered cell on the floor's edge away from the nadir, behind a blocked cell: the top
-    // of the obstacle there may lean over it to the edge (see `cover::edge_doubt`). Only for
+    // of the obstacle there may lean over it to the edge (see `cover::edge_doubt`); likewise
+    // the far cell of a run of blocked cells with a free cell beyond it, which the top of the
+    // run's other cells may cover whole (`cover::interior_doubt`). Only for
     // a view through corners: in a straight-down view filling the image the lean cannot be
     // measured precisely enough on a large floor (a cell 99 cells from the nadir is under a
     // top of k = 1.01), and it would refuse nearly every shelf ending at the far edge; such a
