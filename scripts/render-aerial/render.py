@@ -127,6 +127,19 @@ FAMILIES = {
                              (0.75, 0.76, 0.76)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # P: held out from the ninth round of issue #29, rendered after its very last change to the
+    # reader (pale squares from 1.4 times the lit floor, after O was scored) and scored once.
+    # Cylinder, yawed-box and box-with-a-dome robots, ring, cross and diamond goals, pale
+    # concrete, brown-grey and blue-slate floors tiled every third of a cell, ivory, rust,
+    # royal blue, moss and silver-grey shelves from 0.3 to 2.0 high inset 0.06 cell, a sun 25-70
+    # degrees up of strength 2.4-3.8, warmer and cooler light, and a camera from 45 to 165 cells
+    # per 24 high.
+    "P": dict(robot_shapes=("cylinder", "rotbox", "boxdome"), goal_shapes=("ring", "cross", "diamond"),
+              floors=((0.68, 0.67, 0.64), (0.46, 0.42, 0.38), (0.38, 0.42, 0.50)),
+              shelf_colours=((0.90, 0.88, 0.80), (0.55, 0.30, 0.18), (0.15, 0.25, 0.70), (0.35, 0.42, 0.20),
+                             (0.70, 0.72, 0.74)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
