@@ -128,7 +128,7 @@ fn a_view_with_goals_too_faint_is_refused() {
 
 /// Read exactly until issue #29's ninth round, refused since: the far cell of a run of blocked
 /// cells, with a free cell beyond it, whose cover a top leaning from the run's other cells
-/// could make whole at the lean measured beside the run (`cover::interior_doubt`; the
+/// could make whole at the lean measured beside the run (`cover::lean_doubt` with `Beyond::Free`; the
 /// held-out family N had such a free cell read as blocked). A0037's cell (21, 1) and B0027's
 /// (4, 5) are blocked, but the view alone cannot tell.
 #[test]

@@ -6,8 +6,8 @@
 use mason_crew::cbs::{cbs, CbsEnd};
 use mason_crew::moves::{goal_distances, MoveGraph};
 use mason_crew::{
-    solve, validate, AssignMethod, Budget, Cell, Connectivity, CrewConfig, Grid, Instance,
-    RefineConfig, Resolution, Status,
+    solve, validate, AssignMethod, Budget, Cell, Connectivity, CrewConfig, CrewOutcome, Grid,
+    Instance, PlanMetrics, RefineConfig, Resolution, Status,
 };
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
@@ -154,6 +154,18 @@ fn to_cells(paths: &[Vec<u32>]) -> Vec<Vec<Cell>> {
         .collect()
 }
 
+/// The checked metrics of an outcome's plan, which must be there and be valid.
+fn validated(inst: &Instance, out: &CrewOutcome) -> PlanMetrics {
+    validate(
+        &inst.grid,
+        inst.connectivity,
+        &inst.robots,
+        &out.goals,
+        out.paths.as_ref().unwrap(),
+    )
+    .unwrap()
+}
+
 fn parse(map: &str) -> Grid {
     mason_crew::movingai::parse_map(map, "test").unwrap()
 }
@@ -266,14 +278,7 @@ fn lacam_same_seed_same_plan() {
     assert_eq!(a.paths, b.paths);
     assert_eq!(a.stats.improvements, b.stats.improvements);
     // Refinement never makes the plan worse than LaCAM's first.
-    let m = validate(
-        &inst.grid,
-        inst.connectivity,
-        &inst.robots,
-        &a.goals,
-        a.paths.as_ref().unwrap(),
-    )
-    .unwrap();
+    let m = validated(&inst, &a);
     assert!(m.sum_of_costs <= a.stats.first_sum_of_costs.unwrap());
 }
 
@@ -302,14 +307,7 @@ fn lacam_refinement_gives_the_same_plan_on_one_thread_and_two() {
         assert_eq!(one.stats.improvements, two.stats.improvements);
         assert_eq!(one.stats.expanded, two.stats.expanded);
         assert!(one.stats.improvements > 0, "seed {seed}: nothing refined");
-        let m = validate(
-            &inst.grid,
-            inst.connectivity,
-            &inst.robots,
-            &one.goals,
-            one.paths.as_ref().unwrap(),
-        )
-        .unwrap();
+        let m = validated(&inst, &one);
         assert!(m.sum_of_costs < one.stats.first_sum_of_costs.unwrap());
     }
 }
@@ -333,14 +331,7 @@ fn lacam_starts_again_when_refinement_stalls_and_stays_deterministic() {
         "{} restarts",
         a.stats.restarts
     );
-    let m = validate(
-        &inst.grid,
-        inst.connectivity,
-        &inst.robots,
-        &a.goals,
-        a.paths.as_ref().unwrap(),
-    )
-    .unwrap();
+    let m = validated(&inst, &a);
     assert!(m.sum_of_costs <= a.stats.first_sum_of_costs.unwrap());
     assert!(m.sum_of_costs >= a.stats.lower_bound.unwrap());
 }

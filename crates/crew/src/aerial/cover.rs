@@ -284,48 +284,31 @@ pub fn fit(
 /// Allowance (cells) for a top's inset from its cells' borders when its overhang is measured.
 pub const INSET: f64 = 0.1;
 
-/// Whether the covered cell `(x, y)` on the floor's edge away from the nadir may be free under
-/// the leaning top of the obstacle on the blocked cells behind it (toward the nadir): nothing
-/// beyond the floor's edge shows where that top ends, so the cover alone cannot tell. The
-/// top's lean is measured where it can be: beside the obstacle, its top overhangs the free
-/// cells on the side away from the nadir by (k − 1) times their distance from the nadir
-/// (plus an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in
-/// doubt when a top with that k, ending at the cell's inner border, would cover all but
+/// What lies beyond a covered cell, away from the nadir, for [`lean_doubt`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Beyond {
+    /// The floor's edge: the cell is on it.
+    Edge,
+    /// A free cell of the floor: the cell is the far end of a run of blocked cells.
+    Free,
+}
+
+/// Whether the covered cell `(x, y)` may be free under the leaning top of the obstacle on the
+/// blocked cells behind it (toward the nadir), with `beyond` it, away from the nadir:
+/// - [`Beyond::Edge`], the floor's edge: nothing beyond shows where that top ends, so the
+///   cover alone cannot tell;
+/// - [`Beyond::Free`], a free cell: a top leaning a whole cell covers the cell as a top of its
+///   own would (issue #29's held-out family N: a teal shelf two cells high leaning a cell over
+///   a free column under a tilted camera), and where the top ends in the free cell does not
+///   tell which (the heights are not known).
+///
+/// The top's lean is measured where it can be: beside the obstacle, its top overhangs the free
+/// cells on the side away from the nadir by (k − 1) times their distance from the nadir (plus
+/// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
+/// when a top with that k, ending at the cell's inner border, would cover all but
 /// [`EVIDENCE`] of it.
-pub fn edge_doubt(
-    classes: &[u8],
-    width: usize,
-    maps: (&Homography, &Homography),
-    grid: (u32, u32),
-    blocked: &[bool],
-    nadir: Point,
-    cell: (u32, u32),
-) -> bool {
-    lean_doubt(classes, width, maps, grid, blocked, nadir, cell, false)
-}
-
-/// Whether the covered cell `(x, y)` inside the floor, at the far end (away from the nadir) of
-/// a run of blocked cells with a free cell beyond it, may be free under the leaning top of the
-/// run's other cells, as [`edge_doubt`] measures that top's lean. A top leaning a whole cell
-/// covers the cell as a top of its own would (issue #29's held-out family N: a teal shelf two
-/// cells high leaning a cell over a free column under a tilted camera), and where the top ends
-/// in the free cell beyond does not tell which (the heights are not known).
-pub fn interior_doubt(
-    classes: &[u8],
-    width: usize,
-    maps: (&Homography, &Homography),
-    grid: (u32, u32),
-    blocked: &[bool],
-    nadir: Point,
-    cell: (u32, u32),
-) -> bool {
-    lean_doubt(classes, width, maps, grid, blocked, nadir, cell, true)
-}
-
-/// [`edge_doubt`] (`interior` false: the cell beyond is outside the floor) and
-/// [`interior_doubt`] (true: it is a free cell of the floor).
 #[allow(clippy::too_many_arguments)]
-fn lean_doubt(
+pub fn lean_doubt(
     classes: &[u8],
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
@@ -333,7 +316,7 @@ fn lean_doubt(
     blocked: &[bool],
     nadir: Point,
     (x, y): (u32, u32),
-    interior: bool,
+    beyond: Beyond,
 ) -> bool {
     let height = classes.len() / width.max(1);
     let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
@@ -341,12 +324,11 @@ fn lean_doubt(
         |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
     let (xi, yi) = (i64::from(x), i64::from(y));
     for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
-        let beyond = if interior {
-            inside(xi + dx, yi + dy) && !is_blocked(xi + dx, yi + dy)
-        } else {
-            !inside(xi + dx, yi + dy)
+        let fits = match beyond {
+            Beyond::Free => inside(xi + dx, yi + dy) && !is_blocked(xi + dx, yi + dy),
+            Beyond::Edge => !inside(xi + dx, yi + dy),
         };
-        if !beyond || !is_blocked(xi - dx, yi - dy) {
+        if !fits || !is_blocked(xi - dx, yi - dy) {
             continue;
         }
         // Along the outward axis: the cell's inner border and the nadir.
@@ -471,7 +453,16 @@ mod tests {
     fn an_edge_cell_behind_a_top_that_may_lean_over_it_is_in_doubt() {
         let doubt_at = |over: f64, nadir: Point, cell: (u32, u32)| {
             let (classes, f2i, i2f, blocked) = edge_floor(over);
-            edge_doubt(&classes, 40, (&f2i, &i2f), (4, 4), &blocked, nadir, cell)
+            lean_doubt(
+                &classes,
+                40,
+                (&f2i, &i2f),
+                (4, 4),
+                &blocked,
+                nadir,
+                cell,
+                Beyond::Edge,
+            )
         };
         let doubt = |over: f64, nadir: Point| doubt_at(over, nadir, (1, 3));
         // No overhang beside the obstacle: k at most 1 + 0.1 / 1.5; from a nadir 2.5 cells

@@ -277,8 +277,8 @@ mod tests {
         assert!(Homography::floor_to_image(4.0, 4.0, corners).is_none());
     }
 
-    /// A pinhole camera at a known place: the nadir found from the four corners is where it
-    /// stands.
+    /// A view straight down along the image's axes: the points of `along_axes` are the
+    /// points `apply` gives, pixel for pixel; a tilted view has none.
     #[test]
     fn points_along_the_axes_are_the_applied_points() {
         let straight = Homography::floor_to_image(
@@ -307,6 +307,8 @@ mod tests {
         assert!(tilted.along_axes((0, 150), (0, 110)).is_none());
     }
 
+    /// A pinhole camera at a known place: the nadir found from the four corners is where it
+    /// stands.
     #[test]
     fn finds_the_nadir_of_a_tilted_camera() {
         let (w, h) = (24.0, 16.0);

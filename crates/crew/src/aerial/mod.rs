@@ -644,9 +644,9 @@ pub fn read_aerial_image(
         *b = true;
     }
     // A covered cell on the floor's edge away from the nadir, behind a blocked cell: the top
-    // of the obstacle there may lean over it to the edge (see `cover::edge_doubt`); likewise
+    // of the obstacle there may lean over it to the edge (see `cover::lean_doubt`); likewise
     // the far cell of a run of blocked cells with a free cell beyond it, which the top of the
-    // run's other cells may cover whole (`cover::interior_doubt`). Only for
+    // run's other cells may cover whole. Only for
     // a view through corners: in a straight-down view filling the image the lean cannot be
     // measured precisely enough on a large floor (a cell 99 cells from the nadir is under a
     // top of k = 1.01), and it would refuse nearly every shelf ending at the far edge; such a
@@ -658,25 +658,24 @@ pub fn read_aerial_image(
             if !blocked[i] {
                 continue;
             }
-            if edge && cover::edge_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y)) {
-                return Err(at_pixel(
-                    source,
-                    cell_centre_px(i),
-                    format!(
-                        "cell ({x}, {y}) on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends)"
-                    ),
-                ));
+            let beyond = if edge {
+                cover::Beyond::Edge
+            } else {
+                cover::Beyond::Free
+            };
+            if !cover::lean_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y), beyond) {
+                continue;
             }
-            if !edge && cover::interior_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y))
-            {
-                return Err(at_pixel(
-                    source,
-                    cell_centre_px(i),
-                    format!(
-                        "cell ({x}, {y}) is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked"
-                    ),
-                ));
-            }
+            let why = if edge {
+                "on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends)"
+            } else {
+                "is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked"
+            };
+            return Err(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!("cell ({x}, {y}) {why}"),
+            ));
         }
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
@@ -719,11 +718,11 @@ pub fn read_aerial_image(
     });
     // Lit free cells side by side brighter or more tinted than the lit free floor around them
     // (see `looks::unlike_ring`): the top of a pale shelf of nearly the floor's colour.
+    let bright: Vec<Option<f64>> = looks
+        .iter()
+        .map(|l| l.as_ref().and_then(|l| l.bright))
+        .collect();
     let unlike = {
-        let bright: Vec<Option<f64>> = looks
-            .iter()
-            .map(|l| l.as_ref().and_then(|l| l.bright))
-            .collect();
         let saturation: Vec<f64> = looks
             .iter()
             .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
@@ -761,10 +760,6 @@ pub fn read_aerial_image(
     let uncast = {
         let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
             looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
-        let bright: Vec<Option<f64>> = looks
-            .iter()
-            .map(|l| l.as_ref().and_then(|l| l.bright))
-            .collect();
         drop(looks);
         let levels = looks::local_levels(&bright, (gw, gh));
         shadows::uncast(&bins, &levels, (gw, gh)).map(|u| {

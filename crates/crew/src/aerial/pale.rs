@@ -102,6 +102,11 @@ pub fn square_px(cell_px: f64) -> usize {
     (OPENING * cell_px).round().max(3.0) as usize
 }
 
+/// Adds `by` to `v` (`sign` 1) or takes it away (−1).
+fn step(v: &mut u32, by: u32, sign: i32) {
+    *v = if sign > 0 { *v + by } else { *v - by };
+}
+
 /// The counts of a column (or a square) of pixels: see [`settle`].
 #[derive(Clone, Copy, Debug, Default)]
 struct Column {
@@ -118,9 +123,7 @@ struct Column {
 impl Column {
     /// Adds (`sign` 1) or takes away (−1) a pixel of class code `c` and colour `p`.
     fn add(&mut self, c: u8, p: [u8; 3], sign: i32) {
-        let step = |v: &mut u32, by: u32| {
-            *v = if sign > 0 { *v + by } else { *v - by };
-        };
+        let step = |v: &mut u32, by: u32| step(v, by, sign);
         match c {
             _ if c == Class::Obstacle as u8 || c == Class::Unsure as u8 => {
                 step(&mut self.leaning, 1)
@@ -142,9 +145,7 @@ impl Column {
 
     /// Adds (`sign` 1) or takes away (−1) another column's counts.
     fn merge(&mut self, o: &Column, sign: i32) {
-        let step = |v: &mut u32, by: u32| {
-            *v = if sign > 0 { *v + by } else { *v - by };
-        };
+        let step = |v: &mut u32, by: u32| step(v, by, sign);
         step(&mut self.leaning, o.leaning);
         step(&mut self.marks, o.marks);
         step(&mut self.floor, o.floor);
