@@ -8,10 +8,16 @@
 //!
 //! Where a robot stands: under a perspective camera a robot's top appears farther from the
 //! nadir (the point under the camera) than its base, so its blob, mapped to the floor, is
-//! stretched away from the nadir. The end of the blob nearest the nadir is its base's near
-//! edge, and the blob's width across that direction is its footprint's width (its top's, a
-//! little wider for a tall robot close to the camera). The centre is then half that width
-//! beyond the near edge. Goals are flat: their centre is the blob's centroid on the floor.
+//! its footprint swept away from the nadir: longer along that direction than across by the
+//! lean, and its centroid half the lean beyond the footprint's centre (the footprint's width
+//! is the blob's across, its top's, a little wider for a tall robot close to the camera). The
+//! centre is then the centroid less half the lean. Both extents leave out
+//! [`SPREAD_TAIL`] of the pixels at each end, and the centroid averages every pixel, so a
+//! few stray pixels (a speck of the shadow's rim, a highlight cut off) move it little; until
+//! issue #29's tenth round the near end and the width were the blob's extremes, and a robot's
+//! centre was off by up to 0.38 cell on the rendered families (0.25 since, with the 99th
+//! percentile from 0.16 to 0.10). Goals are flat: their centre is the blob's centroid on the
+//! floor.
 
 use super::homography::{Homography, Point};
 
@@ -571,33 +577,41 @@ pub fn standing_centre(floor_points: &[Point], nadir: Option<Point>, px: f64) ->
     let centroid = floor_points
         .iter()
         .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
-    let Some(nadir) = nadir else {
+    let Some(nadir) = nadir.filter(|_| !floor_points.is_empty()) else {
         return centroid;
     };
     let (dx, dy) = (centroid.0 - nadir.0, centroid.1 - nadir.1);
     let dist = (dx * dx + dy * dy).sqrt();
     let (ux, uy) = (dx / dist.max(1e-12), dy / dist.max(1e-12));
     let (vx, vy) = (-uy, ux);
-    let (mut near, mut lo, mut hi) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let mut along = Vec::with_capacity(floor_points.len());
+    let mut across = Vec::with_capacity(floor_points.len());
     for p in floor_points {
         let (qx, qy) = (p.0 - nadir.0, p.1 - nadir.1);
-        near = near.min(qx * ux + qy * uy);
-        let across = qx * vx + qy * vy;
-        lo = lo.min(across);
-        hi = hi.max(across);
+        along.push(qx * ux + qy * uy);
+        across.push(qx * vx + qy * vy);
     }
-    let width = hi - lo + px;
+    let extent = |values: &mut Vec<f64>| -> f64 {
+        values.sort_by(f64::total_cmp);
+        let at = |q: f64| values[((values.len() - 1) as f64 * q).round() as usize];
+        at(1.0 - SPREAD_TAIL) - at(SPREAD_TAIL) + px
+    };
+    let (length, width) = (extent(&mut along), extent(&mut across));
     // Under the camera (the nadir inside the footprint) nothing leans: the centroid it is.
     if dist < width {
         return centroid;
     }
-    let along = near - px / 2.0 + width / 2.0;
-    let across = (lo + hi) / 2.0;
-    (
-        nadir.0 + along * ux + across * vx,
-        nadir.1 + along * uy + across * vy,
-    )
+    // The blob is the footprint swept away from the nadir: longer than wide by the lean, and
+    // its centroid half the lean beyond the footprint's centre.
+    let lean = (length - width).max(0.0);
+    (centroid.0 - lean / 2.0 * ux, centroid.1 - lean / 2.0 * uy)
 }
+
+/// The share of a blob's pixels at each end left out of its extents (stray pixels). Not
+/// more: a long blob (a tall robot far from the nadir) loses more of its length than of its
+/// width to the same share, and its lean is then underestimated (2 % put the centre of the
+/// test's cylinder 0.07 cell off).
+pub const SPREAD_TAIL: f64 = 0.01;
 
 /// The blob's pixel centres on the floor.
 pub fn on_floor(blob: &Blob, image_to_floor: &Homography) -> Vec<Point> {
@@ -713,19 +727,27 @@ mod tests {
         out
     }
 
-    /// A cylinder of radius 0.3 at (10.5, 4.5), its top 1.15 times as far from the nadir
-    /// at (2, 2) as its base: the blob is the base, the top and the band between them.
+    /// A cylinder of radius 0.3 at (18.5, 12.5), its top 1.05 times as far from the nadir
+    /// at (2, 2) as its base (a lean of almost a cell): the blob is the base, the top and the
+    /// band between them, each point of the floor once (as the pixels of a blob are).
     #[test]
     fn a_leaning_robot_stands_on_its_base() {
-        let (nadir, centre, r, k) = ((2.0, 2.0), (10.5, 4.5), 0.3, 1.15);
+        let (nadir, centre, r, k) = ((2.0, 2.0), (18.5, 12.5), 0.3, 1.05);
+        let mut seen = std::collections::BTreeSet::new();
         let mut pts = Vec::new();
-        for step in 0..=20 {
-            let s = 1.0 + (k - 1.0) * f64::from(step) / 20.0;
+        for step in 0..=40 {
+            let s = 1.0 + (k - 1.0) * f64::from(step) / 40.0;
             let c = (
                 nadir.0 + (centre.0 - nadir.0) * s,
                 nadir.1 + (centre.1 - nadir.1) * s,
             );
-            pts.extend(disc(c.0, c.1, r * s));
+            for p in disc(c.0, c.1, r * s) {
+                // On a lattice of 0.02: the union of the discs.
+                let key = ((p.0 * 50.0).round() as i64, (p.1 * 50.0).round() as i64);
+                if seen.insert(key) {
+                    pts.push((key.0 as f64 / 50.0, key.1 as f64 / 50.0));
+                }
+            }
         }
         let got = standing_centre(&pts, Some(nadir), 0.01);
         let err = ((got.0 - centre.0).powi(2) + (got.1 - centre.1).powi(2)).sqrt();
@@ -734,6 +756,30 @@ mod tests {
         let naive = standing_centre(&pts, None, 0.01);
         let naive_err = ((naive.0 - centre.0).powi(2) + (naive.1 - centre.1).powi(2)).sqrt();
         assert!(naive_err > 3.0 * err, "{naive:?} vs {got:?}");
+    }
+
+    /// A robot of radius 0.3 at (8.5, 3.5), seen from a nadir at (2, 3.5), with a few stray
+    /// pixels joined to its blob: a thin rim toward the nadir and a speck at its side (a
+    /// shadow's edge, noise). They move the centre by little, while the blob's extremes
+    /// would move it by about half their reach.
+    #[test]
+    fn stray_pixels_hardly_move_a_robot() {
+        let (nadir, centre, r) = ((2.0, 3.5), (8.5, 3.5), 0.3);
+        let mut pts = disc(centre.0, centre.1, r);
+        let clean = standing_centre(&pts, Some(nadir), 0.01);
+        // A rim 0.2 cell long toward the nadir, and a speck 0.15 cell off to the side.
+        for i in 0..12 {
+            pts.push((centre.0 - r - 0.2 * f64::from(i) / 11.0, centre.1));
+        }
+        pts.extend([
+            (centre.0, centre.1 + r + 0.15),
+            (centre.0, centre.1 + r + 0.14),
+        ]);
+        let got = standing_centre(&pts, Some(nadir), 0.01);
+        let err = ((got.0 - centre.0).powi(2) + (got.1 - centre.1).powi(2)).sqrt();
+        let clean_err = ((clean.0 - centre.0).powi(2) + (clean.1 - centre.1).powi(2)).sqrt();
+        assert!(clean_err < 0.01, "{clean:?}");
+        assert!(err < 0.02, "{got:?}");
     }
 
     fn blob_at(x: u32, y: u32, side: u32) -> Blob {
