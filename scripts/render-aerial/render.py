@@ -140,6 +140,18 @@ FAMILIES = {
                              (0.70, 0.72, 0.74)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # Q: held out from issue #29's tenth round, rendered before its reader was finished but
+    # scored once, after its last change. Box, dome and yawed-box robots, square, ellipse and
+    # ring goals, light warm-grey, mid blue-grey and dark brown-grey floors tiled every half
+    # cell, chocolate, terracotta, pale sand, teal-green and slate-blue shelves from 0.3 to 2.1
+    # high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "Q": dict(robot_shapes=("box", "dome", "rotbox"), goal_shapes=("square", "ellipse", "ring"),
+              floors=((0.72, 0.70, 0.66), (0.48, 0.52, 0.58), (0.36, 0.33, 0.30)),
+              shelf_colours=((0.40, 0.24, 0.14), (0.70, 0.36, 0.22), (0.84, 0.78, 0.62), (0.12, 0.45, 0.38),
+                             (0.28, 0.36, 0.52)),
+              shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
@@ -396,7 +408,10 @@ def blur(img, sigma):
     return sum(k[i] * tmp[i:i + img.shape[0]] for i in range(len(k)))
 
 
-def render_one(args, seed, out_dir):
+def draw_scene(args, seed):
+    """The scene's random draws up to its layout, in the order render_one makes them: the
+    generator (to draw on), the family, the grid, pixels per cell, the robots' and goals' looks,
+    and the layout. census.py draws a layout again with it."""
     fam = FAMILIES[args.family]
     rng = np.random.default_rng([ord(args.family), seed])
     if args.cells:
@@ -419,7 +434,11 @@ def render_one(args, seed, out_dir):
     goal["size"] = max(goal["size"], 3.5 / cell_px)
     blocked, shelves, robots, goals = pick_layout(rng, w, h, n, fam, robot["size"], goal["size"])
     n = min(len(robots), len(goals))
-    robots, goals = robots[:n], goals[:n]
+    return rng, fam, (w, h), cell_px, robot, goal, (blocked, shelves, robots[:n], goals[:n])
+
+
+def render_one(args, seed, out_dir):
+    rng, fam, (w, h), cell_px, robot, goal, (blocked, shelves, robots, goals) = draw_scene(args, seed)
     base = fam["floors"][int(rng.integers(len(fam["floors"])))]
     lines = None
     if rng.random() < args.lines:
@@ -470,6 +489,12 @@ def render_one(args, seed, out_dir):
         "blocked": [[int(x), int(y)] for y, x in zip(*np.nonzero(blocked))],
         "robots": [[int(cx), int(cy)] for cx, cy in robots],
         "goals": [[int(cx), int(cy)] for cx, cy in goals],
+        # The exact layout, for measuring how far a reading's positions are off (the cells
+        # above are what a reading must match).
+        "robot_centres": [[round(cx, 4), round(cy, 4)] for cx, cy in robots],
+        "goal_centres": [[round(cx, 4), round(cy, 4)] for cx, cy in goals],
+        "shelves": [{"cells": [s["x"], s["y"], s["w"], s["h"]], "height": round(s["height"], 4),
+                     "colour": list(s["colour"])} for s in shelves],
         "params": {"robot": {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in robot.items()},
                    "goal": goal, "lines": lines, "light": light, "tilt_deg": cam["tilt"],
                    "camera_height": float(cam["origin"][2]), "jpeg_quality": quality, "noise": noise,
@@ -480,7 +505,8 @@ def render_one(args, seed, out_dir):
     return path
 
 
-def main():
+def arguments():
+    """The command line's parser (census.py takes its defaults)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out")
     ap.add_argument("--family", default="A", choices=sorted(FAMILIES))
@@ -492,7 +518,11 @@ def main():
     ap.add_argument("--lines", type=float, default=0.5, help="share of floors with painted grid lines")
     ap.add_argument("--jpeg", type=float, default=0.5, help="share of images saved as JPEG")
     ap.add_argument("--spp", type=int, default=16)
-    args = ap.parse_args()
+    return ap
+
+
+def main():
+    args = arguments().parse_args()
     mi.set_variant("scalar_rgb")
     os.makedirs(args.out, exist_ok=True)
     lo, hi = parse_range(args.seeds)

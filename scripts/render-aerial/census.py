@@ -1,0 +1,123 @@
+"""Where the aerial reader stands on rendered scenes, beyond score.py's verdicts: why the refused
+scenes were refused (the first reason, in kinds), whether the cell a refusal names is blocked or
+free in the truth, and how far the robots' and goals' centres read are from the rendered ones.
+
+    python census.py MASON_BINARY SCENE_DIR [SCENE_DIR ...]
+
+The centres come from the scene's JSON (`robot_centres`, `goal_centres`, written by render.py
+since issue #29's tenth round); for scenes rendered before, render.py's layout is drawn again
+from the family and seed (the same random draws as the render, so the same layout), which needs
+render.py's venv (`target/venv-render/bin/python census.py ...`); without it those scenes' centres
+are left out. Scenes rendered by render_blender.py (families G-J) have no centres.
+"""
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+from collections import Counter
+
+KINDS = [
+    ("a half-covered cell no leaning top explains", r"no neighbour.s leaning top explains"),
+    ("a covered cell a top may cover almost whole", r"may cover it almost whole"),
+    ("a covered cell on the floor's far edge", r"on the floor's edge is covered"),
+    ("a run's far cell a top could cover whole", r"cover it whole"),
+    ("a free cell unlike the floor", r"would be free but do(es)? not look"),
+    ("a shadow with no caster", r"shadow on free floor"),
+    ("a piece too small", r"too large for noise|too small"),
+    ("touching", r"touching"),
+    ("a mark on a cell border", r"on the border of cell"),
+    ("fewer goals than robots", r"but only .* goals"),
+    ("a colour it cannot tell", r"neither the robo"),
+    ("a cell showing no floor", r"shows no pixel of floor"),
+    ("a mark on a blocked cell", r"which an obstacle covers"),
+]
+
+
+# The kinds whose reason names a cell the reading doubts (not a mark's cell).
+CELL_KINDS = {name for name, _ in KINDS[:6]} | {"a cell showing no floor"}
+
+
+def kind_of(reason):
+    for name, pattern in KINDS:
+        if re.search(pattern, reason):
+            return name
+    return "other: " + reason.split(": ")[-1][:60]
+
+
+def layout_again(truth):
+    """The robots' and goals' centres of a scene rendered by render.py with its default
+    arguments, drawn again (None when they cannot be)."""
+    try:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import render
+    except ImportError:
+        return None
+    if truth.get("family") not in render.FAMILIES:
+        return None
+    args = render.arguments().parse_args(["-", "--family", truth["family"]])
+    _, _, grid, cell_px, _, _, (_, _, robots, goals) = render.draw_scene(args, truth["seed"])
+    same = list(grid) == truth["grid"] and abs(cell_px - truth["cell_px"]) < 1e-9
+    if not same or [[int(x), int(y)] for x, y in robots] != truth["robots"]:
+        return None  # rendered with other arguments than the defaults
+    return robots, goals
+
+
+def main():
+    mason, folders = sys.argv[1], sys.argv[2:]
+    verdicts, kinds, at_cell = Counter(), Counter(), Counter()
+    errors = {"robots": [], "goals": []}
+    for folder in folders:
+        for name in sorted(os.listdir(folder)):
+            if not name.endswith(".json"):
+                continue
+            truth = json.load(open(os.path.join(folder, name)))
+            w, h = truth["grid"]
+            args = [mason, "crew", "--image", os.path.join(folder, truth["image"]), "--json", "--grid", f"{w}x{h}"]
+            if not truth["straight_down"]:
+                args += ["--corners", " ".join(f"{x},{y}" for x, y in truth["corners"])]
+            p = subprocess.run(args, capture_output=True, text=True)
+            if p.returncode == 2:
+                verdicts["refused"] += 1
+                reason = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "?"
+                kind = kind_of(reason)
+                kinds[kind] += 1
+                cell = re.search(r"cell \((\d+), (\d+)\)", reason)
+                if cell and kind in CELL_KINDS:
+                    blocked = [int(cell.group(1)), int(cell.group(2))] in truth["blocked"]
+                    at_cell[(kind, "blocked" if blocked else "free")] += 1
+                continue
+            if p.returncode not in (0, 1):
+                verdicts["crash"] += 1
+                continue
+            verdicts["read"] += 1
+            reading = json.loads(p.stdout)["reading"]
+            if "robot_centres" in truth:
+                centres = truth["robot_centres"], truth["goal_centres"]
+            else:
+                centres = layout_again(truth)
+            if centres is None:
+                continue
+            for kind, rendered in zip(("robots", "goals"), centres):
+                for mark in reading[kind]:
+                    u, v = mark["floor"]
+                    errors[kind].append(min(math.hypot(x - u, y - v) for x, y in rendered))
+    total = sum(verdicts.values())
+    print(f"{total} scenes: " + ", ".join(f"{k} {v}" for k, v in sorted(verdicts.items())) + " (score.py tells exact from wrong)")
+    print("refused, first reason:")
+    for kind, n in kinds.most_common():
+        cells = ", ".join(f"{at_cell[(kind, t)]} {t}" for t in ("blocked", "free") if at_cell[(kind, t)])
+        print(f"  {n:4d}  {kind}" + (f"  (the cell named: {cells} in the truth)" if cells else ""))
+    for kind, errs in errors.items():
+        if not errs:
+            continue
+        errs.sort()
+        q = lambda f: errs[min(len(errs) - 1, int(f * len(errs)))]
+        print(f"{kind}' centres read ({len(errs)}), distance from the rendered centre in cells: "
+              f"median {q(0.5):.3f}, 90 % {q(0.9):.3f}, 99 % {q(0.99):.3f}, most {errs[-1]:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
