@@ -2,7 +2,11 @@
 scenes were refused (the first reason, in kinds), whether the cell a refusal names is blocked or
 free in the truth, and how far the robots' and goals' centres read are from the rendered ones.
 
-    python census.py MASON_BINARY SCENE_DIR [SCENE_DIR ...]
+    python census.py MASON_BINARY SCENE_DIR [SCENE_DIR ...] [--audit]
+
+With --audit, each scene is also read with `mason crew --audit` (past every refusal about a
+cell) and the reading compared with the truth: the cells read wrongly that no refusal names
+are latent errors, which only the refusal of another cell keeps out of the normal reading.
 
 The centres come from the scene's JSON (`robot_centres`, `goal_centres`, written by render.py
 since issue #29's tenth round); for scenes rendered before, render.py's layout is drawn again
@@ -16,6 +20,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 from collections import Counter
 
 KINDS = [
@@ -64,8 +69,38 @@ def layout_again(truth):
     return robots, goals
 
 
+def audit(mason, folder, truth, args):
+    """The cells of the audited reading that differ from the truth and that no refusal names:
+    None when the audit stops at a robot's or goal's reason."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "audit.map")
+        p = subprocess.run(args + ["--audit", "--save-map", out], capture_output=True, text=True)
+        if not os.path.exists(out):
+            return None
+        rows = open(out).read().split("map\n", 1)[1].split()
+    read = {(x, y) for y, row in enumerate(rows) for x, ch in enumerate(row) if ch == "@"}
+    rendered = {tuple(c) for c in truth["blocked"]}
+    named = {
+        (int(m.group(1)), int(m.group(2)))
+        for line in p.stderr.splitlines()
+        if line.startswith("doubt: ")
+        for m in re.finditer(r"cell \((\d+), (\d+)\)", line)
+    }
+    # A shadow nothing casts and free cells side by side unlike the floor around them are
+    # refused for a region (a shelf of the floor's colour somewhere near), named by one cell.
+    region = any(
+        "shadow on free floor" in line or "cells side by side" in line
+        for line in p.stderr.splitlines()
+        if line.startswith("doubt: ")
+    )
+    return sorted((read ^ rendered) - named), region
+
+
 def main():
-    mason, folders = sys.argv[1], sys.argv[2:]
+    flags = [a for a in sys.argv[1:] if a.startswith("--")]
+    mason, *folders = [a for a in sys.argv[1:] if not a.startswith("--")]
+    audits = Counter()
+    latent = []
     verdicts, kinds, at_cell = Counter(), Counter(), Counter()
     errors = {"robots": [], "goals": []}
     for folder in folders:
@@ -78,6 +113,11 @@ def main():
             if not truth["straight_down"]:
                 args += ["--corners", " ".join(f"{x},{y}" for x, y in truth["corners"])]
             p = subprocess.run(args, capture_output=True, text=True)
+            if "--audit" in flags:
+                found = audit(mason, folder, truth, args)
+                audits["stopped at a robot's or goal's reason" if found is None else "read"] += 1
+                if found and found[0]:
+                    latent.append((name[:-5], *found))
             if p.returncode == 2:
                 verdicts["refused"] += 1
                 reason = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "?"
@@ -109,6 +149,16 @@ def main():
     for kind, n in kinds.most_common():
         cells = ", ".join(f"{at_cell[(kind, t)]} {t}" for t in ("blocked", "free") if at_cell[(kind, t)])
         print(f"  {n:4d}  {kind}" + (f"  (the cell named: {cells} in the truth)" if cells else ""))
+    if "--audit" in flags:
+        print("audited past the cells' refusals: " + ", ".join(f"{k} {v}" for k, v in sorted(audits.items())))
+        for guarded, title in [
+            (True, "with a refusal for a region (a shadow nothing casts, cells unlike the floor around them)"),
+            (False, "with no refusal for a region: latent errors"),
+        ]:
+            some = [(scene, cells) for scene, cells, region in latent if region == guarded]
+            print(f"  cells read wrongly that no refusal names, {title}: {sum(len(c) for _, c in some)} in {len(some)} scenes")
+            for scene, cells in some:
+                print(f"    {scene}: {cells}")
     for kind, errs in errors.items():
         if not errs:
             continue

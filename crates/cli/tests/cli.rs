@@ -1273,3 +1273,57 @@ fn crew_reads_an_aerial_view_and_writes_what_it_read() {
     assert_input_error(&o, &["apply to --image"]);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--audit`: a view the reader refuses at a cell is read on past every such refusal, each
+/// listed; the reading goes to --save-map and --json, nothing is planned, and the exit is 2.
+#[test]
+fn crew_audits_a_refused_aerial_view() {
+    let dir = std::env::temp_dir().join(format!("mason-audit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("audited.map");
+    let image = data("aerial/A0037.jpg");
+    let view = [
+        "crew",
+        "--image",
+        &image,
+        "--grid",
+        "28x10",
+        "--corners",
+        "14.41,18.95 470.8,15.14 469.56,183.02 15.93,205.17",
+    ];
+    let refused = mason(&view);
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    let reason = stderr(&refused);
+    let reason = reason.trim().strip_prefix("mason: ").unwrap();
+    let mut audit = view.to_vec();
+    let map_arg = map.to_string_lossy().into_owned();
+    audit.extend(["--audit", "--save-map", &map_arg, "--json"]);
+    let o = mason(&audit);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    let doubts: Vec<&str> = err
+        .lines()
+        .filter_map(|l| l.strip_prefix("doubt: "))
+        .collect();
+    assert!(doubts.len() >= 2, "{err}");
+    assert_eq!(doubts[0], reason, "the reading's own refusal comes first");
+    assert!(
+        err.contains(&format!("{} refusals about cells", doubts.len())),
+        "{err}"
+    );
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["doubts"].as_array().unwrap().len(), doubts.len());
+    assert_eq!(v["reading"]["grid"], serde_json::json!([28, 10]));
+    assert!(v.get("agents").is_none(), "nothing is planned");
+    let text = std::fs::read_to_string(&map).unwrap();
+    assert!(
+        text.starts_with("type octile\nheight 10\nwidth 28\nmap\n"),
+        "{text}"
+    );
+    // A plan's outputs need a plan.
+    let mut with_overlay = view.to_vec();
+    let svg = dir.join("o.svg").to_string_lossy().into_owned();
+    with_overlay.extend(["--audit", "--overlay", &svg]);
+    assert_input_error(&mason(&with_overlay), &["--audit plans nothing"]);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -152,3 +152,55 @@ fn a_run_s_far_cell_a_top_could_cover_whole_is_refused() {
         );
     }
 }
+
+/// The audit reads past the cells' refusals and changes nothing else: on every committed
+/// fixture a view read exactly is audited to the same reading with no refusal, and a refused
+/// view gives the same refusal first (or the same robot's or goal's reason, which still
+/// stops it). A0037 and B0027, refused at a run's far cell, are audited to their truth: the
+/// checks that refuse them guard a cell the reading, past them, gets right.
+#[test]
+fn the_audit_lists_what_the_reading_refuses_and_reads_on() {
+    use mason_crew::aerial::audit_aerial;
+    let mut names: Vec<String> = std::fs::read_dir(data())
+        .unwrap()
+        .filter_map(|e| {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            name.strip_suffix(".json").map(str::to_string)
+        })
+        .collect();
+    names.sort();
+    assert!(names.len() >= 10, "{names:?}");
+    let mut audited_past = 0;
+    for name in &names {
+        let (image, truth) = scene(name);
+        let cfg = config(&truth, true);
+        match (
+            read_aerial(&image, name, &cfg),
+            audit_aerial(&image, name, &cfg),
+        ) {
+            (Ok(read), Ok(audited)) => {
+                assert!(audited.doubts.is_empty(), "{name}: {:?}", audited.doubts);
+                assert_eq!(read.grid, audited.reading.grid, "{name}");
+                assert_eq!(read.robot_cells(), audited.reading.robot_cells(), "{name}");
+                assert_eq!(read.goal_cells(), audited.reading.goal_cells(), "{name}");
+            }
+            (Err(e), Ok(audited)) => {
+                let first = audited.doubts.first().expect("a refusal listed");
+                assert_eq!(e.to_string(), first.to_string(), "{name}");
+                if name == "A0037" || name == "B0027" {
+                    assert_exact(name, &audited.reading, &truth);
+                    audited_past += 1;
+                }
+            }
+            (Err(e), Err(a)) => {
+                // The same reason, or the reading's is a cell's and the audit went on past it
+                // to a robot's or goal's (A0905: a half-covered cell, then too few goals).
+                let (e, a) = (e.to_string(), a.to_string());
+                let a_cell_s = e.contains("covered") || e.contains("would be free");
+                assert!(e == a || a_cell_s, "{name}: {e} / {a}");
+            }
+            (Ok(_), Err(a)) => panic!("{name}: read, but the audit stops: {a}"),
+        }
+    }
+    assert_eq!(audited_past, 2);
+}

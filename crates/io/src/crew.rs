@@ -110,6 +110,30 @@ pub fn load_view(
     })
 }
 
+/// Reads a photograph of the floor past every refusal about a cell
+/// ([`mason_crew::aerial::audit_aerial`]): its name and the audited reading. A
+/// one-pixel-per-cell map (without `aerial`) has nothing to audit and is refused.
+pub fn audit_view(
+    path: &Path,
+    aerial: Option<&AerialConfig>,
+) -> InputResult<(String, mason_crew::aerial::Audited)> {
+    let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
+    let name = path.display().to_string();
+    let bytes = read(path)?;
+    let pixel_map = aerial.is_none()
+        && bytes.starts_with(&[0x89, b'P', b'N', b'G'])
+        && mason_crew::aerial::decode(&bytes, &name, mason_crew::limits::MAX_CELLS)
+            .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img));
+    if pixel_map {
+        return Err(InputError::bad(format!(
+            "{name}: a one-pixel-per-cell map has no refusal to audit (--audit reads photographs)"
+        )));
+    }
+    let config = aerial.cloned().unwrap_or_default();
+    let audited = mason_crew::aerial::audit_aerial(&bytes, &name, &config).map_err(bad)?;
+    Ok((name, audited))
+}
+
 /// The starts and goals of a MovingAI scenario's first `agents` agents (all when `None`), in
 /// order, on `grid`.
 pub fn load_scenario(

@@ -52,6 +52,13 @@ pub struct CrewArgs {
     /// --image: write the robots and their assigned goals as a MovingAI .scen
     #[arg(long, value_name = "F.scen")]
     pub save_scen: Option<PathBuf>,
+    /// --image: read past every refusal about a cell (half covered, a top may cover it,
+    /// unlike the floor, a shadow nothing casts) and list them all on stderr, each cell decided
+    /// as the check found it before doubting it; plans nothing, writes --save-map and --json
+    /// (the reading and the refusals), exit 2 when any was found. A robot's or goal's refusal
+    /// still stops it
+    #[arg(long)]
+    pub audit: bool,
     /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
     /// path (Hungarian on path lengths) or joint (interchangeable robots: TSWAP solves the
     /// assignment and the paths together; default with --image)
@@ -106,6 +113,9 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
     let started = std::time::Instant::now();
     check_outputs(&[&a.svg, &a.html, &a.overlay, &a.save_map, &a.save_scen])?;
     let aerial = aerial_config(&a)?;
+    if a.audit {
+        return audit(&a, aerial.as_ref());
+    }
     let limit = time_limit(a.time_limit)?;
     let prm = mason_crew::PrmConfig {
         samples: a.samples,
@@ -196,6 +206,69 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
     }
     report_overrun(limit, started, result.outcome.stats.elapsed.as_secs_f64());
     exit_for(&result)
+}
+
+/// `mason crew --image … --audit`: the reading past every cell's refusal, and the refusals.
+fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> CliResult<()> {
+    let Some(image) = &a.image else {
+        return Err(input_error("--audit reads a photograph: give --image"));
+    };
+    if a.map.is_some() || a.scen.is_some() {
+        return Err(input_error(
+            "--audit reads --image alone, not --map or --scen",
+        ));
+    }
+    if a.svg.is_some() || a.html.is_some() || a.overlay.is_some() || a.save_scen.is_some() {
+        return Err(input_error(
+            "--audit plans nothing: --svg, --html, --overlay and --save-scen need a plan (--save-map and --json write the reading)",
+        ));
+    }
+    let (name, audited) = mason_io::audit_view(image, aerial)?;
+    let r = &audited.reading;
+    for doubt in &audited.doubts {
+        eprintln!("doubt: {doubt}");
+    }
+    if let Some(path) = &a.save_map {
+        write_all(&[(
+            path.clone(),
+            mason_crew::movingai::map_text(&r.grid).into_bytes(),
+        )])?;
+    }
+    let blocked = r.grid.len() - r.grid.free_count();
+    if a.json {
+        let doubts: Vec<String> = audited.doubts.iter().map(|d| d.to_string()).collect();
+        let v = json!({
+            "source": name,
+            "reading": reading_json(r),
+            "doubts": doubts,
+        });
+        println!("{}", pretty(&v));
+    } else {
+        println!(
+            "{name}: read {}×{} cells, {blocked} blocked, {} robots, {} goals, past {}",
+            r.grid.width(),
+            r.grid.height(),
+            r.robots.len(),
+            r.goals.len(),
+            refusals(audited.doubts.len())
+        );
+    }
+    match audited.doubts.len() {
+        0 => Ok(()),
+        n => Err(input_error(format!(
+            "{name}: {} (above); read without --audit, it stops at the first",
+            refusals(n)
+        ))),
+    }
+}
+
+/// "1 refusal about a cell", "3 refusals about cells".
+fn refusals(n: usize) -> String {
+    if n == 1 {
+        "1 refusal about a cell".to_string()
+    } else {
+        format!("{n} refusals about cells")
+    }
 }
 
 /// The aerial reader's settings, when any of its flags is given.

@@ -467,6 +467,55 @@ pub fn read_aerial_image(
     source: &str,
     config: &AerialConfig,
 ) -> Result<AerialReading, CrewError> {
+    read(img, source, config, false).map(|audited| audited.reading)
+}
+
+/// A reading made past its cells' refusals ([`audit_aerial`]).
+#[derive(Clone, Debug)]
+pub struct Audited {
+    /// The reading, each doubtful cell decided as the refusal's check found it before doubting
+    /// it (a half-covered cell, or one a top may cover almost whole, blocked; a covered cell a
+    /// top may cover, blocked; a free cell unlike the floor, free).
+    pub reading: AerialReading,
+    /// Every cell's refusal, in the order the reader meets them (the first is the one
+    /// [`read_aerial`] gives).
+    pub doubts: Vec<CrewError>,
+}
+
+/// Reads an aerial view past every refusal about a cell (a half-covered cell, a cell a top may
+/// cover, a free cell unlike the floor, free cells side by side unlike the floor around them,
+/// a shadow no obstacle casts), listing them all: for seeing everything that stops a view at
+/// once, and what the reading would be without the checks (the truth of rendered scenes
+/// shows which of them guard a cell the reading would get wrong). Still refused, as by
+/// [`read_aerial`]: an image that cannot be read, a grid that does not fit, and a robot's or
+/// a goal's reason (touching, on a border, too small, fewer goals, a colour it cannot tell).
+pub fn audit_aerial(
+    bytes: &[u8],
+    source: &str,
+    config: &AerialConfig,
+) -> Result<Audited, CrewError> {
+    let img = decode(bytes, source, MAX_PIXELS)?;
+    read(&img, source, config, true)
+}
+
+/// The reader: with `audit`, past the cells' refusals (see [`audit_aerial`]).
+fn read(
+    img: &RgbImage,
+    source: &str,
+    config: &AerialConfig,
+    audit: bool,
+) -> Result<Audited, CrewError> {
+    let mut doubts: Vec<CrewError> = Vec::new();
+    // A cell's refusal: at once, or, auditing, listed.
+    macro_rules! doubt {
+        ($error:expr) => {{
+            let error = $error;
+            if !audit {
+                return Err(error);
+            }
+            doubts.push(error);
+        }};
+    }
     if config.robot_colour.distance(config.goal_colour.0) < 60.0 {
         return Err(whole(
             source,
@@ -620,7 +669,7 @@ pub fn read_aerial_image(
             continue;
         }
         if share >= HALF_COVERED.1 && leaning.is_some_and(|f| f.doubtful()) {
-            return Err(at_pixel(
+            doubt!(at_pixel(
                 source,
                 cell_centre_px(i),
                 format!(
@@ -628,9 +677,8 @@ pub fn read_aerial_image(
                     share * 100.0
                 ),
             ));
-        }
-        if share < HALF_COVERED.1 && !own_top(i) {
-            return Err(at_pixel(
+        } else if share < HALF_COVERED.1 && !own_top(i) {
+            doubt!(at_pixel(
                 source,
                 cell_centre_px(i),
                 format!(
@@ -671,7 +719,7 @@ pub fn read_aerial_image(
             } else {
                 "is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked"
             };
-            return Err(at_pixel(
+            doubt!(at_pixel(
                 source,
                 cell_centre_px(i),
                 format!("cell ({x}, {y}) {why}"),
@@ -706,7 +754,7 @@ pub fn read_aerial_image(
             })
             .collect()
     };
-    let not_floor = looks.iter().enumerate().find_map(|(i, look)| {
+    let mut not_floor = looks.iter().enumerate().filter_map(|(i, look)| {
         let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
         look.as_ref()?.odd().map(|why| {
             at_pixel(
@@ -716,6 +764,12 @@ pub fn read_aerial_image(
             )
         })
     });
+    // Auditing, every such cell; else the first.
+    let not_floor: Vec<CrewError> = if audit {
+        not_floor.collect()
+    } else {
+        not_floor.next().into_iter().collect()
+    };
     // Lit free cells side by side brighter or more tinted than the lit free floor around them
     // (see `looks::unlike_ring`): the top of a pale shelf of nearly the floor's colour.
     let bright: Vec<Option<f64>> = looks
@@ -866,18 +920,21 @@ pub fn read_aerial_image(
             ));
         }
     }
-    if let Some(e) = not_floor.or(uncast).or(unlike) {
-        return Err(e);
+    for e in not_floor.into_iter().chain(uncast).chain(unlike) {
+        doubt!(e);
     }
-    Ok(AerialReading {
-        grid,
-        robots,
-        goals,
-        cell_px: px,
-        grid_source,
-        corners,
-        floor_to_image,
-        image_size: (img.width(), img.height()),
+    Ok(Audited {
+        reading: AerialReading {
+            grid,
+            robots,
+            goals,
+            cell_px: px,
+            grid_source,
+            corners,
+            floor_to_image,
+            image_size: (img.width(), img.height()),
+        },
+        doubts,
     })
 }
 
