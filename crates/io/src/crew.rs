@@ -89,11 +89,7 @@ pub fn load_view(
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     let name = path.display().to_string();
     let bytes = read(path)?;
-    let pixel_map = aerial.is_none()
-        && bytes.starts_with(&[0x89, b'P', b'N', b'G'])
-        && mason_crew::aerial::decode(&bytes, &name, mason_crew::limits::MAX_CELLS)
-            .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img));
-    let (grid, robots, goals, reading) = if pixel_map {
+    let (grid, robots, goals, reading) = if pixel_map(&bytes, &name, aerial) {
         let seen = read_birdseye(&bytes, &name).map_err(bad)?;
         (seen.grid, seen.robots, seen.goals, None)
     } else {
@@ -110,6 +106,15 @@ pub fn load_view(
     })
 }
 
+/// Whether an image is a one-pixel-per-cell map: a PNG of at most 16 colours, given with no
+/// aerial setting.
+fn pixel_map(bytes: &[u8], name: &str, aerial: Option<&AerialConfig>) -> bool {
+    aerial.is_none()
+        && bytes.starts_with(&[0x89, b'P', b'N', b'G'])
+        && mason_crew::aerial::decode(bytes, name, mason_crew::limits::MAX_CELLS)
+            .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img))
+}
+
 /// Reads a photograph of the floor past every refusal about a cell
 /// ([`mason_crew::aerial::audit_aerial`]): its name and the audited reading. A
 /// one-pixel-per-cell map (without `aerial`) has nothing to audit and is refused.
@@ -120,11 +125,7 @@ pub fn audit_view(
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     let name = path.display().to_string();
     let bytes = read(path)?;
-    let pixel_map = aerial.is_none()
-        && bytes.starts_with(&[0x89, b'P', b'N', b'G'])
-        && mason_crew::aerial::decode(&bytes, &name, mason_crew::limits::MAX_CELLS)
-            .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img));
-    if pixel_map {
+    if pixel_map(&bytes, &name, aerial) {
         return Err(InputError::bad(format!(
             "{name}: a one-pixel-per-cell map has no refusal to audit (--audit reads photographs)"
         )));
