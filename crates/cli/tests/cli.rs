@@ -1320,10 +1320,19 @@ fn crew_audits_a_refused_aerial_view() {
         text.starts_with("type octile\nheight 10\nwidth 28\nmap\n"),
         "{text}"
     );
-    // A plan's outputs need a plan.
+    // The overlay marks each refusal where it points, its reason as a tooltip.
     let mut with_overlay = view.to_vec();
     let svg = dir.join("o.svg").to_string_lossy().into_owned();
     with_overlay.extend(["--audit", "--overlay", &svg]);
-    assert_input_error(&mason(&with_overlay), &["--audit plans nothing"]);
+    let o = mason(&with_overlay);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let drawn = std::fs::read_to_string(&svg).unwrap();
+    assert_eq!(drawn.matches(r##"stroke="#ff00ff""##).count(), doubts.len());
+    assert!(drawn.contains("cover it whole: cannot tell whether it is blocked</title>"));
+    assert!(drawn.contains("data:image/jpeg;base64,"));
+    // A plan's outputs need a plan.
+    let mut with_svg = view.to_vec();
+    with_svg.extend(["--audit", "--svg", &svg]);
+    assert_input_error(&mason(&with_svg), &["--audit plans nothing"]);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,6 +1,7 @@
 //! What Mason read from an aerial view, drawn over the view itself: the floor grid, the
 //! blocked cells, each robot (circle, numbered) and goal (square) where it was read, and the
-//! planned paths, all mapped into the image through the floor's homography.
+//! planned paths, all mapped into the image through the floor's homography; for an audit,
+//! the refusals too, where they point.
 
 use crate::crew_svg::MAX_PATHS;
 use crate::svg::{escape, robot_colour};
@@ -28,6 +29,18 @@ pub fn aerial_svg(
     starts: &[Cell],
     goals: &[Cell],
     paths: &[Vec<Cell>],
+) -> String {
+    aerial_audit_svg(title, image, reading, (starts, goals, paths), &[])
+}
+
+/// [`aerial_svg`] with the refusals of an audit (`mason crew --audit`) marked where they point:
+/// a magenta ring with a question mark at each `(pixel, reason)`, the reason as its tooltip.
+pub fn aerial_audit_svg(
+    title: &str,
+    image: &[u8],
+    reading: &AerialReading,
+    (starts, goals, paths): (&[Cell], &[Cell], &[Vec<Cell>]),
+    doubts: &[((f64, f64), String)],
 ) -> String {
     let (w, h) = reading.image_size;
     let grid = &reading.grid;
@@ -151,6 +164,16 @@ pub fn aerial_svg(
                 p.1 - r - 1.0
             );
         }
+    }
+    let ring = (reading.cell_px * 0.42).max(3.0);
+    for ((x, y), reason) in doubts {
+        let _ = write!(
+            s,
+            r##"<g><title>{}</title><circle cx="{x:.1}" cy="{y:.1}" r="{ring:.1}" fill="none" stroke="#ff00ff" stroke-width="{:.2}"/><text x="{x:.1}" y="{:.1}" font-size="{font:.1}" fill="#ff00ff" text-anchor="middle" font-weight="bold">?</text></g>"##,
+            escape(reason),
+            1.5 * stroke,
+            y + font / 3.0
+        );
     }
     s.push_str("</svg>\n");
     s

@@ -37,7 +37,7 @@ pub use self::mcap::{
     brick_box, cruise_altitude, mission_mcap, write_trace, LogMeta, McapLog, McapLogError,
     PoseSampler, UavPose, POSE_RATE_HZ,
 };
-pub use aerial_svg::aerial_svg;
+pub use aerial_svg::{aerial_audit_svg, aerial_svg};
 pub use crew_svg::crew_svg;
 pub use gantt::{gantt_svg, state_colour};
 pub use json::{

@@ -54,9 +54,9 @@ pub struct CrewArgs {
     pub save_scen: Option<PathBuf>,
     /// --image: read past every refusal about a cell (half covered, a top may cover it,
     /// unlike the floor, a shadow nothing casts) and list them all on stderr, each cell decided
-    /// as the check found it before doubting it; plans nothing, writes --save-map and --json
-    /// (the reading and the refusals), exit 2 when any was found. A robot's or goal's refusal
-    /// still stops it
+    /// as the check found it before doubting it; plans nothing, writes --overlay (the refusals
+    /// in magenta), --save-map and --json (the reading and the refusals), exit 2 when any was
+    /// found. A robot's or goal's refusal still stops it
     #[arg(long)]
     pub audit: bool,
     /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,
@@ -218,9 +218,9 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
             "--audit reads --image alone, not --map or --scen",
         ));
     }
-    if a.svg.is_some() || a.html.is_some() || a.overlay.is_some() || a.save_scen.is_some() {
+    if a.svg.is_some() || a.html.is_some() || a.save_scen.is_some() {
         return Err(input_error(
-            "--audit plans nothing: --svg, --html, --overlay and --save-scen need a plan (--save-map and --json write the reading)",
+            "--audit plans nothing: --svg, --html and --save-scen need a plan (--overlay, --save-map and --json show the reading)",
         ));
     }
     let (name, audited) = mason_io::audit_view(image, aerial)?;
@@ -228,13 +228,43 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
     for doubt in &audited.doubts {
         eprintln!("doubt: {doubt}");
     }
+    let blocked = r.grid.len() - r.grid.free_count();
+    let mut files = Vec::new();
+    if let Some(path) = &a.overlay {
+        use mason_crew::Location;
+        let bytes = mason_io::read_input(image, mason_io::MAX_INPUT_BYTES)?;
+        let doubts: Vec<((f64, f64), String)> = audited
+            .doubts
+            .iter()
+            .filter_map(|d| match d.location {
+                Location::Pixel(x, y) => Some(((f64::from(x), f64::from(y)), d.reason.clone())),
+                _ => None,
+            })
+            .collect();
+        let title = format!(
+            "{name} — audited {}×{} cells, {blocked} blocked, {} robots, {} goals; {} (magenta)",
+            r.grid.width(),
+            r.grid.height(),
+            r.robots.len(),
+            r.goals.len(),
+            refusals(audited.doubts.len())
+        );
+        let svg = mason_report::aerial_audit_svg(
+            &title,
+            &bytes,
+            r,
+            (&r.robot_cells(), &r.goal_cells(), &[]),
+            &doubts,
+        );
+        files.push((path.clone(), svg.into_bytes()));
+    }
     if let Some(path) = &a.save_map {
-        write_all(&[(
+        files.push((
             path.clone(),
             mason_crew::movingai::map_text(&r.grid).into_bytes(),
-        )])?;
+        ));
     }
-    let blocked = r.grid.len() - r.grid.free_count();
+    write_all(&files)?;
     if a.json {
         let doubts: Vec<String> = audited.doubts.iter().map(|d| d.to_string()).collect();
         let v = json!({
