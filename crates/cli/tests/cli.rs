@@ -1334,5 +1334,12 @@ fn crew_audits_a_refused_aerial_view() {
     let mut with_svg = view.to_vec();
     with_svg.extend(["--audit", "--svg", &svg]);
     assert_input_error(&mason(&with_svg), &["--audit plans nothing"]);
+    // Malformed and non-regular inputs: one line, exit 2.
+    let bad = data("not-a-png.png");
+    let o = mason(&["crew", "--image", &bad, "--grid", "4x4", "--audit"]);
+    assert_input_error(&o, &["not-a-png.png", "cannot decode the image"]);
+    let folder = dir.to_string_lossy().into_owned();
+    let o = mason(&["crew", "--image", &folder, "--grid", "4x4", "--audit"]);
+    assert_input_error(&o, &["a folder"]);
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -115,13 +115,21 @@ fn pixel_map(bytes: &[u8], name: &str, aerial: Option<&AerialConfig>) -> bool {
             .is_ok_and(|img| mason_crew::aerial::is_pixel_map(&img))
 }
 
+/// A photograph read past its cells' refusals ([`audit_view`]).
+#[derive(Clone, Debug)]
+pub struct AuditedView {
+    /// The image's name.
+    pub name: String,
+    /// The reading and the refusals.
+    pub audited: mason_crew::aerial::Audited,
+    /// The image file's bytes (for an overlay).
+    pub bytes: Vec<u8>,
+}
+
 /// Reads a photograph of the floor past every refusal about a cell
-/// ([`mason_crew::aerial::audit_aerial`]): its name and the audited reading. A
-/// one-pixel-per-cell map (without `aerial`) has nothing to audit and is refused.
-pub fn audit_view(
-    path: &Path,
-    aerial: Option<&AerialConfig>,
-) -> InputResult<(String, mason_crew::aerial::Audited)> {
+/// ([`mason_crew::aerial::audit_aerial`]). A one-pixel-per-cell map (without `aerial`) has
+/// nothing to audit and is refused.
+pub fn audit_view(path: &Path, aerial: Option<&AerialConfig>) -> InputResult<AuditedView> {
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     let name = path.display().to_string();
     let bytes = read(path)?;
@@ -132,7 +140,11 @@ pub fn audit_view(
     }
     let config = aerial.cloned().unwrap_or_default();
     let audited = mason_crew::aerial::audit_aerial(&bytes, &name, &config).map_err(bad)?;
-    Ok((name, audited))
+    Ok(AuditedView {
+        name,
+        audited,
+        bytes,
+    })
 }
 
 /// The starts and goals of a MovingAI scenario's first `agents` agents (all when `None`), in

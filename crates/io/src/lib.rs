@@ -39,8 +39,8 @@ pub mod models;
 pub mod output;
 
 pub use crew::{
-    audit_view, check_size, choices, load_crew, load_grid, load_scenario, load_view, CrewChoices,
-    CrewInput, RawChoices, View,
+    audit_view, check_size, choices, load_crew, load_grid, load_scenario, load_view, AuditedView,
+    CrewChoices, CrewInput, RawChoices, View,
 };
 pub use design::{load_wall, Format, LoadedWall, Sizes};
 pub use error::InputError;

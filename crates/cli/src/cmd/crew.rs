@@ -223,7 +223,11 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
             "--audit plans nothing: --svg, --html and --save-scen need a plan (--overlay, --save-map and --json show the reading)",
         ));
     }
-    let (name, audited) = mason_io::audit_view(image, aerial)?;
+    let mason_io::AuditedView {
+        name,
+        audited,
+        bytes,
+    } = mason_io::audit_view(image, aerial)?;
     let r = &audited.reading;
     for doubt in &audited.doubts {
         eprintln!("doubt: {doubt}");
@@ -232,7 +236,6 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
     let mut files = Vec::new();
     if let Some(path) = &a.overlay {
         use mason_crew::Location;
-        let bytes = mason_io::read_input(image, mason_io::MAX_INPUT_BYTES)?;
         let doubts: Vec<((f64, f64), String)> = audited
             .doubts
             .iter()
