@@ -12,7 +12,10 @@
 //! goal, unsure or robot pixels is judged as a whole, less the robot-sized robot blobs in it
 //! (from [`SLIVER`] to [`LARGER`] times the median robot of the view, taken over the robot
 //! blobs that do not fill two cells on their own): those stay robots and take no part in
-//! the shape. It is an obstacle when it fills (at least [`FILLED`]
+//! the shape. The floor pixels it encloses count as its own (its holes: a brown or grey
+//! top's specks whose colour, dimmed or desaturated, reads as floor, each with the blob's
+//! pixels within [`HOLE`] of a cell on both sides along its row and its column; since issue
+//! #29's eleventh round). It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
 //! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
@@ -52,6 +55,9 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
 pub const SLIVER: f64 = 0.3;
+/// How far (in cells) a floor pixel may lie from a blob's pixels on each side, along its
+/// row and its column, and be a hole in it.
+pub const HOLE: f64 = 0.15;
 
 /// The 8-connected blobs of goal, unsure, robot and obstacle pixels that hold some goal,
 /// unsure or robot pixels, as lists of pixel indices, in row-major order of their first
@@ -276,6 +282,7 @@ pub fn absorb(
     let two_cells = (2.0 * FILLED * (INNER.1 - INNER.0).powi(2) * inside / cells) as usize;
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
+    let hole_px = ((HOLE * (inside / cells).sqrt()).round() as usize).max(1);
     // The robots' blobs: the median robot among those that do not fill two cells on their
     // own (a shelf of the robots' colour may; so may a robot 1.6 cells wide under a tilted
     // camera, but not most of a view's robots), and the pixels of the robot-sized ones
@@ -317,6 +324,7 @@ pub fn absorb(
                 .collect::<Vec<usize>>()
         })
         .filter(|b| b.len() >= two_cells && b.iter().any(|&i| classes[i] != Class::Obstacle as u8))
+        .map(|b| with_holes(b, classes, width, hole_px))
         .collect();
     if without_robots.is_empty() {
         return 0;
@@ -375,6 +383,67 @@ pub fn absorb(
         turned += 1;
     }
     turned
+}
+
+/// Floor pixels enclosed by a blob: with a pixel of the blob or an obstacle pixel within
+/// `reach` on both sides along its row and along its column (the specks of a shelf's top whose
+/// colour, dimmed or desaturated, reads as floor). Returns the blob's pixels and those, in
+/// increasing order.
+fn with_holes(blob: Vec<usize>, classes: &[u8], width: usize, reach: usize) -> Vec<usize> {
+    let Some((x0, y0, x1, y1)) = blob
+        .iter()
+        .fold(None::<(usize, usize, usize, usize)>, |b, &i| {
+            let (x, y) = column_row(i, width);
+            Some(match b {
+                None => (x, y, x, y),
+                Some((a, b, c, d)) => (a.min(x), b.min(y), c.max(x), d.max(y)),
+            })
+        })
+    else {
+        return blob;
+    };
+    let (bw, bh) = (x1 - x0 + 1, y1 - y0 + 1);
+    let mut solid = vec![false; bw * bh];
+    for &i in &blob {
+        let (x, y) = column_row(i, width);
+        solid[(y - y0) * bw + (x - x0)] = true;
+    }
+    for y in 0..bh {
+        for x in 0..bw {
+            let c = classes[(y + y0) * width + x + x0];
+            solid[y * bw + x] |= c == Class::Obstacle as u8;
+        }
+    }
+    // Running counts of solid pixels along each row and each column.
+    let mut rows = vec![0u32; (bw + 1) * bh];
+    let mut cols = vec![0u32; bw * (bh + 1)];
+    for y in 0..bh {
+        for x in 0..bw {
+            let s = u32::from(solid[y * bw + x]);
+            rows[y * (bw + 1) + x + 1] = rows[y * (bw + 1) + x] + s;
+            cols[(y + 1) * bw + x] = cols[y * bw + x] + s;
+        }
+    }
+    let mut out = blob;
+    for y in 0..bh {
+        for x in 0..bw {
+            let i = (y + y0) * width + x + x0;
+            if solid[y * bw + x] || classes[i] != Class::Floor as u8 {
+                continue;
+            }
+            let row = |a: usize, b: usize| rows[y * (bw + 1) + b] - rows[y * (bw + 1) + a];
+            let col = |a: usize, b: usize| cols[b * bw + x] - cols[a * bw + x];
+            let enclosed = row(x.saturating_sub(reach), x) > 0
+                && row(x + 1, (x + 1 + reach).min(bw)) > 0
+                && col(y.saturating_sub(reach), y) > 0
+                && col(y + 1, (y + 1 + reach).min(bh)) > 0;
+            if enclosed {
+                out.push(i);
+            }
+        }
+    }
+    out.sort_unstable();
+    out
 }
 
 /// The median area of robot blobs, as [`blobs::sort`] takes it.
@@ -500,6 +569,51 @@ mod tests {
         assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_speckled_shelf_is_an_obstacle_but_goals_a_pixel_apart_are_not_one() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals in cells (3, 0) and (3, 1); a goal-coloured shelf over cells (0, 0) and
+        // (1, 0) whose every third pixel in every other row reads as floor: a fifth of its
+        // middles, so they are filled only with its holes.
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
+        for y in (1..9).step_by(2) {
+            for x in (1..19).step_by(3) {
+                classes[y * 40 + x] = Class::Floor as u8;
+            }
+        }
+        let shelf: Vec<usize> = (0..40 * 10)
+            .filter(|&i| i % 40 < 20 && classes[i] == Class::Goal as u8)
+            .collect();
+        let maps = (&to_image, &to_floor);
+        let mut known = std::collections::BTreeMap::new();
+        let filled =
+            |b: &[usize], known: &mut _| filled_cells(b, &classes, 40, maps, (4, 2), known);
+        assert!(filled(&shelf, &mut known).is_empty());
+        let whole = with_holes(shelf.clone(), &classes, 40, 1);
+        // The 24 specks less the 9 on its first row and column (open on one side).
+        assert_eq!(whole.len(), shelf.len() + 15);
+        assert_eq!(filled(&whole, &mut known), vec![0, 1]);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            classes[3 * 40 + 4],
+            Class::Obstacle as u8,
+            "a hole turns too"
+        );
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+        // Two goals side by side, two pixels apart, are not filled in between: the gap is
+        // not closed along its column.
+        let (_, _, mut classes) = floor();
+        paint(&mut classes, 40, (2, 2, 8, 8), Class::Goal);
+        paint(&mut classes, 40, (10, 2, 16, 8), Class::Goal);
+        let blob: Vec<usize> = (0..classes.len())
+            .filter(|&i| classes[i] == Class::Goal as u8)
+            .collect();
+        assert_eq!(with_holes(blob.clone(), &classes, 40, 1), blob);
+        assert_eq!(with_holes(blob.clone(), &classes, 40, 3), blob);
     }
 
     #[test]
