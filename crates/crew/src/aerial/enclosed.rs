@@ -7,7 +7,11 @@
 //! floor too) are of one kind of robot, goal or obstacle, and at most [`OTHERS`] of those not
 //! floor are of another kind, its pixels become that kind. A blob beside two kinds, or mostly
 //! beside the floor, stays a colour that cannot be told (and is refused when it is as large
-//! as a mark). Cost: O(unsure pixels).
+//! as a mark). It runs after [`super::shelves`] has judged the shelves by their shape, on
+//! the colours as read: a tan shelf reads as a colour between with its reddest pixels as
+//! robot, and settled first it became robot pixels, joined a robot standing beside it, and
+//! took the robot with it into the obstacle (until issue #29's eleventh round).
+//! Cost: O(unsure pixels).
 
 use super::blobs;
 use super::colour::Class;

@@ -19,7 +19,8 @@
 //!    them, and not mostly leaning pale: [`looks`]), and every shadow on the free floor must
 //!    touch what casts it ([`shadows`]: a shelf of the floor's own colour shows by its shadow;
 //!    in a lamp's pool of light a shadow is judged against the light around it);
-//! 3. robots and goals as [`blobs`] of their colour, each put on the cell under its centre on
+//! 3. robots and goals as [`blobs`] of their colour, sized against the typical one of their
+//!    kind (the most alike blobs by count times area), each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
 //!    several touching is split when its area and shape tell how ([`blobs::split`]).
 //!
@@ -554,8 +555,8 @@ fn read(
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
-    enclosed::settle(&mut classes, width);
     shelves::absorb(&mut classes, width, maps, (gw, gh));
+    enclosed::settle(&mut classes, width);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
