@@ -11,12 +11,15 @@
 //! So every 8-connected blob of goal, unsure, robot and obstacle pixels that holds some
 //! goal, unsure or robot pixels is judged as a whole, less the robot-sized robot blobs in it
 //! (from [`SLIVER`] to [`LARGER`] times the median robot of the view, taken over the robot
-//! blobs that do not fill two cells on their own): those stay robots and take no part in
+//! blobs that do not fill two cells on their own), and the larger robot blobs that
+//! [`blobs::split`] separates into robots (robots touching): those stay robots and take no part in
 //! the shape. The floor pixels it encloses count as its own (its holes: a brown or grey
 //! top's specks whose colour, dimmed or desaturated, reads as floor, each with the blob's
 //! pixels within [`HOLE`] of a cell on both sides along its row and its column; since issue
 //! #29's eleventh round). It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
+//! of the grid or, since the eleventh round, of the grid shifted by quarters of a cell (a top
+//! that leans off its own cells under a tilted camera fills the cells of a shifted grid),
 //! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
@@ -116,18 +119,29 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// The cell (index) under pixel `i`, if any.
+/// The cell (index) under pixel `i` of the grid shifted by `shift` (in cells), if any.
 fn cell_of(
     i: usize,
     width: usize,
     image_to_floor: &Homography,
     (w, h): (u32, u32),
+    shift: Shift,
 ) -> Option<usize> {
     let (x, y) = column_row(i, width);
     let (u, v) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5))?;
+    let (u, v) = (u - shift.0, v - shift.1);
     (u >= 0.0 && v >= 0.0 && u < f64::from(w) && v < f64::from(h))
         .then(|| v.floor() as usize * w as usize + u.floor() as usize)
 }
+
+/// An offset of the grid, in cells along each axis: a shelf's top seen under a tilted camera
+/// leans off its cells, and fills cells of a grid shifted by the lean.
+pub(crate) type Shift = (f64, f64);
+/// The grid itself.
+pub(crate) const ALIGNED: Shift = (0.0, 0.0);
+/// The shifts tried, in quarters of a cell, when a blob fills no two cells of the grid
+/// itself: a top at most an eighth of a cell off one of them still fills the middles.
+const SHIFT_STEPS: u32 = 4;
 
 /// The cell (index) whose middle holds pixel `i`, if any.
 pub(crate) fn inner_cell(
@@ -136,7 +150,7 @@ pub(crate) fn inner_cell(
     image_to_floor: &Homography,
     floor: (u32, u32),
 ) -> Option<usize> {
-    inner_cell_at(column_row(i, width), image_to_floor, floor)
+    inner_cell_at(column_row(i, width), image_to_floor, floor, ALIGNED)
 }
 
 /// The cell (index) whose middle holds the pixel at column `x`, row `y`, if any.
@@ -144,9 +158,11 @@ fn inner_cell_at(
     (x, y): (usize, usize),
     image_to_floor: &Homography,
     (w, h): (u32, u32),
+    shift: Shift,
 ) -> Option<usize> {
     let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
-    inner_cell_of(image_to_floor.apply((x, y))?, (w, h))
+    let (u, v) = image_to_floor.apply((x, y))?;
+    inner_cell_of((u - shift.0, v - shift.1), (w, h))
 }
 
 /// The cell (index) whose middle holds the floor point `(u, v)`, if any.
@@ -175,15 +191,28 @@ pub(crate) fn middle(
     known: &mut std::collections::BTreeMap<usize, Middle>,
     classes: &[u8],
     width: usize,
-    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    maps: (&Homography, &Homography),
     floor: (u32, u32),
     cell: usize,
+) -> Middle {
+    middle_shifted(known, classes, width, maps, floor, (cell, ALIGNED))
+}
+
+/// The [`Middle`] of `cell` of the grid shifted by `shift`, its counts remembered in `known`
+/// (for that shift alone).
+fn middle_shifted(
+    known: &mut std::collections::BTreeMap<usize, Middle>,
+    classes: &[u8],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    floor: (u32, u32),
+    (cell, shift): (usize, Shift),
 ) -> Middle {
     if let Some(&m) = known.get(&cell) {
         return m;
     }
     let w = floor.0 as usize;
-    let (fx, fy) = ((cell % w) as f64, (cell / w) as f64);
+    let (fx, fy) = ((cell % w) as f64 + shift.0, (cell / w) as f64 + shift.1);
     let height = classes.len() / width.max(1);
     let mut out = Middle::default();
     let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
@@ -208,8 +237,11 @@ pub(crate) fn middle(
             for x in x0..x1 {
                 let c = classes[y * width + x];
                 let inner = match &axes {
-                    Some(axes) => inner_cell_of(axes.at(x, y), floor),
-                    None => inner_cell_at((x, y), image_to_floor, floor),
+                    Some(axes) => {
+                        let (u, v) = axes.at(x, y);
+                        inner_cell_of((u - shift.0, v - shift.1), floor)
+                    }
+                    None => inner_cell_at((x, y), image_to_floor, floor, shift),
                 };
                 if c != OUTSIDE && inner == Some(cell) {
                     out.pixels += 1;
@@ -232,12 +264,24 @@ fn filled_cells(
     floor: (u32, u32),
     known: &mut std::collections::BTreeMap<usize, Middle>,
 ) -> Vec<usize> {
+    filled_shifted(pixels, classes, width, maps, floor, (known, ALIGNED))
+}
+
+/// The cells of the grid shifted by `shift` a blob fills, as [`filled_cells`].
+fn filled_shifted(
+    pixels: &[usize],
+    classes: &[u8],
+    width: usize,
+    maps: (&Homography, &Homography),
+    floor: (u32, u32),
+    (known, shift): (&mut std::collections::BTreeMap<usize, Middle>, Shift),
+) -> Vec<usize> {
     let image_to_floor = maps.1;
     // The blob's pixels other than obstacle pixels in the middle of each cell it holds, by
     // cell (the cells in increasing order).
     let mut count = rustc_hash::FxHashMap::<usize, u32>::default();
     for &i in pixels {
-        if let Some(c) = inner_cell(i, width, image_to_floor, floor) {
+        if let Some(c) = inner_cell_at(column_row(i, width), image_to_floor, floor, shift) {
             *count.entry(c).or_insert(0) += u32::from(classes[i] != Class::Obstacle as u8);
         }
     }
@@ -247,7 +291,7 @@ fn filled_cells(
     let filled: Vec<usize> = held
         .into_iter()
         .filter(|&(c, n)| {
-            let m = middle(known, classes, width, maps, floor, c);
+            let m = middle_shifted(known, classes, width, maps, floor, (c, shift));
             m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
         })
         .map(|(c, _)| c)
@@ -309,7 +353,11 @@ pub fn absorb(
         let mut sized = vec![0u64; classes.len().div_ceil(64)];
         for i in found
             .iter()
-            .filter(|b| (SLIVER..LARGER).contains(&(b.area() as f64 / median)))
+            .filter(|b| {
+                let robots = b.area() as f64 / median;
+                (SLIVER..LARGER).contains(&robots)
+                    || (robots >= LARGER && blobs::split(b, median as usize).is_some())
+            })
             .flat_map(index)
         {
             sized[i / 64] |= 1 << (i % 64);
@@ -329,10 +377,28 @@ pub fn absorb(
     if without_robots.is_empty() {
         return 0;
     }
-    let shaped: Vec<(&Vec<usize>, Vec<usize>)> = without_robots
+    // Each blob with the cells it fills, of the grid itself or else of the first shifted
+    // grid whose cells it fills.
+    let mut shifted: Vec<std::collections::BTreeMap<usize, Middle>> =
+        vec![Default::default(); (SHIFT_STEPS * SHIFT_STEPS) as usize];
+    let shaped: Vec<(&Vec<usize>, Vec<usize>, Shift)> = without_robots
         .iter()
-        .map(|b| (b, filled_cells(b, classes, width, maps, floor, &mut known)))
-        .filter(|(_, cells)| !cells.is_empty())
+        .filter_map(|b| {
+            let aligned = filled_cells(b, classes, width, maps, floor, &mut known);
+            if !aligned.is_empty() {
+                return Some((b, aligned, ALIGNED));
+            }
+            (1..SHIFT_STEPS * SHIFT_STEPS).find_map(|k| {
+                let step = f64::from(SHIFT_STEPS);
+                let shift = (
+                    f64::from(k % SHIFT_STEPS) / step,
+                    f64::from(k / SHIFT_STEPS) / step,
+                );
+                let known = &mut shifted[k as usize];
+                let cells = filled_shifted(b, classes, width, maps, floor, (known, shift));
+                (!cells.is_empty()).then_some((b, cells, shift))
+            })
+        })
         .collect();
     if shaped.is_empty() {
         return 0;
@@ -341,7 +407,7 @@ pub fn absorb(
     // (Those blobs' goal pixels are set aside for the search and given back.)
     let hidden: Vec<usize> = shaped
         .iter()
-        .flat_map(|(b, _)| b.iter().copied())
+        .flat_map(|(b, _, _)| b.iter().copied())
         .filter(|&i| classes[i] == Class::Goal as u8)
         .collect();
     for &i in &hidden {
@@ -352,12 +418,12 @@ pub fn absorb(
         classes[i] = Class::Goal as u8;
     }
     let mut turned = 0;
-    for (b, cells) in shaped {
+    for (b, cells, shift) in shaped {
         if (b.len() as f64) < LARGER * median as f64 {
             continue;
         }
         let in_filled = |i: usize| {
-            cell_of(i, width, image_to_floor, floor)
+            cell_of(i, width, image_to_floor, floor, shift)
                 .is_some_and(|c| cells.binary_search(&c).is_ok())
         };
         let goals = marks_within(classes, width, b, Class::Goal, &in_filled, &|_, outside| {
@@ -614,6 +680,47 @@ mod tests {
             .collect();
         assert_eq!(with_holes(blob.clone(), &classes, 40, 1), blob);
         assert_eq!(with_holes(blob.clone(), &classes, 40, 3), blob);
+    }
+
+    #[test]
+    fn a_top_leaning_half_a_cell_off_its_cells_fills_cells_of_a_shifted_grid() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals in cells (3, 0) and (3, 1); a goal-coloured top from 0.6 to 2.4 cells across:
+        // it fills the middle of cell (1, 0) alone, and of two cells of the grid shifted by
+        // half a cell.
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (6, 1, 24, 9), Class::Goal);
+        let top: Vec<usize> = (0..40 * 10)
+            .filter(|&i| i % 40 < 30 && classes[i] == Class::Goal as u8)
+            .collect();
+        let maps = (&to_image, &to_floor);
+        let mut known = std::collections::BTreeMap::new();
+        assert!(filled_cells(&top, &classes, 40, maps, (4, 2), &mut known).is_empty());
+        let mut known = std::collections::BTreeMap::new();
+        let half = filled_shifted(&top, &classes, 40, maps, (4, 2), (&mut known, (0.5, 0.0)));
+        assert_eq!(half, vec![0, 1]);
+        assert_eq!(absorb(&mut classes, 40, maps, (4, 2)), 1);
+        assert_eq!(classes[5 * 40 + 7], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn robots_touching_that_split_are_no_shelf() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Two robots of 64 px in row 1; three in row 0, joined by bridges two pixels long,
+        // filling the middles of cells (0, 0), (1, 0) and (2, 0): three times a robot, so no
+        // robot-sized blob, but one that splits into three.
+        paint(&mut classes, 40, (1, 11, 9, 19), Class::Robot);
+        paint(&mut classes, 40, (21, 11, 29, 19), Class::Robot);
+        for x0 in [1, 11, 21] {
+            paint(&mut classes, 40, (x0, 1, x0 + 8, 9), Class::Robot);
+        }
+        paint(&mut classes, 40, (9, 5, 11, 6), Class::Robot);
+        paint(&mut classes, 40, (19, 5, 21, 6), Class::Robot);
+        let before = classes.clone();
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(classes, before);
     }
 
     #[test]
