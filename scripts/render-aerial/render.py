@@ -152,6 +152,18 @@ FAMILIES = {
                              (0.28, 0.36, 0.52)),
               shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # R: held out from issue #29's eleventh round, rendered after its last change to the reader
+    # and scored once. Puck, box-with-a-dome and cylinder robots, diamond, disc and cross goals,
+    # pale green-grey, sandstone and dark slate floors tiled every quarter cell, burgundy,
+    # mint, steel blue, ochre and warm grey shelves from 0.3 to 1.9 high inset 0.07 cell, a sun
+    # 30-70 degrees up of strength 2.5-3.6, warmer and cooler light, and a camera from 50 to 160
+    # cells per 24 high.
+    "R": dict(robot_shapes=("puck", "boxdome", "cylinder"), goal_shapes=("diamond", "disc", "cross"),
+              floors=((0.62, 0.66, 0.62), (0.74, 0.66, 0.54), (0.30, 0.33, 0.36)),
+              shelf_colours=((0.45, 0.10, 0.18), (0.62, 0.82, 0.70), (0.30, 0.45, 0.62), (0.72, 0.55, 0.16),
+                             (0.52, 0.50, 0.47)),
+              shelf_height=(0.3, 1.9), tiles=0.25, shelf_inset=0.07, warm=0.3, camera_height=(50, 160),
+              sun_elevation=(30, 70), sun_power=(2.5, 3.6)),
 }
 
 
