@@ -31,6 +31,23 @@ pub struct Blob {
 }
 
 impl Blob {
+    /// The blob of pixels given by index (row-major, `width` pixels a row).
+    pub fn from_indices(indices: &[usize], width: usize) -> Blob {
+        let pixels: Vec<(u32, u32)> = indices
+            .iter()
+            .map(|&i| {
+                let (x, y) = column_row(i, width);
+                (x as u32, y as u32)
+            })
+            .collect();
+        let bbox = pixels
+            .iter()
+            .fold((u32::MAX, u32::MAX, 0, 0), |b, &(x, y)| {
+                (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
+            });
+        Blob { pixels, bbox }
+    }
+
     /// Pixel count.
     pub fn area(&self) -> usize {
         self.pixels.len()
@@ -404,33 +421,13 @@ fn typical_area(areas: &[usize]) -> usize {
     group[group.len() / 2]
 }
 
-/// A merged blob is split only when its area is this close (in medians) to a whole number.
-pub const SPLIT_SLACK: f64 = 0.3;
-/// Each piece of a split blob is within this share of the median (either way).
-pub const PIECE_SPREAD: f64 = 0.4;
-
-/// Splits a blob of several touching robots (or goals) of median area `median` into one blob
-/// each, or `None` when that cannot be done with confidence.
-///
-/// The count is the area in medians, accepted only when it is within [`SPLIT_SLACK`] of a
-/// whole number from 2 to 4. The blob is eroded (chamfer distance to its outside) until
-/// its core falls apart into exactly that many pieces, each at least a 40th of the median;
-/// the cores then grow back down the depths (at each depth, breadth first from all cores at
-/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: a
-/// count that is not clear, a core that never falls apart into that many pieces (or into
-/// more first), or a piece whose area is more than [`PIECE_SPREAD`] from the median.
-pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
-    let ratio = blob.area() as f64 / median.max(1) as f64;
-    let n = ratio.round();
-    if !(2.0..=4.0).contains(&n) || (ratio - n).abs() > SPLIT_SLACK {
-        return None;
-    }
-    let n = n as usize;
+/// The chamfer distance (3 a step along an axis, 4 diagonally) of each pixel of a blob's
+/// bounding box to the blob's outside (0 outside it), by two passes over the box (padded by
+/// 0), with the box's width and height.
+fn chamfer(blob: &Blob) -> (Vec<u32>, usize, usize) {
     let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
     let bw = blob.bbox.2 as usize - x0 + 1;
     let bh = blob.bbox.3 as usize - y0 + 1;
-    // Chamfer distance (3 a step along an axis, 4 diagonally) to the outside, by two passes
-    // over the bounding box (padded by 0).
     let mut dist = vec![0u32; bw * bh];
     for &(x, y) in &blob.pixels {
         dist[(y as usize - y0) * bw + x as usize - x0] = u32::MAX;
@@ -470,6 +467,47 @@ pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
             dist[i] = dist[i].min(m);
         }
     }
+    (dist, bw, bh)
+}
+
+/// How thick a blob is: its deepest pixel's distance to its outside, in pixels (1 for a
+/// line one pixel wide).
+pub fn thickness(blob: &Blob) -> f64 {
+    let (dist, _, _) = chamfer(blob);
+    f64::from(dist.iter().copied().max().unwrap_or(0)) / 3.0
+}
+
+/// A merged blob is split only when its area is this close (in medians) to a whole number.
+pub const SPLIT_SLACK: f64 = 0.3;
+/// Each piece of a split blob is within this share of the median (either way).
+pub const PIECE_SPREAD: f64 = 0.4;
+
+/// Splits a blob of several touching robots (or goals) of median area `median` into one blob
+/// each, or `None` when that cannot be done with confidence.
+///
+/// The count is the area in medians, accepted only when it is within [`SPLIT_SLACK`] of a
+/// whole number from 2 to 4. The blob is eroded (chamfer distance to its outside) until
+/// its core falls apart into exactly that many pieces, each at least a 40th of the median;
+/// the cores then grow back down the depths (at each depth, breadth first from all cores at
+/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: a
+/// count that is not clear, a core that never falls apart into that many pieces (or into
+/// more first), or a piece whose area is more than [`PIECE_SPREAD`] from the median.
+pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
+    let ratio = blob.area() as f64 / median.max(1) as f64;
+    let n = ratio.round();
+    if !(2.0..=4.0).contains(&n) || (ratio - n).abs() > SPLIT_SLACK {
+        return None;
+    }
+    let n = n as usize;
+    let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
+    let (dist, bw, bh) = chamfer(blob);
+    let at = |d: &[u32], x: isize, y: isize| -> u32 {
+        if x < 0 || y < 0 || x >= bw as isize || y >= bh as isize {
+            0
+        } else {
+            d[y as usize * bw + x as usize]
+        }
+    };
     let dist = &dist;
     // The 8-neighbours of pixel `i` (and `i` itself) at least `t` deep, as indices.
     let deep = |i: usize, t: u32| {

@@ -555,7 +555,7 @@ fn read(
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
-    shelves::absorb(&mut classes, width, maps, (gw, gh));
+    let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh));
     enclosed::settle(&mut classes, width);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
@@ -898,6 +898,17 @@ fn read(
         if goals.len() != robots.len() {
             return Err(e);
         }
+    }
+    if let Some(at) = absorbed.swallowed.filter(|_| goals.len() > robots.len()) {
+        return Err(at_pixel(
+            source,
+            at,
+            format!(
+                "robot-coloured pixels here were read as part of a shelf of the robots' colour, and the view has {} goals but {} robots: a robot may stand against the shelf",
+                goals.len(),
+                robots.len()
+            ),
+        ));
     }
     if goals.len() < robots.len() {
         return Err(whole(

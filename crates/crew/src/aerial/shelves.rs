@@ -29,7 +29,12 @@
 //! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
 //! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
 //! shelf of the robots' colour; its pixels outside the filled cells stay robot pixels, and
-//! are refused or read as before).
+//! are refused or read as before, but for the pieces of them that are the shelf's own: at
+//! least [`LARGER`] robots large and not separated into robots by [`blobs::split`] (its top
+//! leaning off its cells), or at most [`THIN`] of a robot's width thick (its rim); since
+//! issue #29's eleventh round). Robot pixels turned so, a robot's worth ([`SLIVER`]) or more,
+//! are reported ([`Absorbed::swallowed`]): a robot against the shelf may be among them, so a
+//! view with more goals than robots is then refused, rather than read without that robot.
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
@@ -58,6 +63,10 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
 pub const SLIVER: f64 = 0.3;
+/// A robot-coloured piece left of a shelf at most this thick, in widths of a median robot
+/// (the square root of its area; a robot's own thickness, a disc's radius, is 0.56 of it),
+/// is the shelf's rim.
+pub const THIN: f64 = 0.25;
 /// How far (in cells) a floor pixel may lie from a blob's pixels on each side, along its
 /// row and its column, and be a hole in it.
 pub const HOLE: f64 = 0.15;
@@ -308,14 +317,29 @@ fn filled_shifted(
     }
 }
 
+/// What [`absorb`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Absorbed {
+    /// How many blobs it turned into obstacle pixels.
+    pub turned: usize,
+    /// Where (the image point, the centroid of the pixels) it first turned at least
+    /// [`SLIVER`] of a median robot's worth of robot pixels into a shelf's: a robot standing
+    /// against a shelf of its colour, its blob joined to the shelf's, would be lost there
+    /// without a word when the view has goals to spare, so such a view is refused (see
+    /// `read_aerial_image`).
+    pub swallowed: Option<(f64, f64)>,
+}
+
 /// Turns the blobs that are obstacles by their shape (see the module's comment) into
-/// obstacle pixels; returns how many blobs it turned.
+/// obstacle pixels.
 pub fn absorb(
     classes: &mut [u8],
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     floor: (u32, u32),
-) -> usize {
+) -> Absorbed {
+    let height = classes.len() / width.max(1);
+    let mut out = Absorbed::default();
     let blobs_found = mixed_blobs(classes, width);
     // Only a blob at least two cells large can fill two.
     let cells = f64::from(floor.0) * f64::from(floor.1);
@@ -375,7 +399,7 @@ pub fn absorb(
         .map(|b| with_holes(b, classes, width, hole_px))
         .collect();
     if without_robots.is_empty() {
-        return 0;
+        return out;
     }
     // Each blob with the cells it fills, of the grid itself or else of the first shifted
     // grid whose cells it fills.
@@ -401,7 +425,7 @@ pub fn absorb(
         })
         .collect();
     if shaped.is_empty() {
-        return 0;
+        return out;
     }
     // The median goal among the goal pixels outside those blobs.
     // (Those blobs' goal pixels are set aside for the search and given back.)
@@ -417,7 +441,6 @@ pub fn absorb(
     for &i in &hidden {
         classes[i] = Class::Goal as u8;
     }
-    let mut turned = 0;
     for (b, cells, shift) in shaped {
         if (b.len() as f64) < LARGER * median as f64 {
             continue;
@@ -441,14 +464,25 @@ pub fn absorb(
             &in_filled,
             &|area, outside| robot_piece(area as f64 / robot_median, outside),
         );
+        let robots = without_shelf_pieces(robots, width, height, robot_median);
+        // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
+        let (mut sum, mut n) = ((0.0, 0.0), 0usize);
         for &i in b {
             if goals.binary_search(&i).is_err() && robots.binary_search(&i).is_err() {
+                if classes[i] == Class::Robot as u8 {
+                    let (x, y) = column_row(i, width);
+                    sum = (sum.0 + x as f64 + 0.5, sum.1 + y as f64 + 0.5);
+                    n += 1;
+                }
                 classes[i] = Class::Obstacle as u8;
             }
         }
-        turned += 1;
+        if n as f64 >= SLIVER * robot_median && out.swallowed.is_none() {
+            out.swallowed = Some((sum.0 / n as f64, sum.1 / n as f64));
+        }
+        out.turned += 1;
     }
-    turned
+    out
 }
 
 /// Floor pixels enclosed by a blob: with a pixel of the blob or an obstacle pixel within
@@ -560,38 +594,14 @@ fn marks_within(
     keep: &dyn Fn(usize, f64) -> Keep,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
-    let mut goal: Vec<usize> = blob
+    let mut marked: Vec<usize> = blob
         .iter()
         .copied()
         .filter(|&i| classes[i] == class as u8)
         .collect();
-    goal.sort_unstable();
-    let height = classes.len() / width.max(1);
-    let mut seen = vec![false; goal.len()];
+    marked.sort_unstable();
     let mut kept = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..goal.len() {
-        if seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        let mut piece = Vec::new();
-        while let Some(k) = stack.pop() {
-            let i = goal[k];
-            piece.push(i);
-            let (x, y) = (i % width, i / width);
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    if let Ok(n) = goal.binary_search(&(ny * width + nx)) {
-                        if !seen[n] {
-                            seen[n] = true;
-                            stack.push(n);
-                        }
-                    }
-                }
-            }
-        }
+    for piece in pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         match keep(piece.len(), outside as f64 / piece.len() as f64) {
             Keep::All => kept.extend(piece),
@@ -601,6 +611,60 @@ fn marks_within(
     }
     kept.sort_unstable();
     kept
+}
+
+/// Pixels (indices, sorted) split into their 8-connected pieces.
+fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<usize>> {
+    let mut seen = vec![false; pixels.len()];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..pixels.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(k) = stack.pop() {
+            let i = pixels[k];
+            piece.push(i);
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    if let Ok(n) = pixels.binary_search(&(ny * width + nx)) {
+                        if !seen[n] {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        out.push(piece);
+    }
+    out
+}
+
+/// The robot pixels kept in a shelf's blob (sorted), less the pieces (8-connected among
+/// themselves) that are the shelf's own: those at least [`LARGER`] median robots large that
+/// [`blobs::split`] does not separate into robots (no robot is that large: the shelf's top
+/// leaning off the cells it fills), and those at most [`THIN`] of a median robot's width
+/// thick (its rim, where the colours averaged over a square mix the shelf's with the floor's).
+fn without_shelf_pieces(kept: Vec<usize>, width: usize, height: usize, median: f64) -> Vec<usize> {
+    let mut out = Vec::with_capacity(kept.len());
+    for piece in pieces(&kept, width, height) {
+        let blob = blobs::Blob::from_indices(&piece, width);
+        let large = piece.len() as f64 >= LARGER * median;
+        if large && blobs::split(&blob, median as usize).is_none() {
+            continue;
+        }
+        if blobs::thickness(&blob) <= (THIN * median.sqrt()).max(1.0) {
+            continue;
+        }
+        out.extend(piece);
+    }
+    out.sort_unstable();
+    out
 }
 
 #[cfg(test)]
@@ -632,7 +696,10 @@ mod tests {
         paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
         paint(&mut classes, 40, (5, 2, 7, 4), Class::Unsure);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
     }
@@ -663,7 +730,10 @@ mod tests {
         // The 24 specks less the 9 on its first row and column (open on one side).
         assert_eq!(whole.len(), shelf.len() + 15);
         assert_eq!(filled(&whole, &mut known), vec![0, 1]);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(
             classes[3 * 40 + 4],
             Class::Obstacle as u8,
@@ -700,7 +770,7 @@ mod tests {
         let mut known = std::collections::BTreeMap::new();
         let half = filled_shifted(&top, &classes, 40, maps, (4, 2), (&mut known, (0.5, 0.0)));
         assert_eq!(half, vec![0, 1]);
-        assert_eq!(absorb(&mut classes, 40, maps, (4, 2)), 1);
+        assert_eq!(absorb(&mut classes, 40, maps, (4, 2)).turned, 1);
         assert_eq!(classes[5 * 40 + 7], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
     }
@@ -719,7 +789,10 @@ mod tests {
         paint(&mut classes, 40, (9, 5, 11, 6), Class::Robot);
         paint(&mut classes, 40, (19, 5, 21, 6), Class::Robot);
         let before = classes.clone();
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            0
+        );
         assert_eq!(classes, before);
     }
 
@@ -733,7 +806,10 @@ mod tests {
         paint(&mut classes, 40, (15, 9, 16, 10), Class::Unsure);
         paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
         paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[12 * 40 + 15], Class::Goal as u8);
     }
@@ -747,7 +823,10 @@ mod tests {
         paint(&mut classes, 40, (21, 11, 30, 20), Class::Goal);
         paint(&mut classes, 40, (0, 11, 10, 20), Class::Goal);
         let before = classes.clone();
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            0
+        );
         assert_eq!(classes, before);
     }
 
@@ -765,7 +844,10 @@ mod tests {
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Robot);
         paint(&mut classes, 40, (4, 4, 8, 6), Class::Obstacle);
         paint(&mut classes, 40, (13, 9, 18, 14), Class::Robot);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(classes[5 * 40 + 12], Class::Obstacle as u8);
         assert_eq!(classes[12 * 40 + 15], Class::Robot as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Robot as u8);
@@ -786,7 +868,10 @@ mod tests {
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Obstacle);
         paint(&mut classes, 40, (3, 3, 5, 5), Class::Robot);
         paint(&mut classes, 40, (9, 7, 13, 10), Class::Robot);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(classes[3 * 40 + 3], Class::Obstacle as u8);
         assert_eq!(classes[8 * 40 + 10], Class::Robot as u8);
     }
@@ -796,7 +881,10 @@ mod tests {
         let (to_image, to_floor, mut classes) = floor();
         paint(&mut classes, 40, (0, 0, 10, 10), Class::Unsure);
         let before = classes.clone();
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)), 0);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            0
+        );
         assert_eq!(classes, before);
     }
 }

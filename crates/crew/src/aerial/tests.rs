@@ -307,6 +307,32 @@ fn refuses_what_it_cannot_read() {
 }
 
 #[test]
+fn a_robot_against_a_shelf_of_its_colour_is_not_lost_without_a_word() {
+    // A shelf of the robots' red over cells (3, 1)–(3, 3).
+    let mut p = scene();
+    p.shelf = [200.0, 30.0, 25.0];
+    // As many goals as robots: the shelf is read (its rim, robot-coloured where the colours
+    // are averaged over a square, is the shelf's).
+    let third_goal = p.goals.pop().unwrap();
+    let alone = read_aerial(&png(&p.straight(12)), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(alone.robots.len(), 2);
+    assert!(alone.grid.is_free(alone.grid.cell(2, 2).unwrap()));
+    assert!(!alone.grid.is_free(alone.grid.cell(3, 2).unwrap()));
+    // With a goal to spare, robot-coloured pixels taken for the shelf's may be a robot's.
+    p.goals.push(third_goal);
+    let e = refusal(&p, &grid(8, 5));
+    assert!(e.contains("a robot may stand against the shelf"), "{e}");
+    // A third robot against the shelf (on its sunlit side), and a third goal: read, on its
+    // cell.
+    p.robots.push((4.28, 2.5));
+    let r = read_aerial(&png(&p.straight(12)), "v.png", &grid(8, 5)).unwrap();
+    let mut robots = xy(&r, &r.robots);
+    robots.sort_unstable();
+    assert_eq!(robots, [(0, 0), (4, 2), (6, 3)]);
+    assert!(!r.grid.is_free(r.grid.cell(3, 2).unwrap()));
+}
+
+#[test]
 fn a_shadow_needs_a_caster() {
     // A shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
     // goal: a shelf of the floor's own colour casts it, and the view is refused.
