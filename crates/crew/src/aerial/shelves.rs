@@ -63,6 +63,11 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
 pub const SLIVER: f64 = 0.3;
+/// A blob at least this many times the larger of the median robot and the median goal is
+/// more than the most marks touching that `blobs::split` separates (4).
+pub const MARKS_LARGE: f64 = 4.5;
+/// The share of a cell's middle such a blob must fill, in two cells side by side.
+pub const LOOSE: f64 = 0.5;
 /// A robot-coloured piece left of a shelf at most this thick, in widths of a median robot
 /// (the square root of its area; a robot's own thickness, a disc's radius, is 0.56 of it),
 /// is the shelf's rim.
@@ -273,7 +278,14 @@ fn filled_cells(
     floor: (u32, u32),
     known: &mut std::collections::BTreeMap<usize, Middle>,
 ) -> Vec<usize> {
-    filled_shifted(pixels, classes, width, maps, floor, (known, ALIGNED))
+    filled_shifted(
+        pixels,
+        classes,
+        width,
+        maps,
+        floor,
+        (known, ALIGNED, FILLED),
+    )
 }
 
 /// The cells of the grid shifted by `shift` a blob fills, as [`filled_cells`].
@@ -283,7 +295,7 @@ fn filled_shifted(
     width: usize,
     maps: (&Homography, &Homography),
     floor: (u32, u32),
-    (known, shift): (&mut std::collections::BTreeMap<usize, Middle>, Shift),
+    (known, shift, share): (&mut std::collections::BTreeMap<usize, Middle>, Shift, f64),
 ) -> Vec<usize> {
     let image_to_floor = maps.1;
     // The blob's pixels other than obstacle pixels in the middle of each cell it holds, by
@@ -301,7 +313,7 @@ fn filled_shifted(
         .into_iter()
         .filter(|&(c, n)| {
             let m = middle_shifted(known, classes, width, maps, floor, (c, shift));
-            m.pixels > 0 && f64::from(n + m.obstacle) >= FILLED * f64::from(m.pixels)
+            m.pixels > 0 && f64::from(n + m.obstacle) >= share * f64::from(m.pixels)
         })
         .map(|(c, _)| c)
         .collect();
@@ -395,16 +407,25 @@ pub fn absorb(
                 .filter(|&i| robot_sized[i / 64] & (1 << (i % 64)) == 0)
                 .collect::<Vec<usize>>()
         })
-        .filter(|b| b.len() >= two_cells && b.iter().any(|&i| classes[i] != Class::Obstacle as u8))
+        .filter(|b| {
+            // At [`LOOSE`], a blob that fills two cells may be smaller.
+            b.len() as f64 >= LOOSE / FILLED * two_cells as f64
+                && b.iter().any(|&i| classes[i] != Class::Obstacle as u8)
+        })
         .map(|b| with_holes(b, classes, width, hole_px))
         .collect();
     if without_robots.is_empty() {
         return out;
     }
     // Each blob with the cells it fills, of the grid itself or else of the first shifted
-    // grid whose cells it fills.
+    // grid whose cells it fills; a blob larger than the most marks touching that
+    // `blobs::split` separates fills them at [`LOOSE`] (a top whose colour reads as a mark's
+    // over part of its width only).
+    let goal_median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
+    let mark = robot_median.max(goal_median as f64);
+    let steps = (SHIFT_STEPS * SHIFT_STEPS) as usize;
     let mut shifted: Vec<std::collections::BTreeMap<usize, Middle>> =
-        vec![Default::default(); (SHIFT_STEPS * SHIFT_STEPS) as usize];
+        vec![Default::default(); 2 * steps];
     let shaped: Vec<(&Vec<usize>, Vec<usize>, Shift)> = without_robots
         .iter()
         .filter_map(|b| {
@@ -412,15 +433,20 @@ pub fn absorb(
             if !aligned.is_empty() {
                 return Some((b, aligned, ALIGNED));
             }
-            (1..SHIFT_STEPS * SHIFT_STEPS).find_map(|k| {
-                let step = f64::from(SHIFT_STEPS);
-                let shift = (
-                    f64::from(k % SHIFT_STEPS) / step,
-                    f64::from(k / SHIFT_STEPS) / step,
-                );
-                let known = &mut shifted[k as usize];
-                let cells = filled_shifted(b, classes, width, maps, floor, (known, shift));
-                (!cells.is_empty()).then_some((b, cells, shift))
+            let large = b.len() as f64 >= MARKS_LARGE * mark;
+            let shares: &[f64] = if large { &[FILLED, LOOSE] } else { &[FILLED] };
+            shares.iter().enumerate().find_map(|(j, &share)| {
+                (usize::from(j == 0)..steps).find_map(|k| {
+                    let step = f64::from(SHIFT_STEPS);
+                    let shift = (
+                        (k % SHIFT_STEPS as usize) as f64 / step,
+                        (k / SHIFT_STEPS as usize) as f64 / step,
+                    );
+                    let known = &mut shifted[j * steps + k];
+                    let cells =
+                        filled_shifted(b, classes, width, maps, floor, (known, shift, share));
+                    (!cells.is_empty()).then_some((b, cells, shift))
+                })
             })
         })
         .collect();
@@ -768,11 +794,49 @@ mod tests {
         let mut known = std::collections::BTreeMap::new();
         assert!(filled_cells(&top, &classes, 40, maps, (4, 2), &mut known).is_empty());
         let mut known = std::collections::BTreeMap::new();
-        let half = filled_shifted(&top, &classes, 40, maps, (4, 2), (&mut known, (0.5, 0.0)));
+        let half = filled_shifted(
+            &top,
+            &classes,
+            40,
+            maps,
+            (4, 2),
+            (&mut known, (0.5, 0.0), FILLED),
+        );
         assert_eq!(half, vec![0, 1]);
         assert_eq!(absorb(&mut classes, 40, maps, (4, 2)).turned, 1);
         assert_eq!(classes[5 * 40 + 7], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_top_read_as_a_mark_over_part_of_its_width_is_an_obstacle_when_no_marks_are_that_large() {
+        // Goals of 16 px in cells (2, 0), (2, 1), (3, 0) and (3, 1); a goal-coloured band over
+        // cells (0, 0) and (1, 0), rows 1–5 only (the rest of the top reads as floor): 5 of the
+        // 8 rows of each middle, 90 px, over 4.5 goals.
+        let goals = |classes: &mut Vec<u8>| {
+            for (x, y) in [(23, 3), (23, 13), (33, 3), (33, 13)] {
+                paint(classes, 40, (x, y, x + 4, y + 4), Class::Goal);
+            }
+        };
+        let (to_image, to_floor, mut classes) = floor();
+        goals(&mut classes);
+        paint(&mut classes, 40, (1, 1, 19, 6), Class::Goal);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
+        assert_eq!(classes[3 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+        // The same band 12 px long (60 px, under 4.5 goals): goals touching, left as they are.
+        let (to_image, to_floor, mut classes) = floor();
+        goals(&mut classes);
+        paint(&mut classes, 40, (4, 1, 16, 6), Class::Goal);
+        let before = classes.clone();
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            0
+        );
+        assert_eq!(classes, before);
     }
 
     #[test]
