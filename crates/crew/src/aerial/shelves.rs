@@ -19,8 +19,10 @@
 //! #29's eleventh round). It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
 //! of the grid or, since the eleventh round, of the grid shifted by quarters of a cell (a top
-//! that leans off its own cells under a tilted camera fills the cells of a shifted grid),
-//! and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
+//! that leans off its own cells under a tilted camera fills the cells of a shifted grid; a
+//! blob more than [`MARKS_LARGE`] marks large, more than the touching marks that
+//! [`blobs::split`] separates, fills them at [`LOOSE`]: a top whose colour reads as a mark's
+//! over part of its width only), and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
 //! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
