@@ -389,7 +389,7 @@ pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
     }
 }
 
-/// Blobs within this factor of each other's area are of one kind in [`typical_area`].
+/// Blobs within this factor of each other's area are of one kind for the typical robot (see `sort`).
 pub const ALIKE: usize = 2;
 
 /// The area of the view's typical robot (or goal), from its blobs' `areas` (ascending, not
