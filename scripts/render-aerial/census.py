@@ -6,7 +6,8 @@ free in the truth, and how far the robots' and goals' centres read are from the 
 
 With --audit, each scene is also read with `mason crew --audit` (past every refusal about a
 cell) and the reading compared with the truth: the cells read wrongly that no refusal names
-are latent errors, which only the refusal of another cell keeps out of the normal reading.
+are latent errors, which only the refusal of another cell keeps out of the normal reading;
+so are robots and goals read wrongly there (since issue #29's eleventh round).
 
 The centres come from the scene's JSON (`robot_centres`, `goal_centres`, written by render.py
 since issue #29's tenth round); for scenes rendered before, render.py's layout is drawn again
@@ -70,8 +71,10 @@ def layout_again(truth):
 
 
 def audit(mason, folder, truth, args):
-    """The cells of the audited reading that differ from the truth and that no refusal names:
-    None when the audit stops at a robot's or goal's reason."""
+    """The cells of the audited reading that differ from the truth and that no refusal names,
+    whether a refusal for a region was found, and the robots and goals read wrongly (their
+    cells: the rendered ones missing, the read ones extra): None when the audit stops at a
+    robot's or goal's reason."""
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "audit.map")
         p = subprocess.run(args + ["--audit", "--save-map", out], capture_output=True, text=True)
@@ -93,7 +96,14 @@ def audit(mason, folder, truth, args):
         for line in p.stderr.splitlines()
         if line.startswith("doubt: ")
     )
-    return sorted((read ^ rendered) - named), region
+    reading = json.loads(p.stdout)["reading"]
+    marks = {}
+    for kind in ("robots", "goals"):
+        got = sorted(tuple(m["cell"]) for m in reading[kind])
+        want = sorted(tuple(c) for c in truth[kind])
+        if got != want:
+            marks[kind] = (sorted(set(want) - set(got)), sorted(set(got) - set(want)))
+    return sorted((read ^ rendered) - named), region, marks
 
 
 def main():
@@ -101,6 +111,7 @@ def main():
     mason, *folders = [a for a in sys.argv[1:] if not a.startswith("--")]
     audits = Counter()
     latent = []
+    latent_marks = []
     verdicts, kinds, at_cell = Counter(), Counter(), Counter()
     errors = {"robots": [], "goals": []}
     for folder in folders:
@@ -117,7 +128,9 @@ def main():
                 found = audit(mason, folder, truth, args)
                 audits["stopped at a robot's or goal's reason" if found is None else "read"] += 1
                 if found and found[0]:
-                    latent.append((name[:-5], *found))
+                    latent.append((name[:-5], *found[:2]))
+                if found and found[2]:
+                    latent_marks.append((name[:-5], found[2]))
             if p.returncode == 2:
                 verdicts["refused"] += 1
                 reason = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "?"
@@ -159,6 +172,9 @@ def main():
             print(f"  cells read wrongly that no refusal names, {title}: {sum(len(c) for _, c in some)} in {len(some)} scenes")
             for scene, cells in some:
                 print(f"    {scene}: {cells}")
+        print(f"  robots or goals read wrongly past the cells' refusals (latent errors of the marks): {len(latent_marks)} scenes")
+        for scene, marks in latent_marks:
+            print(f"    {scene}: " + "; ".join(f"{k} missing {m}, extra {e}" for k, (m, e) in marks.items()))
     for kind, errs in errors.items():
         if not errs:
             continue

@@ -1274,6 +1274,88 @@ fn crew_reads_an_aerial_view_and_writes_what_it_read() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A photograph with a goal more than its robots is refused unless `--spare-goals` says the
+/// floor has goals to spare: a goal without a robot may be a robot the reading lost.
+#[test]
+fn crew_refuses_spare_goals_in_a_photograph_unless_told() {
+    let dir = std::env::temp_dir().join(format!("mason-spare-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let image = data("aerial/A0013.jpg");
+    let map = dir.join("read.map");
+    let map_arg = map.to_string_lossy().into_owned();
+    let o = mason(&[
+        "crew",
+        "--image",
+        &image,
+        "--grid",
+        "22x10",
+        "--save-map",
+        &map_arg,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let robots = v["reading"]["counts"]["robots"].as_u64().unwrap();
+    let marked: Vec<(i64, i64)> = ["robots", "goals"]
+        .iter()
+        .flat_map(|k| v["reading"][k].as_array().unwrap().clone())
+        .map(|m| {
+            (
+                m["cell"][0].as_i64().unwrap(),
+                m["cell"][1].as_i64().unwrap(),
+            )
+        })
+        .collect();
+    let text = std::fs::read_to_string(&map).unwrap();
+    let rows: Vec<&str> = text.split("map\n").nth(1).unwrap().lines().collect();
+    let free = |x: i64, y: i64| {
+        (0..22).contains(&x)
+            && (0..10).contains(&y)
+            && rows[y as usize].as_bytes()[x as usize] == b'.'
+    };
+    // A free cell whose eight neighbours are free and hold no robot or goal.
+    let (cx, cy) = (1..9)
+        .flat_map(|y| (1..21).map(move |x| (x, y)))
+        .find(|&(x, y)| {
+            (-1..=1).all(|dy| {
+                (-1..=1).all(|dx| free(x + dx, y + dy) && !marked.contains(&(x + dx, y + dy)))
+            })
+        })
+        .expect("a free cell away from everything");
+    // A green disc there, as large as the goals read: one more goal.
+    let area = v["reading"]["goals"][0]["area_px"].as_f64().unwrap();
+    let mut img = image::open(&image).unwrap().to_rgb8();
+    let px = f64::from(img.width()) / 22.0;
+    let (ux, uy) = ((cx as f64 + 0.5) * px, (cy as f64 + 0.5) * px);
+    for y in 0..img.height() {
+        for x in 0..img.width() {
+            let d = (f64::from(x) + 0.5 - ux).hypot(f64::from(y) + 0.5 - uy);
+            if d * d * std::f64::consts::PI < area {
+                img.put_pixel(x, y, image::Rgb([30, 170, 50]));
+            }
+        }
+    }
+    let spare = dir.join("spare.png");
+    img.save(&spare).unwrap();
+    let spare = spare.to_string_lossy().into_owned();
+    let o = mason(&["crew", "--image", &spare, "--grid", "22x10", "--json"]);
+    assert_input_error(&o, &["spare.png", "goals but only", "--spare-goals"]);
+    let o = mason(&[
+        "crew",
+        "--image",
+        &spare,
+        "--grid",
+        "22x10",
+        "--spare-goals",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["reading"]["counts"]["robots"].as_u64(), Some(robots));
+    assert_eq!(v["reading"]["counts"]["goals"].as_u64(), Some(robots + 1));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// `--audit`: a view the reader refuses at a cell is read on past every such refusal, each
 /// listed; the reading goes to --save-map and --json, nothing is planned, and the exit is 2.
 #[test]

@@ -43,6 +43,10 @@ pub struct CrewArgs {
     /// --image: the goals' colour
     #[arg(long, default_value = "green")]
     pub goal_colour: String,
+    /// --image: accept a photograph with more goals than robots (refused by default: a goal
+    /// without a robot may be a robot the reading lost)
+    #[arg(long)]
+    pub spare_goals: bool,
     /// --image: draw the image with the grid, blocked cells, robots, goals and paths as read
     #[arg(long, value_name = "FILE.svg")]
     pub overlay: Option<PathBuf>,
@@ -311,11 +315,12 @@ fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialCon
         || a.cell_px.is_some()
         || a.corners.is_some()
         || a.robot_colour != "red"
-        || a.goal_colour != "green";
+        || a.goal_colour != "green"
+        || a.spare_goals;
     if a.image.is_none() {
         if given || a.overlay.is_some() || a.save_map.is_some() || a.save_scen.is_some() {
             return Err(input_error(
-                "--grid, --cell-px, --corners, --robot-colour, --goal-colour, --overlay, --save-map and --save-scen apply to --image",
+                "--grid, --cell-px, --corners, --robot-colour, --goal-colour, --spare-goals, --overlay, --save-map and --save-scen apply to --image",
             ));
         }
         return Ok(None);
@@ -342,6 +347,7 @@ fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialCon
         corners,
         robot_colour: colour("robot-colour", &a.robot_colour)?,
         goal_colour: colour("goal-colour", &a.goal_colour)?,
+        spare_goals: a.spare_goals,
     }))
 }
 

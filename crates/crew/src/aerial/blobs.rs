@@ -333,7 +333,7 @@ const MERGED: f64 = 1.7;
 /// noise.
 const PIECE: f64 = 0.4;
 /// A lone piece smaller than this share of the median is noise; larger, it is doubtful.
-const NOISE: f64 = 0.1;
+pub const NOISE: f64 = 0.1;
 /// A kept blob under this share of the median is a robot (or goal) partly hidden, or a
 /// single one among robots touching in pairs that made the median: the reading is refused
 /// when a blob of the median's size splits in two.

@@ -99,6 +99,11 @@ pub struct AerialConfig {
     pub robot_colour: Hue,
     /// The goals' colour.
     pub goal_colour: Hue,
+    /// Accept more goals than robots. Off by default: in a photograph a goal without a robot
+    /// may be a robot the reading lost (too small to tell from noise, hidden, or taken for a
+    /// shelf of its colour), so such a view is refused unless the floor is known to have
+    /// goals to spare.
+    pub spare_goals: bool,
 }
 
 impl Default for AerialConfig {
@@ -109,6 +114,7 @@ impl Default for AerialConfig {
             corners: None,
             robot_colour: Hue::RED,
             goal_colour: Hue::GREEN,
+            spare_goals: false,
         }
     }
 }
@@ -730,7 +736,7 @@ fn read(
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
     // reasons to refuse, which say more).
-    let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
+    let near_mark = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
     let looks: Vec<Option<looks::Look>> = {
@@ -904,7 +910,17 @@ fn read(
             source,
             at,
             format!(
-                "robot-coloured pixels here were read as part of a shelf of the robots' colour, and the view has {} goals but {} robots: a robot may stand against the shelf",
+                "robot-coloured pixels here were read as part of a shelf, and the view has {} goals but {} robots: a robot may stand against the shelf",
+                goals.len(),
+                robots.len()
+            ),
+        ));
+    }
+    if goals.len() > robots.len() && !config.spare_goals {
+        return Err(whole(
+            source,
+            format!(
+                "{} goals but only {} robots: a robot may have been lost (too small to tell from noise, hidden, or taken for a shelf of its colour); give --spare-goals if the floor has goals to spare",
                 goals.len(),
                 robots.len()
             ),

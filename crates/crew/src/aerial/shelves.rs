@@ -65,6 +65,8 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
 pub const SLIVER: f64 = 0.3;
+/// The fewest robot pixels turned into a shelf's that [`Absorbed::swallowed`] reports.
+pub const SWALLOWED: usize = blobs::MIN_AREA;
 /// A blob at least this many times the larger of the median robot and the median goal is
 /// more than the most marks touching that `blobs::split` separates (4).
 pub const MARKS_LARGE: f64 = 4.5;
@@ -336,11 +338,14 @@ fn filled_shifted(
 pub struct Absorbed {
     /// How many blobs it turned into obstacle pixels.
     pub turned: usize,
-    /// Where (the image point, the centroid of the pixels) it first turned at least
-    /// [`SLIVER`] of a median robot's worth of robot pixels into a shelf's: a robot standing
-    /// against a shelf of its colour, its blob joined to the shelf's, would be lost there
-    /// without a word when the view has goals to spare, so such a view is refused (see
-    /// `read_aerial_image`).
+    /// Where (the image point, the centroid of the pixels) it first turned robot pixels
+    /// into a shelf's, as many as a piece of a robot that is no noise (at least
+    /// [`SWALLOWED`], and [`blobs::NOISE`] of a median robot): a robot standing against a
+    /// shelf, its blob joined to the shelf's, or what a pale top leaning over it leaves of
+    /// it, would be lost there without a word when the view has goals to spare, so such a
+    /// view is refused (see `read_aerial_image`). Until issue #29's eleventh round a piece
+    /// under [`SLIVER`] of a robot was taken as the shelf's without a word: C0004 lost a pale
+    /// pink robot so, under a khaki top, once its other refusal was gone.
     pub swallowed: Option<(f64, f64)>,
 }
 
@@ -505,7 +510,7 @@ pub fn absorb(
                 classes[i] = Class::Obstacle as u8;
             }
         }
-        if n as f64 >= SLIVER * robot_median && out.swallowed.is_none() {
+        if n >= SWALLOWED.max((blobs::NOISE * robot_median) as usize) && out.swallowed.is_none() {
             out.swallowed = Some((sum.0 / n as f64, sum.1 / n as f64));
         }
         out.turned += 1;

@@ -104,10 +104,19 @@ fn png(img: &RgbImage) -> Vec<u8> {
     out.into_inner()
 }
 
+/// Goals to spare: the test scene has three goals and two robots.
+fn spare() -> AerialConfig {
+    AerialConfig {
+        spare_goals: true,
+        ..AerialConfig::default()
+    }
+}
+
+/// The grid given, and goals to spare.
 fn grid(w: u32, h: u32) -> AerialConfig {
     AerialConfig {
         grid: Some((w, h)),
-        ..AerialConfig::default()
+        ..spare()
     }
 }
 
@@ -146,7 +155,7 @@ fn cell_px_and_painted_lines_give_the_grid() {
     let mut p = scene();
     let cfg = AerialConfig {
         cell_px: Some(12.0),
-        ..AerialConfig::default()
+        ..spare()
     };
     let r = read_aerial(&png(&p.straight(12)), "v.png", &cfg).unwrap();
     assert_eq!((r.grid.width(), r.grid.height()), (8, 5));
@@ -156,7 +165,7 @@ fn cell_px_and_painted_lines_give_the_grid() {
     assert!(e.to_string().contains("no grid"), "{e}");
     // ... unless lines are painted on its floor.
     p.lines = true;
-    let r = read_aerial(&png(&p.straight(14)), "v.png", &AerialConfig::default()).unwrap();
+    let r = read_aerial(&png(&p.straight(14)), "v.png", &spare()).unwrap();
     assert_eq!((r.grid.width(), r.grid.height()), (8, 5));
     assert_eq!(r.grid_source, GridSource::Lines);
     assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
@@ -170,7 +179,7 @@ fn reads_a_tilted_view_through_its_corners() {
     let cfg = AerialConfig {
         grid: Some((8, 5)),
         corners: Some(corners),
-        ..AerialConfig::default()
+        ..spare()
     };
     let r = read_aerial(&png(&img), "t.png", &cfg).unwrap();
     assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
@@ -267,6 +276,16 @@ fn refuses_what_it_cannot_read() {
     let mut few = scene();
     few.goals.truncate(1);
     assert!(refusal(&few, &grid(8, 5)).contains("2 robots but only 1 goals"));
+    // More goals than robots: refused unless the floor has goals to spare.
+    let strict = AerialConfig {
+        spare_goals: false,
+        ..grid(8, 5)
+    };
+    let e = refusal(&scene(), &strict);
+    assert!(
+        e.contains("3 goals but only 2 robots") && e.contains("--spare-goals"),
+        "{e}"
+    );
 
     let mut none = scene();
     none.robots.clear();
