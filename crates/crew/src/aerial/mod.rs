@@ -735,7 +735,10 @@ fn read(
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
-    // reasons to refuse, which say more).
+    // reasons to refuse, which say more). Pixels within a quarter cell of a mark are left
+    // out: blur and JPEG spread a mark's colour into the floor around it, which then leans
+    // pale (an eighth of a cell until issue #29's eleventh round: C0016, N0036 and Q0012 were
+    // refused for a free cell beside a goal or a robot).
     let near_mark = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
