@@ -164,6 +164,18 @@ FAMILIES = {
                              (0.52, 0.50, 0.47)),
               shelf_height=(0.3, 1.9), tiles=0.25, shelf_inset=0.07, warm=0.3, camera_height=(50, 160),
               sun_elevation=(30, 70), sun_power=(2.5, 3.6)),
+    # S: held out from issue #29's eleventh round, rendered after its very last change to the
+    # reader (after R was scored) and scored once. Box, cylinder and yawed-box robots, ring,
+    # square and ellipse goals, light concrete, cool mid-grey and warm dark-brown floors tiled
+    # every third of a cell, plum, sky blue, khaki, dark teal and pale grey shelves from 0.3 to
+    # 2.0 high inset 0.05 cell, a sun 25-65 degrees up of strength 2.4-3.7, warmer and cooler
+    # light, and a camera from 45 to 170 cells per 24 high.
+    "S": dict(robot_shapes=("box", "cylinder", "rotbox"), goal_shapes=("ring", "square", "ellipse"),
+              floors=((0.70, 0.69, 0.66), (0.50, 0.52, 0.55), (0.34, 0.30, 0.27)),
+              shelf_colours=((0.40, 0.18, 0.42), (0.45, 0.68, 0.88), (0.68, 0.62, 0.40), (0.08, 0.32, 0.34),
+                             (0.80, 0.80, 0.78)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 170),
+              sun_elevation=(25, 65), sun_power=(2.4, 3.7)),
 }
 
 
