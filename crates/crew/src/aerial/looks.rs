@@ -282,8 +282,11 @@ pub fn local_levels(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<f64> {
         .collect()
 }
 
-/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark` from
-/// [`near_marks`].
+/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark` and
+/// `halo` from [`near_marks`]: the pixels near a mark, left out of everything (its blurred
+/// edge and its shadow), and the wider halo left out of the middle's look (the mark's colour
+/// spread into the floor by blur and JPEG), whose floor pixels still count in the shadow bins
+/// (a shadow beside a mark is the mark's only when it touches the mark itself).
 #[allow(clippy::too_many_arguments)]
 pub fn look(
     img: &RgbImage,
@@ -292,7 +295,7 @@ pub fn look(
     floor_to_image: &Homography,
     image_to_floor: &Homography,
     nadir: Option<(f64, f64)>,
-    near_mark: &[bool],
+    (near_mark, halo): (&[bool], &[bool]),
     leaned: &[bool],
     (cx, cy): (u32, u32),
 ) -> Look {
@@ -362,7 +365,7 @@ pub fn look(
             } else {
                 bin.solid += 1;
             }
-            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 {
+            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 || halo[y * width + x] {
                 continue;
             }
             out.unsure.1 += 1;

@@ -735,11 +735,15 @@ fn read(
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
-    // reasons to refuse, which say more). Pixels within a quarter cell of a mark are left
-    // out: blur and JPEG spread a mark's colour into the floor around it, which then leans
-    // pale (an eighth of a cell until issue #29's eleventh round: C0016, N0036 and Q0012 were
-    // refused for a free cell beside a goal or a robot).
-    let near_mark = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
+    // reasons to refuse, which say more). Pixels within an eighth of a cell of a mark are left
+    // out (its blurred edge and shadow), and from the middle's look within a quarter cell:
+    // blur and JPEG spread a mark's colour into the floor around it, which then leans pale
+    // (C0016, N0036 and Q0012 were refused for a free cell beside a goal or a robot). The
+    // shadow bins keep the eighth: with the quarter there too, the held-out S0016's shadow of a
+    // pale grey shelf passed for a robot's and the shelf read as floor (issue #29's eleventh
+    // round).
+    let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
+    let halo = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
     let looks: Vec<Option<looks::Look>> = {
@@ -756,7 +760,7 @@ fn read(
                         &floor_to_image,
                         &image_to_floor,
                         nadir,
-                        &near_mark,
+                        (&near_mark, &halo),
                         &leaned,
                         (x, y),
                     )
