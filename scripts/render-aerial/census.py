@@ -38,11 +38,14 @@ KINDS = [
     ("a colour it cannot tell", r"neither the robo"),
     ("a cell showing no floor", r"shows no pixel of floor"),
     ("a mark on a blocked cell", r"which an obstacle covers"),
+    ("a painted line that does not show", r"painted line between"),
+    ("more goals than robots", r"give --spare-goals"),
+    ("a robot taken for a shelf", r"stand against the shelf"),
 ]
 
 
 # The kinds whose reason names a cell the reading doubts (not a mark's cell).
-CELL_KINDS = {name for name, _ in KINDS[:6]} | {"a cell showing no floor"}
+CELL_KINDS = {name for name, _ in KINDS[:6]} | {"a cell showing no floor", "a painted line that does not show"}
 
 
 def kind_of(reason):
@@ -83,11 +86,13 @@ def audit(mason, folder, truth, args):
         rows = open(out).read().split("map\n", 1)[1].split()
     read = {(x, y) for y, row in enumerate(rows) for x, ch in enumerate(row) if ch == "@"}
     rendered = {tuple(c) for c in truth["blocked"]}
+    # The cells the refusals name ("cell (x, y)", or a painted line "between cells (x, y) and
+    # (x', y')").
     named = {
         (int(m.group(1)), int(m.group(2)))
         for line in p.stderr.splitlines()
         if line.startswith("doubt: ")
-        for m in re.finditer(r"cell \((\d+), (\d+)\)", line)
+        for m in re.finditer(r"(?:cells? |and )\((\d+), (\d+)\)", line)
     }
     # A shadow nothing casts and free cells side by side unlike the floor around them are
     # refused for a region (a shelf of the floor's colour somewhere near), named by one cell.

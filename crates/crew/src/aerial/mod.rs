@@ -59,6 +59,7 @@ pub mod enclosed;
 pub mod homography;
 pub mod lines;
 pub mod looks;
+pub mod painted;
 pub mod pale;
 pub mod pixels;
 pub mod shadows;
@@ -842,6 +843,27 @@ fn read(
             )
         })
     };
+    // On a floor with painted lines, every line between free cells must show (see
+    // `painted`): a shelf of the floor's colour with hardly a shadow hides them.
+    let hidden: Vec<CrewError> = {
+        let found = painted::missing(img, &classes, &classifier, maps, (gw, gh), &blocked, &halo);
+        let take = if audit { found.len() } else { 1 };
+        found
+            .into_iter()
+            .take(take)
+            .map(|m| {
+                let [(x, y), (nx, ny)] = m.cells;
+                at_pixel(
+                    source,
+                    m.at,
+                    format!(
+                        "the painted line between cells ({x}, {y}) and ({nx}, {ny}) does not show (contrast {:+.2} against the floor's {:+.2}): something of the floor's colour may stand over it",
+                        m.contrast.0, m.contrast.1
+                    ),
+                )
+            })
+            .collect()
+    };
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let (robots, robots_aside) = marks(
@@ -955,7 +977,12 @@ fn read(
             ));
         }
     }
-    for e in not_floor.into_iter().chain(uncast).chain(unlike) {
+    for e in not_floor
+        .into_iter()
+        .chain(uncast)
+        .chain(unlike)
+        .chain(hidden)
+    {
         doubt!(e);
     }
     Ok(Audited {
