@@ -53,6 +53,15 @@ pub struct Missing {
     pub contrast: (f64, f64),
 }
 
+/// A border between two cells: the cell before it, and whether it is the cell's right border
+/// (else its lower one).
+type Border = ((u32, u32), bool);
+/// A border's contrast against the floor on each side of it.
+type Contrast = (f64, f64);
+
+/// At most this many borders, spread over the floor, first tell whether it has painted lines.
+const SAMPLE: usize = 400;
+
 /// The borders between free cells (`blocked` per cell, row-major) whose painted lines do not
 /// show, on a floor that has painted lines (see the module's comment); empty otherwise.
 #[allow(clippy::too_many_arguments)]
@@ -60,80 +69,82 @@ pub fn missing(
     img: &RgbImage,
     classes: &[u8],
     classifier: &Classifier,
-    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    maps: (&Homography, &Homography),
     (gw, gh): (u32, u32),
     blocked: &[bool],
     near_mark: &[bool],
 ) -> Vec<Missing> {
-    let (width, height) = (img.width() as usize, img.height() as usize);
+    use rayon::prelude::*;
     let free = |x: u32, y: u32| !blocked[y as usize * gw as usize + x as usize];
-    // Each border between free cells, with its contrast when it can be judged.
-    let mut borders: Vec<([(u32, u32); 2], (f64, f64))> = Vec::new();
-    for y in 0..gh {
-        for x in 0..gw {
-            for (dx, dy) in [(1u32, 0u32), (0, 1)] {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx >= gw || ny >= gh || !free(x, y) || !free(nx, ny) {
-                    continue;
-                }
-                let contrast = border_contrast(
-                    img,
-                    classes,
-                    classifier,
-                    (floor_to_image, image_to_floor),
-                    ((x, y), dx == 1),
-                    near_mark,
-                    (width, height),
-                );
-                if let Some(c) = contrast {
-                    borders.push(([(x, y), (nx, ny)], c));
-                }
-            }
-        }
-    }
-    if borders.len() < 5 {
-        return Vec::new();
-    }
-    // Which way the lines go: the median of the borders' mean contrasts.
-    let mut means: Vec<f64> = borders.iter().map(|b| (b.1 .0 + b.1 .1) / 2.0).collect();
-    means.sort_by(f64::total_cmp);
-    let way = means[means.len() / 2].signum();
-    // Each border's contrast that way against the side it stands out from most (a shadow's
-    // edge along a border darkens one side only).
-    let borders: Vec<([(u32, u32); 2], f64)> = borders
-        .into_iter()
-        .map(|(cells, (a, b))| (cells, way * (way * a).max(way * b)))
+    let all: Vec<Border> = (0..gh)
+        .flat_map(|y| (0..gw).map(move |x| (x, y)))
+        .flat_map(|(x, y)| [((x, y), true), ((x, y), false)])
+        .filter(|&((x, y), vertical)| {
+            let (nx, ny) = if vertical { (x + 1, y) } else { (x, y + 1) };
+            nx < gw && ny < gh && free(x, y) && free(nx, ny)
+        })
         .collect();
-    let mut along: Vec<f64> = borders.iter().map(|b| b.1 * way).collect();
-    along.sort_by(f64::total_cmp);
-    let median = along[along.len() / 2];
-    if median < PAINTED {
+    let measure = |borders: &[Border]| -> Vec<(Border, Contrast)> {
+        borders
+            .par_iter()
+            .filter_map(|&b| {
+                border_contrast(img, classes, classifier, maps, b, near_mark).map(|c| (b, c))
+            })
+            .collect()
+    };
+    // Painted lines or not, from a sample of the borders first.
+    let step = all.len().div_ceil(SAMPLE).max(1);
+    let sample: Vec<Border> = all.iter().step_by(step).copied().collect();
+    if lines_way(&measure(&sample)).is_none() {
         return Vec::new();
     }
-    if along[along.len() / 5] < STEADY * median {
+    let borders = measure(&all);
+    let Some((way, median)) = lines_way(&borders) else {
         return Vec::new();
-    }
-    let median = median * way;
+    };
     borders
         .into_iter()
-        .filter(|(_, c)| c * way < MISSING * median.abs())
-        .map(|(cells, c)| {
-            let [(x, y), (nx, ny)] = cells;
-            let mid = if nx > x {
-                (f64::from(nx), f64::from(y) + 0.5)
-            } else {
-                (f64::from(x) + 0.5, f64::from(ny))
-            };
-            Missing {
-                cells,
-                at: floor_to_image.apply(mid).unwrap_or((0.0, 0.0)),
-                contrast: (c, median),
-            }
+        .filter_map(|(((x, y), vertical), (a, b))| {
+            let c = way * (way * a).max(way * b);
+            (c * way < MISSING * median).then(|| {
+                let (nx, ny) = if vertical { (x + 1, y) } else { (x, y + 1) };
+                let mid = if vertical {
+                    (f64::from(nx), f64::from(y) + 0.5)
+                } else {
+                    (f64::from(x) + 0.5, f64::from(ny))
+                };
+                Missing {
+                    cells: [(x, y), (nx, ny)],
+                    at: maps.0.apply(mid).unwrap_or((0.0, 0.0)),
+                    contrast: (c, way * median),
+                }
+            })
         })
         .collect()
 }
 
-/// The contrast of the line on the border after cell `(x, y)` (its right border when
+/// Which way a floor's painted lines go (1 brighter than the floor, −1 darker) and the
+/// borders' median contrast that way, from the borders measured; `None` when they show no
+/// painted lines (too few borders, a median under [`PAINTED`], or a lower fifth under
+/// [`STEADY`] of it). Each border's contrast that way is the larger of its two sides' (a
+/// shadow's edge along a border darkens one side only).
+fn lines_way(borders: &[(Border, Contrast)]) -> Option<(f64, f64)> {
+    if borders.len() < 5 {
+        return None;
+    }
+    let mut means: Vec<f64> = borders.iter().map(|b| (b.1 .0 + b.1 .1) / 2.0).collect();
+    means.sort_by(f64::total_cmp);
+    let way = means[means.len() / 2].signum();
+    let mut along: Vec<f64> = borders
+        .iter()
+        .map(|b| (way * b.1 .0).max(way * b.1 .1))
+        .collect();
+    along.sort_by(f64::total_cmp);
+    let median = along[along.len() / 2];
+    (median >= PAINTED && along[along.len() / 5] >= STEADY * median).then_some((way, median))
+}
+
+/// The contrast of the line on border `((x, y), vertical)` (the cell's right border when
 /// `vertical`, else its lower one) against the floor on each side of it, or `None` when too
 /// few floor pixels show.
 fn border_contrast(
@@ -141,23 +152,38 @@ fn border_contrast(
     classes: &[u8],
     classifier: &Classifier,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
-    ((x, y), vertical): ((u32, u32), bool),
+    ((x, y), vertical): Border,
     near_mark: &[bool],
-    (width, height): (usize, usize),
-) -> Option<(f64, f64)> {
-    // The image box of the two cells the border divides.
-    let next = if vertical { (x + 1, y) } else { (x, y + 1) };
-    let (a, b) = (
-        floor_to_image.cell_box((x, y), width, height)?,
-        floor_to_image.cell_box(next, width, height)?,
-    );
-    let (x0, y0, x1, y1) = (a.0.min(b.0), a.1.min(b.1), a.2.max(b.2), a.3.max(b.3));
+) -> Option<Contrast> {
+    let (width, height) = (img.width() as usize, img.height() as usize);
     let border = if vertical {
         f64::from(x) + 1.0
     } else {
         f64::from(y) + 1.0
     };
     let start = if vertical { f64::from(y) } else { f64::from(x) };
+    // The image box of the measured bands: across the border to SIDE.1, along it over ALONG.
+    let floor_point = |across: f64, along: f64| {
+        if vertical {
+            (border + across, start + along)
+        } else {
+            (start + along, border + across)
+        }
+    };
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+    for (a, t) in [
+        (-SIDE.1, ALONG.0),
+        (SIDE.1, ALONG.0),
+        (-SIDE.1, ALONG.1),
+        (SIDE.1, ALONG.1),
+    ] {
+        let (px, py) = floor_to_image.apply(floor_point(a, t))?;
+        (x0, y0, x1, y1) = (x0.min(px), y0.min(py), x1.max(px), y1.max(py));
+    }
+    let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+    let (x0, x1) = (clamp(x0.floor(), width), clamp(x1.ceil() + 1.0, width));
+    let (y0, y1) = (clamp(y0.floor(), height), clamp(y1.ceil() + 1.0, height));
+    let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
     // The line's band, and the floor beside it on either side.
     let (mut line, mut side) = ((0.0, 0usize), [(0.0, 0usize); 2]);
     // All the pixels of each band, whatever they show.
@@ -165,7 +191,11 @@ fn border_contrast(
     for py in y0..y1 {
         for px in x0..x1 {
             let i = py * width + px;
-            let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)) else {
+            let point = match &axes {
+                Some(axes) => Some(axes.at(px, py)),
+                None => image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)),
+            };
+            let Some((u, v)) = point else {
                 continue;
             };
             let (across, at) = if vertical {
@@ -176,20 +206,23 @@ fn border_contrast(
             if !(ALONG.0..=ALONG.1).contains(&at) {
                 continue;
             }
-            if across < LINE {
+            let in_line = across < LINE;
+            if in_line {
                 line_all += 1;
             } else if (SIDE.0..=SIDE.1).contains(&across) {
                 side_all += 1;
+            } else {
+                continue;
             }
             if classes[i] != Class::Floor as u8 || near_mark[i] {
                 continue;
             }
             let rgb = classifier.balanced(img.get_pixel(px as u32, py as u32).0);
             let bright = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
-            let beyond = usize::from(if vertical { u > border } else { v > border });
-            if across < LINE {
+            if in_line {
                 line = (line.0 + bright, line.1 + 1);
-            } else if (SIDE.0..=SIDE.1).contains(&across) {
+            } else {
+                let beyond = usize::from(if vertical { u > border } else { v > border });
                 let s = &mut side[beyond];
                 *s = (s.0 + bright, s.1 + 1);
             }
