@@ -176,6 +176,18 @@ FAMILIES = {
                              (0.80, 0.80, 0.78)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 170),
               sun_elevation=(25, 65), sun_power=(2.4, 3.7)),
+    # T: held out from issue #29's eleventh round, rendered after its very last change to the
+    # reader (after S had been scored once and the round's reader changed for it) and scored
+    # once. Dome, box-with-a-dome and puck robots, cross, disc and diamond goals, blue-grey,
+    # beige and dark grey floors tiled every half cell, leaf green, off-white, walnut, indigo
+    # and amber shelves from 0.3 to 2.0 high inset 0.06 cell, a sun 25-70 degrees up of
+    # strength 2.4-3.8, warmer and cooler light, and a camera from 45 to 165 cells per 24 high.
+    "T": dict(robot_shapes=("dome", "boxdome", "puck"), goal_shapes=("cross", "disc", "diamond"),
+              floors=((0.58, 0.60, 0.64), (0.76, 0.70, 0.62), (0.40, 0.38, 0.36)),
+              shelf_colours=((0.20, 0.50, 0.20), (0.85, 0.85, 0.82), (0.55, 0.35, 0.25), (0.25, 0.25, 0.60),
+                             (0.90, 0.60, 0.10)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
