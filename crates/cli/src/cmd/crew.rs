@@ -57,10 +57,10 @@ pub struct CrewArgs {
     #[arg(long, value_name = "F.scen")]
     pub save_scen: Option<PathBuf>,
     /// --image: read past every refusal about a cell (half covered, a top may cover it,
-    /// unlike the floor, a shadow nothing casts) and list them all on stderr, each cell decided
-    /// as the check found it before doubting it; plans nothing, writes --overlay (the refusals
-    /// in magenta), --save-map and --json (the reading and the refusals), exit 2 when any was
-    /// found. A robot's or goal's refusal still stops it
+    /// unlike the floor, a shadow nothing casts, a painted line that does not show) and list
+    /// them all on stderr, each cell decided as the check found it before doubting it; plans
+    /// nothing, writes --overlay (the refusals in magenta), --save-map and --json (the reading
+    /// and the refusals), exit 2 when any was found. A robot's or goal's refusal still stops it
     #[arg(long)]
     pub audit: bool,
     /// given (scenario pairing; default with --scen), perm (the paper's n!), hungarian,

@@ -492,11 +492,13 @@ pub struct Audited {
 
 /// Reads an aerial view past every refusal about a cell (a half-covered cell, a cell a top may
 /// cover, a free cell unlike the floor, free cells side by side unlike the floor around them,
-/// a shadow no obstacle casts), listing them all: for seeing everything that stops a view at
+/// a shadow no obstacle casts, a painted line that does not show between free cells), listing
+/// them all: for seeing everything that stops a view at
 /// once, and what the reading would be without the checks (the truth of rendered scenes
 /// shows which of them guard a cell the reading would get wrong). Still refused, as by
 /// [`read_aerial`]: an image that cannot be read, a grid that does not fit, and a robot's or
-/// a goal's reason (touching, on a border, too small, fewer goals, a colour it cannot tell).
+/// a goal's reason (touching, on a border, too small, fewer or spare goals, a colour it cannot
+/// tell).
 pub fn audit_aerial(
     bytes: &[u8],
     source: &str,
