@@ -848,7 +848,15 @@ fn read(
     // On a floor with painted lines, every line between free cells must show (see
     // `painted`): a shelf of the floor's colour with hardly a shadow hides them.
     let hidden: Vec<CrewError> = {
-        let found = painted::missing(img, &classes, &classifier, maps, (gw, gh), &blocked, &halo);
+        let found = painted::missing(
+            img,
+            &classes,
+            &classifier,
+            maps,
+            (gw, gh),
+            &blocked,
+            (&halo, px),
+        );
         let take = if audit { found.len() } else { 1 };
         found
             .into_iter()

@@ -27,9 +27,13 @@ use super::colour::{Class, Classifier};
 use super::homography::Homography;
 use image::RgbImage;
 
-/// Half the band of a border measured as its line, in cells.
+/// Half the band of a border measured as its line, in cells, and at least [`LINE_PX`] pixels
+/// (a line thinner than a pixel darkens one pixel or two, as it falls).
 pub const LINE: f64 = 0.05;
-/// The band on each side of a border measured as floor beside its line, in cells.
+/// The least half band of a line, in pixels.
+pub const LINE_PX: f64 = 1.0;
+/// The band on each side of a border measured as floor beside its line, in cells (from at
+/// least twice the line's half band).
 pub const SIDE: (f64, f64) = (0.12, 0.3);
 /// The middle of a border measured, along it (in cells).
 pub const ALONG: (f64, f64) = (0.2, 0.8);
@@ -72,9 +76,11 @@ pub fn missing(
     maps: (&Homography, &Homography),
     (gw, gh): (u32, u32),
     blocked: &[bool],
-    near_mark: &[bool],
+    (near_mark, px): (&[bool], f64),
 ) -> Vec<Missing> {
     use rayon::prelude::*;
+    let line = LINE.max(LINE_PX / px.max(1.0));
+    let bands = (line, (SIDE.0.max(2.0 * line), SIDE.1.max(3.0 * line)));
     let free = |x: u32, y: u32| !blocked[y as usize * gw as usize + x as usize];
     let all: Vec<Border> = (0..gh)
         .flat_map(|y| (0..gw).map(move |x| (x, y)))
@@ -88,7 +94,8 @@ pub fn missing(
         borders
             .par_iter()
             .filter_map(|&b| {
-                border_contrast(img, classes, classifier, maps, b, near_mark).map(|c| (b, c))
+                border_contrast(img, classes, classifier, maps, (b, bands), near_mark)
+                    .map(|c| (b, c))
             })
             .collect()
     };
@@ -152,7 +159,7 @@ fn border_contrast(
     classes: &[u8],
     classifier: &Classifier,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
-    ((x, y), vertical): Border,
+    (((x, y), vertical), (line_band, side_band)): (Border, (f64, (f64, f64))),
     near_mark: &[bool],
 ) -> Option<Contrast> {
     let (width, height) = (img.width() as usize, img.height() as usize);
@@ -171,11 +178,12 @@ fn border_contrast(
         }
     };
     let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
+    let far = side_band.1;
     for (a, t) in [
-        (-SIDE.1, ALONG.0),
-        (SIDE.1, ALONG.0),
-        (-SIDE.1, ALONG.1),
-        (SIDE.1, ALONG.1),
+        (-far, ALONG.0),
+        (far, ALONG.0),
+        (-far, ALONG.1),
+        (far, ALONG.1),
     ] {
         let (px, py) = floor_to_image.apply(floor_point(a, t))?;
         (x0, y0, x1, y1) = (x0.min(px), y0.min(py), x1.max(px), y1.max(py));
@@ -206,10 +214,10 @@ fn border_contrast(
             if !(ALONG.0..=ALONG.1).contains(&at) {
                 continue;
             }
-            let in_line = across < LINE;
+            let in_line = across < line_band;
             if in_line {
                 line_all += 1;
-            } else if (SIDE.0..=SIDE.1).contains(&across) {
+            } else if (side_band.0..=side_band.1).contains(&across) {
                 side_all += 1;
             } else {
                 continue;
@@ -297,7 +305,7 @@ mod tests {
             (to_image, &to_image.inverse().unwrap()),
             (6, 4),
             &[false; 24],
-            &[false; 120 * 80],
+            (&[false; 120 * 80], 20.0),
         )
     }
 

@@ -61,6 +61,11 @@ pub const LARGER: f64 = 2.5;
 /// A goal joined to an obstacle blob has at least this share of its pixels outside the
 /// cells the blob fills.
 pub const GOAL_OUTSIDE: f64 = 0.8;
+/// A goal-coloured piece of an obstacle blob this large, in median goals, is a goal beside
+/// the shelf, wherever it lies (a goal against a shelf's edge lies in the cells of a grid
+/// shifted by the lean, T0019): a shelf's piece that size is then read as a goal more, and the
+/// view refused for more goals than robots, not read without a goal.
+pub const GOAL_SIZED: std::ops::Range<f64> = 0.5..1.7;
 /// A robot-coloured piece of an obstacle blob under this share of the median robot is a
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
@@ -482,13 +487,21 @@ pub fn absorb(
             cell_of(i, width, image_to_floor, floor, shift)
                 .is_some_and(|c| cells.binary_search(&c).is_ok())
         };
-        let goals = marks_within(classes, width, b, Class::Goal, &in_filled, &|_, outside| {
-            if outside >= GOAL_OUTSIDE {
-                Keep::All
-            } else {
-                Keep::None
-            }
-        });
+        let goals = marks_within(
+            classes,
+            width,
+            b,
+            Class::Goal,
+            &in_filled,
+            &|area, outside| {
+                let goals = area as f64 / median.max(1) as f64;
+                if outside >= GOAL_OUTSIDE || GOAL_SIZED.contains(&goals) {
+                    Keep::All
+                } else {
+                    Keep::None
+                }
+            },
+        );
         let robots = marks_within(
             classes,
             width,
@@ -865,6 +878,22 @@ mod tests {
             0
         );
         assert_eq!(classes, before);
+    }
+
+    #[test]
+    fn a_goal_against_a_goal_coloured_shelf_stays_a_goal() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals of 16 px in cells (3, 0) and (3, 1); a goal-coloured shelf over cells (0, 0)
+        // and (1, 0), rows 1–7, joined by a row of a colour between to a goal of 16 px below
+        // it, a quarter of it in the shelf's cells: a goal's size, so a goal.
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 8), Class::Goal);
+        paint(&mut classes, 40, (8, 8, 12, 9), Class::Unsure);
+        paint(&mut classes, 40, (8, 9, 12, 13), Class::Goal);
+        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned, 1);
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        assert_eq!(classes[11 * 40 + 10], Class::Goal as u8);
     }
 
     #[test]
