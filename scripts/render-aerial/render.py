@@ -188,6 +188,18 @@ FAMILIES = {
                              (0.90, 0.60, 0.10)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # U: held out from issue #29's eleventh round, rendered after its very last change to the
+    # reader (after T had been scored once and looked at) and scored once. Cylinder, dome and
+    # box robots, square, ring and cross goals, warm light grey, green-grey and dark blue-grey
+    # floors tiled every quarter cell, rust, pale blue, olive, charcoal and cream shelves from
+    # 0.3 to 2.0 high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 45 to 165 cells per 24 high.
+    "U": dict(robot_shapes=("cylinder", "dome", "box"), goal_shapes=("square", "ring", "cross"),
+              floors=((0.68, 0.66, 0.62), (0.52, 0.56, 0.50), (0.30, 0.33, 0.40)),
+              shelf_colours=((0.60, 0.28, 0.14), (0.62, 0.76, 0.86), (0.45, 0.46, 0.20), (0.22, 0.22, 0.24),
+                             (0.88, 0.84, 0.72)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
