@@ -891,7 +891,10 @@ mod tests {
         paint(&mut classes, 40, (1, 1, 19, 8), Class::Goal);
         paint(&mut classes, 40, (8, 8, 12, 9), Class::Unsure);
         paint(&mut classes, 40, (8, 9, 12, 13), Class::Goal);
-        assert_eq!(absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned, 1);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
         assert_eq!(classes[11 * 40 + 10], Class::Goal as u8);
     }
