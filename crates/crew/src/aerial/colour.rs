@@ -221,6 +221,15 @@ impl Classifier {
         }
     }
 
+    /// Whether a colour after white balance has a mark's hue (within a robot's or a goal's hue
+    /// band, or the doubt beyond it): the glow a robot or goal spreads into the floor around it.
+    pub fn of_a_marks_hue(&self, balanced: [f64; 3]) -> bool {
+        let (hue, s) = hue_saturation(balanced);
+        s > 0.0
+            && (self.robot.distance(hue) <= HUE_BAND.0 + HUE_DOUBT
+                || self.goal.distance(hue) <= HUE_BAND.1 + HUE_DOUBT)
+    }
+
     /// A pixel's colour after white balance on the floor: the lit floor's median is 1 in
     /// every channel.
     pub fn balanced(&self, p: [u8; 3]) -> [f64; 3] {
@@ -311,6 +320,16 @@ mod tests {
         assert_eq!(c.classify([30, 60, 150]), Class::Obstacle);
         // Amber, between red and yellow: neither a robot's colour nor clearly another.
         assert_eq!(c.classify([220, 120, 20]), Class::Unsure);
+    }
+
+    #[test]
+    fn a_marks_glow_has_its_hue() {
+        let c = classifier();
+        // After white balance: faintly pink, faintly green, faintly blue, grey.
+        assert!(c.of_a_marks_hue([1.2, 1.05, 1.06]));
+        assert!(c.of_a_marks_hue([1.0, 1.15, 1.02]));
+        assert!(!c.of_a_marks_hue([1.0, 1.05, 1.2]));
+        assert!(!c.of_a_marks_hue([1.1, 1.1, 1.1]));
     }
 
     #[test]

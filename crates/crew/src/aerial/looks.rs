@@ -282,11 +282,14 @@ pub fn local_levels(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<f64> {
         .collect()
 }
 
-/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark` and
-/// `halo` from [`near_marks`]: the pixels near a mark, left out of everything (its blurred
-/// edge and its shadow), and the wider halo left out of the middle's look (the mark's colour
+/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark`, `halo`
+/// and `glow` from [`near_marks`]: the pixels near a mark, left out of everything (its blurred
+/// edge and its shadow); the wider halo left out of the middle's look (the mark's colour
 /// spread into the floor by blur and JPEG), whose floor pixels still count in the shadow bins
-/// (a shadow beside a mark is the mark's only when it touches the mark itself).
+/// (a shadow beside a mark is the mark's only when it touches the mark itself); and within a
+/// cell of a mark, where a floor pixel leaning pale in a mark's hue is the mark's glow, not a
+/// pale top's (since issue #29's eleventh round: large blurred marks spread their glow past
+/// the quarter cell).
 #[allow(clippy::too_many_arguments)]
 pub fn look(
     img: &RgbImage,
@@ -295,7 +298,7 @@ pub fn look(
     floor_to_image: &Homography,
     image_to_floor: &Homography,
     nadir: Option<(f64, f64)>,
-    (near_mark, halo): (&[bool], &[bool]),
+    (near_mark, halo, glow): (&[bool], &[bool], &[bool]),
     leaned: &[bool],
     (cx, cy): (u32, u32),
 ) -> Look {
@@ -374,7 +377,9 @@ pub fn look(
                 c if c == Class::Floor as u8 => {
                     seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
                     out.leaning.1 += 1;
-                    if leaned.get(y * width + x) == Some(&true) {
+                    // Leaning pale in a mark's hue within a cell of a mark: its glow.
+                    let glowing = glow[y * width + x] && classifier.of_a_marks_hue(rgb);
+                    if leaned.get(y * width + x) == Some(&true) && !glowing {
                         out.leaning.0 += 1;
                     }
                 }

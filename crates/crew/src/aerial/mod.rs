@@ -749,6 +749,7 @@ fn read(
     // round).
     let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
     let halo = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
+    let glow = looks::near_marks(&mut classes, width, px.round().max(2.0) as usize);
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
     let looks: Vec<Option<looks::Look>> = {
@@ -765,7 +766,7 @@ fn read(
                         &floor_to_image,
                         &image_to_floor,
                         nadir,
-                        (&near_mark, &halo),
+                        (&near_mark, &halo, &glow),
                         &leaned,
                         (x, y),
                     )
