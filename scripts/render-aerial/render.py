@@ -200,6 +200,18 @@ FAMILIES = {
                              (0.88, 0.84, 0.72)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # V: held out from issue #29's eleventh round, rendered after its very last change to the
+    # reader (the marks' glow, after U was scored) and scored once. Puck, cylinder and
+    # yawed-box robots, disc, ellipse and square goals, pale warm grey, mid grey and dark
+    # green-grey floors tiled every third of a cell, navy, sand, brick red-brown, light
+    # sage and graphite shelves from 0.3 to 2.0 high inset 0.06 cell, a sun 25-70 degrees up of
+    # strength 2.4-3.8, warmer and cooler light, and a camera from 45 to 165 cells per 24 high.
+    "V": dict(robot_shapes=("puck", "cylinder", "rotbox"), goal_shapes=("disc", "ellipse", "square"),
+              floors=((0.74, 0.71, 0.66), (0.50, 0.50, 0.50), (0.32, 0.36, 0.33)),
+              shelf_colours=((0.10, 0.16, 0.42), (0.80, 0.72, 0.52), (0.52, 0.24, 0.18), (0.62, 0.72, 0.60),
+                             (0.26, 0.27, 0.29)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
