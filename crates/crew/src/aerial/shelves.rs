@@ -34,9 +34,11 @@
 //! are refused or read as before, but for the pieces of them that are the shelf's own: at
 //! least [`LARGER`] robots large and not separated into robots by [`blobs::split`] (its top
 //! leaning off its cells), or at most [`THIN`] of a robot's width thick (its rim); since
-//! issue #29's eleventh round). Robot pixels turned so, a robot's worth ([`SLIVER`]) or more,
-//! are reported ([`Absorbed::swallowed`]): a robot against the shelf may be among them, so a
-//! view with more goals than robots is then refused, rather than read without that robot.
+//! issue #29's eleventh round). Robot pixels turned so, from [`SWALLOWED`] pixels and a tenth
+//! of a robot, are reported ([`Absorbed::swallowed`]): a robot against the shelf may be among
+//! them, so a view with more goals than robots is then refused, rather than read without that
+//! robot. A goal-coloured piece of a goal's size ([`GOAL_SIZED`]) stays a goal wherever it
+//! lies.
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
