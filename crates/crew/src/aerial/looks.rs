@@ -282,8 +282,8 @@ pub fn local_levels(bright: &[Option<f64>], (gw, gh): (u32, u32)) -> Vec<f64> {
         .collect()
 }
 
-/// How the middle of cell `(cx, cy)` looks (see the module's comment); `near_mark`, `halo`
-/// and `glow` from [`near_marks`]: the pixels near a mark, left out of everything (its blurred
+/// How the middle of cell `(cx, cy)` looks (see the module's comment); how near each pixel
+/// lies to a mark from [`mark_reach`] (its edge, halo and glow): the pixels near a mark, left out of everything (its blurred
 /// edge and its shadow); the wider halo left out of the middle's look (the mark's colour
 /// spread into the floor by blur and JPEG), whose floor pixels still count in the shadow bins
 /// (a shadow beside a mark is the mark's only when it touches the mark itself); and within a
@@ -298,7 +298,7 @@ pub fn look(
     floor_to_image: &Homography,
     image_to_floor: &Homography,
     nadir: Option<(f64, f64)>,
-    (near_mark, halo, glow): (&[bool], &[bool], &[bool]),
+    near_mark: &[u8],
     leaned: &[bool],
     (cx, cy): (u32, u32),
 ) -> Look {
@@ -343,8 +343,8 @@ pub fn look(
                 ((dv * side) as usize).min(shadows::SIDE - 1),
             );
             let bin = &mut out.bins[bv * shadows::SIDE + bu];
-            if near_mark[y * width + x] || class == Class::Robot as u8 || class == Class::Goal as u8
-            {
+            let near = near_mark[y * width + x];
+            if near == NEAR_EDGE || class == Class::Robot as u8 || class == Class::Goal as u8 {
                 bin.mark += 1;
                 bin.robot += u32::from(class == Class::Robot as u8);
                 continue;
@@ -368,7 +368,7 @@ pub fn look(
             } else {
                 bin.solid += 1;
             }
-            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 || halo[y * width + x] {
+            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 || near <= NEAR_HALO {
                 continue;
             }
             out.unsure.1 += 1;
@@ -378,7 +378,7 @@ pub fn look(
                     seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
                     out.leaning.1 += 1;
                     // Leaning pale in a mark's hue within a cell of a mark: its glow.
-                    let glowing = glow[y * width + x] && classifier.of_a_marks_hue(rgb);
+                    let glowing = near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
                     if leaned.get(y * width + x) == Some(&true) && !glowing {
                         out.leaning.0 += 1;
                     }
@@ -406,52 +406,76 @@ pub fn look(
     out
 }
 
-/// Pixels within `r` (a square) of a pixel of a robot's or a goal's blob of at least
-/// [`blobs::MIN_AREA`] pixels (smaller specks of a mark's colour are noise, on a shelf too).
-pub fn near_marks(classes: &mut [u8], width: usize, r: usize) -> Vec<bool> {
+/// How near each pixel lies to a robot's or a goal's blob of at least [`blobs::MIN_AREA`]
+/// pixels (smaller specks of a mark's colour are noise, on a shelf too): the index of the
+/// first of `reach` (in pixels, ascending) within which it lies, a square around each of the
+/// blob's pixels, or `reach.len()` when it lies within none. One map for every reach the reader
+/// needs (a mark's edge and shadow, its halo, its glow: [`NEAR_EDGE`], [`NEAR_HALO`],
+/// [`NEAR_GLOW`]), from the blobs found once.
+pub fn mark_reach(classes: &mut [u8], width: usize, reach: &[usize]) -> Vec<u8> {
     let width = width.max(1);
     let height = classes.len() / width;
-    // Along rows (from each marked pixel), then along columns.
-    let mut rows = vec![false; classes.len()];
+    let mut seeds: Vec<(usize, usize)> = Vec::new();
     for class in [Class::Robot, Class::Goal] {
         for b in blobs::find(classes, width, class as u8) {
             if b.area() >= blobs::MIN_AREA {
-                for (x, y) in b.pixels {
-                    let (x, row) = (x as usize, y as usize * width);
-                    rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)].fill(true);
+                seeds.extend(b.pixels.iter().map(|&(x, y)| (x as usize, y as usize)));
+            }
+        }
+    }
+    let mut out = vec![reach.len() as u8; classes.len()];
+    if seeds.is_empty() {
+        return out;
+    }
+    let mut rows = vec![false; classes.len()];
+    let mut count = vec![0u32; width];
+    // The widest reach first, each narrower one over it.
+    for (k, &r) in reach.iter().enumerate().rev() {
+        // Along rows (from each marked pixel), then along columns.
+        rows.fill(false);
+        for &(x, y) in &seeds {
+            let row = y * width;
+            rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)].fill(true);
+        }
+        // Row by row (in memory order), each column's count of the rows within r marked there.
+        count.fill(0);
+        let row = |y: usize| &rows[y * width..(y + 1) * width];
+        for y in 0..r.min(height) {
+            count
+                .iter_mut()
+                .zip(row(y))
+                .for_each(|(n, &m)| *n += u32::from(m));
+        }
+        for y in 0..height {
+            if y + r < height {
+                count
+                    .iter_mut()
+                    .zip(row(y + r))
+                    .for_each(|(n, &m)| *n += u32::from(m));
+            }
+            if y > r {
+                count
+                    .iter_mut()
+                    .zip(row(y - r - 1))
+                    .for_each(|(n, &m)| *n -= u32::from(m));
+            }
+            for (o, &n) in out[y * width..(y + 1) * width].iter_mut().zip(&count) {
+                if n > 0 {
+                    *o = k as u8;
                 }
             }
         }
     }
-    // Row by row (in memory order), each column's count of the rows within r marked there.
-    let mut out = vec![false; classes.len()];
-    let mut count = vec![0u32; width];
-    let row = |y: usize| &rows[y * width..(y + 1) * width];
-    for y in 0..r.min(height) {
-        count
-            .iter_mut()
-            .zip(row(y))
-            .for_each(|(n, &m)| *n += u32::from(m));
-    }
-    for y in 0..height {
-        if y + r < height {
-            count
-                .iter_mut()
-                .zip(row(y + r))
-                .for_each(|(n, &m)| *n += u32::from(m));
-        }
-        if y > r {
-            count
-                .iter_mut()
-                .zip(row(y - r - 1))
-                .for_each(|(n, &m)| *n -= u32::from(m));
-        }
-        for (o, &n) in out[y * width..(y + 1) * width].iter_mut().zip(&count) {
-            *o = n > 0;
-        }
-    }
     out
 }
+
+/// [`mark_reach`]'s level of a pixel within a mark's blurred edge and shadow (left out of
+/// everything in [`look`]).
+pub const NEAR_EDGE: u8 = 0;
+/// Within its halo (left out of the middle's look, and of the painted lines').
+pub const NEAR_HALO: u8 = 1;
+/// Within its glow (see [`look`]).
+pub const NEAR_GLOW: u8 = 2;
 
 #[cfg(test)]
 mod tests {
@@ -593,7 +617,7 @@ mod tests {
     }
 
     #[test]
-    fn near_marks_is_a_square_around_each_mark_pixel() {
+    fn the_reach_of_a_mark_is_a_square_around_each_mark_pixel() {
         let (w, h) = (9, 7);
         let mut classes = vec![Class::Floor as u8; w * h];
         // A robot of 6 pixels (the smallest blob that is one) and a speck of 2.
@@ -603,13 +627,13 @@ mod tests {
         }
         classes[6 * w] = Class::Goal as u8;
         classes[6 * w + 1] = Class::Goal as u8;
-        let near = near_marks(&mut classes, w, 2);
+        let near = mark_reach(&mut classes, w, &[1, 2, 3]);
         for y in 0..h {
             for x in 0..w {
                 let want = robot
                     .iter()
                     .any(|&(rx, ry): &(usize, usize)| rx.abs_diff(x) <= 2 && ry.abs_diff(y) <= 2);
-                assert_eq!(near[y * w + x], want, "({x}, {y})");
+                assert_eq!(near[y * w + x] <= 1, want, "({x}, {y})");
             }
         }
     }

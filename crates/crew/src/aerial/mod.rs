@@ -747,9 +747,12 @@ fn read(
     // shadow bins keep the eighth: with the quarter there too, the held-out S0016's shadow of a
     // pale grey shelf passed for a robot's and the shelf read as floor (issue #29's eleventh
     // round).
-    let near_mark = looks::near_marks(&mut classes, width, (px / 8.0).round().max(2.0) as usize);
-    let halo = looks::near_marks(&mut classes, width, (px / 4.0).round().max(2.0) as usize);
-    let glow = looks::near_marks(&mut classes, width, px.round().max(2.0) as usize);
+    let reach = |cells: f64| (px * cells).round().max(2.0) as usize;
+    let near_mark = looks::mark_reach(
+        &mut classes,
+        width,
+        &[reach(1.0 / 8.0), reach(1.0 / 4.0), reach(1.0)],
+    );
     // Each cell alone, on all cores; the first odd cell in row-major order is reported, so the
     // result does not depend on the cores.
     let looks: Vec<Option<looks::Look>> = {
@@ -766,7 +769,7 @@ fn read(
                         &floor_to_image,
                         &image_to_floor,
                         nadir,
-                        (&near_mark, &halo, &glow),
+                        &near_mark,
                         &leaned,
                         (x, y),
                     )
@@ -858,7 +861,7 @@ fn read(
             maps,
             (gw, gh),
             &blocked,
-            (&halo, px),
+            (&near_mark, px),
         );
         let take = if audit { found.len() } else { 1 };
         found

@@ -25,6 +25,7 @@
 
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
+use super::looks::NEAR_HALO;
 use image::RgbImage;
 
 /// Half the band of a border measured as its line, in cells, and at least [`LINE_PX`] pixels
@@ -76,7 +77,7 @@ pub fn missing(
     maps: (&Homography, &Homography),
     (gw, gh): (u32, u32),
     blocked: &[bool],
-    (near_mark, px): (&[bool], f64),
+    (near_mark, px): (&[u8], f64),
 ) -> Vec<Missing> {
     use rayon::prelude::*;
     let line = LINE.max(LINE_PX / px.max(1.0));
@@ -160,7 +161,7 @@ fn border_contrast(
     classifier: &Classifier,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     (((x, y), vertical), (line_band, side_band)): (Border, (f64, (f64, f64))),
-    near_mark: &[bool],
+    near_mark: &[u8],
 ) -> Option<Contrast> {
     let (width, height) = (img.width() as usize, img.height() as usize);
     let border = if vertical {
@@ -222,7 +223,7 @@ fn border_contrast(
             } else {
                 continue;
             }
-            if classes[i] != Class::Floor as u8 || near_mark[i] {
+            if classes[i] != Class::Floor as u8 || near_mark[i] <= NEAR_HALO {
                 continue;
             }
             let rgb = classifier.balanced(img.get_pixel(px as u32, py as u32).0);
@@ -305,7 +306,7 @@ mod tests {
             (to_image, &to_image.inverse().unwrap()),
             (6, 4),
             &[false; 24],
-            (&[false; 120 * 80], 20.0),
+            (&[3; 120 * 80], 20.0),
         )
     }
 
