@@ -1353,6 +1353,15 @@ fn crew_refuses_spare_goals_in_a_photograph_unless_told() {
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["reading"]["counts"]["robots"].as_u64(), Some(robots));
     assert_eq!(v["reading"]["counts"]["goals"].as_u64(), Some(robots + 1));
+    // Only with --image.
+    let o = mason(&[
+        "crew",
+        &data("crew-room.map"),
+        "--scen",
+        &data("crew-room.scen"),
+        "--spare-goals",
+    ]);
+    assert_input_error(&o, &["--spare-goals", "apply to --image"]);
     std::fs::remove_dir_all(&dir).ok();
 }
 
