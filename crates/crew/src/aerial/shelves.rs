@@ -37,8 +37,8 @@
 //! issue #29's eleventh round). Robot pixels turned so, from [`SWALLOWED`] pixels and a tenth
 //! of a robot, are reported ([`Absorbed::swallowed`]): a robot against the shelf may be among
 //! them, so a view with more goals than robots is then refused, rather than read without that
-//! robot. A goal-coloured piece of a goal's size ([`GOAL_SIZED`]) stays a goal wherever it
-//! lies.
+//! robot. A goal-coloured piece of a goal's size ([`GOAL_SIZED`]) and solid like a goal
+//! ([`SOLID`]) stays a goal wherever it lies.
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
@@ -68,6 +68,10 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// shifted by the lean, T0019): a shelf's piece that size is then read as a goal more, and the
 /// view refused for more goals than robots, not read without a goal.
 pub const GOAL_SIZED: std::ops::Range<f64> = 0.5..1.7;
+/// ... and at least this [`solidity`]: a goal is a solid disc or square, while the goal-coloured
+/// specks of a shelf of a colour near the goals' are ragged (E0007's olive shelves: 0.51 at
+/// most; goals 0.94 and more; since issue #29's twelfth round).
+pub const SOLID: f64 = 0.7;
 /// A robot-coloured piece of an obstacle blob under this share of the median robot is a
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
@@ -432,55 +436,79 @@ pub fn absorb(
         return out;
     }
     // Each blob with the cells it fills, of the grid itself or else of the first shifted
-    // grid whose cells it fills; a blob larger than the most marks touching that
+    // grid whose cells it fills; then a blob larger than the most marks touching that
     // `blobs::split` separates fills them at [`LOOSE`] (a top whose colour reads as a mark's
-    // over part of its width only).
-    let goal_median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
-    let mark = robot_median.max(goal_median as f64);
+    // over part of its width only). Marks are measured for that without the blobs that fill
+    // cells at [`FILLED`]: the shelves of a colour near the goals' break into specks of goal
+    // pixels, and the median goal could be such a speck, several goals large (E0007: an olive
+    // shelf ten goals large was then not large; issue #29's twelfth round).
     let steps = (SHIFT_STEPS * SHIFT_STEPS) as usize;
     let mut shifted: Vec<std::collections::BTreeMap<usize, Middle>> =
         vec![Default::default(); 2 * steps];
-    let shaped: Vec<(&Vec<usize>, Vec<usize>, Shift)> = without_robots
+    let mut fills = |b: &[usize], classes: &[u8], j: usize, share: f64| {
+        (usize::from(j == 0)..steps).find_map(|k| {
+            let step = f64::from(SHIFT_STEPS);
+            let shift = (
+                (k % SHIFT_STEPS as usize) as f64 / step,
+                (k / SHIFT_STEPS as usize) as f64 / step,
+            );
+            let known = &mut shifted[j * steps + k];
+            let cells = filled_shifted(b, classes, width, maps, floor, (known, shift, share));
+            (!cells.is_empty()).then_some((cells, shift))
+        })
+    };
+    let firm: Vec<Option<(Vec<usize>, Shift)>> = without_robots
         .iter()
-        .filter_map(|b| {
+        .map(|b| {
             let aligned = filled_cells(b, classes, width, maps, floor, &mut known);
             if !aligned.is_empty() {
-                return Some((b, aligned, ALIGNED));
+                return Some((aligned, ALIGNED));
             }
-            let large = b.len() as f64 >= MARKS_LARGE * mark;
-            let shares: &[f64] = if large { &[FILLED, LOOSE] } else { &[FILLED] };
-            shares.iter().enumerate().find_map(|(j, &share)| {
-                (usize::from(j == 0)..steps).find_map(|k| {
-                    let step = f64::from(SHIFT_STEPS);
-                    let shift = (
-                        (k % SHIFT_STEPS as usize) as f64 / step,
-                        (k / SHIFT_STEPS as usize) as f64 / step,
-                    );
-                    let known = &mut shifted[j * steps + k];
-                    let cells =
-                        filled_shifted(b, classes, width, maps, floor, (known, shift, share));
-                    (!cells.is_empty()).then_some((b, cells, shift))
-                })
-            })
+            fills(b, classes, 0, FILLED)
+        })
+        .collect();
+    let firm_ones: Vec<bool> = firm.iter().map(Option::is_some).collect();
+    let goal_median = goal_median_without(classes, width, &without_robots, &firm_ones);
+    // The marks a blob is measured against: those of the colours that make at least a tenth
+    // of its mark-coloured pixels (a goal-coloured shelf against the goals, when the robots
+    // are five times larger, E0007), or both.
+    let mark = |b: &[usize]| {
+        let robot = b
+            .iter()
+            .filter(|&&i| classes[i] == Class::Robot as u8)
+            .count() as f64;
+        let goal = b
+            .iter()
+            .filter(|&&i| classes[i] == Class::Goal as u8)
+            .count() as f64;
+        let some = |n: f64| n >= 0.1 * (robot + goal);
+        match (some(robot) && robot > 0.0, some(goal) && goal > 0.0) {
+            (true, false) => robot_median,
+            (false, true) => goal_median as f64,
+            _ => robot_median.max(goal_median as f64),
+        }
+    };
+    let shaped: Vec<(&Vec<usize>, Vec<usize>, Shift)> = without_robots
+        .iter()
+        .zip(firm)
+        .filter_map(|(b, firm)| {
+            let found = firm.or_else(|| {
+                (b.len() as f64 >= MARKS_LARGE * mark(b))
+                    .then(|| fills(b, classes, 1, LOOSE))
+                    .flatten()
+            });
+            found.map(|(cells, shift)| (b, cells, shift))
         })
         .collect();
     if shaped.is_empty() {
         return out;
     }
     // The median goal among the goal pixels outside those blobs.
-    // (Those blobs' goal pixels are set aside for the search and given back.)
-    let hidden: Vec<usize> = shaped
+    let taken: Vec<bool> = without_robots
         .iter()
-        .flat_map(|(b, _, _)| b.iter().copied())
-        .filter(|&i| classes[i] == Class::Goal as u8)
+        .map(|b| shaped.iter().any(|(s, _, _)| std::ptr::eq(*s, b)))
         .collect();
-    for &i in &hidden {
-        classes[i] = OUTSIDE;
-    }
-    let median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
-    for &i in &hidden {
-        classes[i] = Class::Goal as u8;
-    }
+    let median = goal_median_without(classes, width, &without_robots, &taken);
     for (b, cells, shift) in shaped {
         if (b.len() as f64) < LARGER * median as f64 {
             continue;
@@ -495,9 +523,9 @@ pub fn absorb(
             b,
             Class::Goal,
             &in_filled,
-            &|area, outside| {
+            &|area, outside, solid| {
                 let goals = area as f64 / median.max(1) as f64;
-                if outside >= GOAL_OUTSIDE || GOAL_SIZED.contains(&goals) {
+                if outside >= GOAL_OUTSIDE || (GOAL_SIZED.contains(&goals) && solid >= SOLID) {
                     Keep::All
                 } else {
                     Keep::None
@@ -510,7 +538,7 @@ pub fn absorb(
             b,
             Class::Robot,
             &in_filled,
-            &|area, outside| robot_piece(area as f64 / robot_median, outside),
+            &|area, outside, _| robot_piece(area as f64 / robot_median, outside),
         );
         let robots = without_shelf_pieces(robots, width, height, robot_median);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
@@ -531,6 +559,32 @@ pub fn absorb(
         out.turned += 1;
     }
     out
+}
+
+/// The median goal (as [`blobs::sort`] takes it) among the goal pixels outside the blobs
+/// `taken` (one flag a blob). Those blobs' goal pixels are set aside for the search and given
+/// back.
+fn goal_median_without(
+    classes: &mut [u8],
+    width: usize,
+    blobs_found: &[Vec<usize>],
+    taken: &[bool],
+) -> usize {
+    let hidden: Vec<usize> = blobs_found
+        .iter()
+        .zip(taken)
+        .filter(|(_, &t)| t)
+        .flat_map(|(b, _)| b.iter().copied())
+        .filter(|&i| classes[i] == Class::Goal as u8)
+        .collect();
+    for &i in &hidden {
+        classes[i] = OUTSIDE;
+    }
+    let median = blobs::sort(blobs::find(classes, width, Class::Goal as u8)).median_area;
+    for &i in &hidden {
+        classes[i] = Class::Goal as u8;
+    }
+    median
 }
 
 /// Floor pixels enclosed by a blob: with a pixel of the blob or an obstacle pixel within
@@ -639,7 +693,7 @@ fn marks_within(
     blob: &[usize],
     class: Class,
     in_filled: &dyn Fn(usize) -> bool,
-    keep: &dyn Fn(usize, f64) -> Keep,
+    keep: &dyn Fn(usize, f64, f64) -> Keep,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -651,7 +705,8 @@ fn marks_within(
     let mut kept = Vec::new();
     for piece in pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
-        match keep(piece.len(), outside as f64 / piece.len() as f64) {
+        let share = outside as f64 / piece.len() as f64;
+        match keep(piece.len(), share, solidity(&piece, width)) {
             Keep::All => kept.extend(piece),
             Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
             Keep::None => {}
@@ -659,6 +714,35 @@ fn marks_within(
     }
     kept.sort_unstable();
     kept
+}
+
+/// How solid a piece of pixels (indices) is: the share of its pixels whose four neighbours are
+/// all its own, over that share for a disc of its area (about 1 for a disc or a square, less
+/// for a ragged or thin piece; 0 for a piece too small to have an inside).
+pub(crate) fn solidity(piece: &[usize], width: usize) -> f64 {
+    let mut sorted = piece.to_vec();
+    sorted.sort_unstable();
+    let has = |i: usize| sorted.binary_search(&i).is_ok();
+    let inside = sorted
+        .iter()
+        .filter(|&&i| {
+            let (x, _) = column_row(i, width);
+            x > 0
+                && x + 1 < width
+                && i >= width
+                && has(i - 1)
+                && has(i + 1)
+                && has(i - width)
+                && has(i + width)
+        })
+        .count() as f64;
+    let area = sorted.len() as f64;
+    let radius = (area / std::f64::consts::PI).sqrt();
+    let disc = (radius - 1.0).max(0.0).powi(2) * std::f64::consts::PI / area;
+    if disc <= 0.0 {
+        return 0.0;
+    }
+    inside / area / disc
 }
 
 /// Pixels (indices, sorted) split into their 8-connected pieces.
@@ -979,6 +1063,69 @@ mod tests {
         );
         assert_eq!(classes[3 * 40 + 3], Class::Obstacle as u8);
         assert_eq!(classes[8 * 40 + 10], Class::Robot as u8);
+    }
+
+    #[test]
+    fn solidity_tells_a_goal_from_a_ragged_speck() {
+        let w = 40;
+        let square: Vec<usize> = (0..100).map(|k| (5 + k / 10) * w + 5 + k % 10).collect();
+        let disc: Vec<usize> = (0..w * 20)
+            .filter(|&i| {
+                let (x, y) = ((i % w) as f64 - 20.0, (i / w) as f64 - 10.0);
+                x * x + y * y <= 36.0
+            })
+            .collect();
+        // A diagonal line 16 px long and a checkerboard: no pixel inside.
+        let line: Vec<usize> = (0..16).map(|k| (2 + k) * w + 2 + k).collect();
+        let checks: Vec<usize> = (0..w * 10).filter(|&i| (i % w + i / w) % 2 == 0).collect();
+        assert!(solidity(&square, w) >= 0.9, "{}", solidity(&square, w));
+        assert!(solidity(&disc, w) >= 0.9, "{}", solidity(&disc, w));
+        assert_eq!(solidity(&line, w), 0.0);
+        assert_eq!(solidity(&checks, w), 0.0);
+        // Too small to have an inside.
+        assert_eq!(solidity(&[3], w), 0.0);
+    }
+
+    #[test]
+    fn a_ragged_goal_sized_speck_of_a_shelf_is_the_shelf() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals of 16 px in cells (3, 0) and (3, 1); an unsure shelf over cells (0, 0) and
+        // (1, 0) with a goal-coloured diagonal streak of 8 px in it: a goal's size, but
+        // ragged, so the shelf's.
+        paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Unsure);
+        for k in 0..8 {
+            classes[(1 + k) * 40 + 6 + k] = Class::Goal as u8;
+        }
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
+        assert_eq!(classes[4 * 40 + 9], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_goal_coloured_top_is_measured_against_goals_not_larger_robots() {
+        // Robots of 64 px in cells (2, 1) and (3, 1), goals of 16 px in cells (2, 0), (3, 0),
+        // (0, 1) and (1, 1); a goal-coloured band over cells (0, 0) and (1, 0), rows 1–4 (the rest of the
+        // top reads as floor): 80 px, 5 goals but 1.25 robots, and it fills half of each
+        // middle.
+        let (to_image, to_floor, mut classes) = floor();
+        for x in [21, 31] {
+            paint(&mut classes, 40, (x, 11, x + 8, 19), Class::Robot);
+            paint(&mut classes, 40, (x + 2, 2, x + 6, 6), Class::Goal);
+            paint(&mut classes, 40, (x - 18, 13, x - 14, 17), Class::Goal);
+        }
+        paint(&mut classes, 40, (0, 1, 20, 5), Class::Goal);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
+        assert_eq!(classes[3 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[4 * 40 + 33], Class::Goal as u8);
+        assert_eq!(classes[15 * 40 + 25], Class::Robot as u8);
     }
 
     #[test]
