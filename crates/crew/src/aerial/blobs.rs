@@ -31,6 +31,34 @@ pub struct Blob {
 }
 
 impl Blob {
+    /// How solid the blob is: the share of its pixels whose four neighbours are all its own,
+    /// over that share for a disc of its area. About 1 for a disc or a square, less for a
+    /// ragged or thin blob, 0 for one too small to have an inside (since issue #29's twelfth
+    /// round).
+    pub fn solidity(&self) -> f64 {
+        let mut sorted: Vec<(u32, u32)> = self.pixels.iter().map(|&(x, y)| (y, x)).collect();
+        sorted.sort_unstable();
+        let has = |p: (u32, u32)| sorted.binary_search(&p).is_ok();
+        let inside = sorted
+            .iter()
+            .filter(|&&(y, x)| {
+                x > 0
+                    && y > 0
+                    && has((y, x - 1))
+                    && has((y, x + 1))
+                    && has((y - 1, x))
+                    && has((y + 1, x))
+            })
+            .count() as f64;
+        let area = sorted.len() as f64;
+        let radius = (area / std::f64::consts::PI).sqrt();
+        let disc = (radius - 1.0).max(0.0).powi(2) * std::f64::consts::PI / area;
+        if disc <= 0.0 {
+            return 0.0;
+        }
+        inside / area / disc
+    }
+
     /// The blob of pixels given by index (row-major, `width` pixels a row).
     pub fn from_indices(indices: &[usize], width: usize) -> Blob {
         let pixels: Vec<(u32, u32)> = indices
@@ -334,6 +362,11 @@ const MERGED: f64 = 1.7;
 const PIECE: f64 = 0.4;
 /// A lone piece smaller than this share of the median is noise; larger, it is doubtful.
 pub const NOISE: f64 = 0.1;
+/// ... unless it is ragged, less solid than this ([`Blob::solidity`]): a shelf's rim or edge
+/// read in a mark's colour, a line of specks, not a piece of a robot or a goal (K0017, L0025,
+/// Q0010; issue #29's twelfth round). A mark lost so leaves the view with fewer robots than
+/// goals (or the reverse), which is refused.
+pub const RAGGED: f64 = 0.3;
 /// A kept blob under this share of the median is a robot (or goal) partly hidden, or a
 /// single one among robots touching in pairs that made the median: the reading is refused
 /// when a blob of the median's size splits in two.
@@ -372,7 +405,10 @@ pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
                 );
                 b.pixels.extend(p.pixels);
             }
-            None if p.area() >= MIN_AREA && p.area() as f64 >= NOISE * median as f64 => {
+            None if p.area() >= MIN_AREA
+                && p.area() as f64 >= NOISE * median as f64
+                && p.solidity() >= RAGGED =>
+            {
                 doubtful.push(p)
             }
             None => {}
@@ -717,6 +753,40 @@ mod tests {
             pixels,
             bbox: (x0, y0, x0 + side - 1, y0 + side - 1),
         }
+    }
+
+    #[test]
+    fn solidity_tells_a_mark_from_a_ragged_speck() {
+        let blob = |pixels: Vec<(u32, u32)>| {
+            Blob::from_indices(
+                &pixels
+                    .iter()
+                    .map(|&(x, y)| y as usize * 40 + x as usize)
+                    .collect::<Vec<_>>(),
+                40,
+            )
+        };
+        let square = blob((0..100).map(|k| (5 + k % 10, 5 + k / 10)).collect());
+        let disc = blob(
+            (0..40 * 20)
+                .map(|i| (i % 40, i / 40))
+                .filter(|&(x, y)| (x as f64 - 20.0).powi(2) + (y as f64 - 10.0).powi(2) <= 36.0)
+                .collect(),
+        );
+        // A diagonal line 16 px long and a checkerboard: no pixel inside.
+        let line = blob((0..16).map(|k| (2 + k, 2 + k)).collect());
+        let checks = blob(
+            (0..40 * 10)
+                .map(|i| (i % 40, i / 40))
+                .filter(|&(x, y)| (x + y) % 2 == 0)
+                .collect(),
+        );
+        assert!(square.solidity() >= 0.9, "{}", square.solidity());
+        assert!(disc.solidity() >= 0.9, "{}", disc.solidity());
+        assert_eq!(line.solidity(), 0.0);
+        assert_eq!(checks.solidity(), 0.0);
+        // Too small to have an inside.
+        assert_eq!(blob(vec![(3, 3)]).solidity(), 0.0);
     }
 
     #[test]

@@ -49,7 +49,7 @@
 //! Cost: O(pixels) to label the blobs, and O(pixels of the cells they touch) for the cells'
 //! pixel counts when a blob is large.
 
-use super::blobs::{self, column_row};
+use super::blobs::{self, column_row, Blob};
 use super::colour::Class;
 use super::homography::Homography;
 use super::pixels::OUTSIDE;
@@ -68,7 +68,7 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// shifted by the lean, T0019): a shelf's piece that size is then read as a goal more, and the
 /// view refused for more goals than robots, not read without a goal.
 pub const GOAL_SIZED: std::ops::Range<f64> = 0.5..1.7;
-/// ... and at least this [`solidity`]: a goal is a solid disc or square, while the goal-coloured
+/// ... and at least this [`Blob::solidity`]: a goal is a solid disc or square, while the goal-coloured
 /// specks of a shelf of a colour near the goals' are ragged (E0007's olive shelves: 0.51 at
 /// most; goals 0.94 and more; since issue #29's twelfth round).
 pub const SOLID: f64 = 0.7;
@@ -706,7 +706,11 @@ fn marks_within(
     for piece in pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         let share = outside as f64 / piece.len() as f64;
-        match keep(piece.len(), share, solidity(&piece, width)) {
+        match keep(
+            piece.len(),
+            share,
+            Blob::from_indices(&piece, width).solidity(),
+        ) {
             Keep::All => kept.extend(piece),
             Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
             Keep::None => {}
@@ -714,35 +718,6 @@ fn marks_within(
     }
     kept.sort_unstable();
     kept
-}
-
-/// How solid a piece of pixels (indices) is: the share of its pixels whose four neighbours are
-/// all its own, over that share for a disc of its area (about 1 for a disc or a square, less
-/// for a ragged or thin piece; 0 for a piece too small to have an inside).
-pub(crate) fn solidity(piece: &[usize], width: usize) -> f64 {
-    let mut sorted = piece.to_vec();
-    sorted.sort_unstable();
-    let has = |i: usize| sorted.binary_search(&i).is_ok();
-    let inside = sorted
-        .iter()
-        .filter(|&&i| {
-            let (x, _) = column_row(i, width);
-            x > 0
-                && x + 1 < width
-                && i >= width
-                && has(i - 1)
-                && has(i + 1)
-                && has(i - width)
-                && has(i + width)
-        })
-        .count() as f64;
-    let area = sorted.len() as f64;
-    let radius = (area / std::f64::consts::PI).sqrt();
-    let disc = (radius - 1.0).max(0.0).powi(2) * std::f64::consts::PI / area;
-    if disc <= 0.0 {
-        return 0.0;
-    }
-    inside / area / disc
 }
 
 /// Pixels (indices, sorted) split into their 8-connected pieces.
@@ -1063,27 +1038,6 @@ mod tests {
         );
         assert_eq!(classes[3 * 40 + 3], Class::Obstacle as u8);
         assert_eq!(classes[8 * 40 + 10], Class::Robot as u8);
-    }
-
-    #[test]
-    fn solidity_tells_a_goal_from_a_ragged_speck() {
-        let w = 40;
-        let square: Vec<usize> = (0..100).map(|k| (5 + k / 10) * w + 5 + k % 10).collect();
-        let disc: Vec<usize> = (0..w * 20)
-            .filter(|&i| {
-                let (x, y) = ((i % w) as f64 - 20.0, (i / w) as f64 - 10.0);
-                x * x + y * y <= 36.0
-            })
-            .collect();
-        // A diagonal line 16 px long and a checkerboard: no pixel inside.
-        let line: Vec<usize> = (0..16).map(|k| (2 + k) * w + 2 + k).collect();
-        let checks: Vec<usize> = (0..w * 10).filter(|&i| (i % w + i / w) % 2 == 0).collect();
-        assert!(solidity(&square, w) >= 0.9, "{}", solidity(&square, w));
-        assert!(solidity(&disc, w) >= 0.9, "{}", solidity(&disc, w));
-        assert_eq!(solidity(&line, w), 0.0);
-        assert_eq!(solidity(&checks, w), 0.0);
-        // Too small to have an inside.
-        assert_eq!(solidity(&[3], w), 0.0);
     }
 
     #[test]
