@@ -948,6 +948,23 @@ mod tests {
     }
 
     #[test]
+    fn a_ragged_lone_piece_is_noise_and_a_solid_one_doubtful() {
+        // Three robots of 100 px; alone, a solid piece of 16 px and a diagonal line of 16 px
+        // (a shelf's rim in the robots' colour).
+        let mut blobs: Vec<Blob> = (0..3).map(|k| blob_at(20 * k, 0, 10)).collect();
+        blobs.push(blob_at(0, 40, 4));
+        let line: Vec<(u32, u32)> = (0..16).map(|k| (40 + k, 40 + k)).collect();
+        blobs.push(Blob {
+            pixels: line,
+            bbox: (40, 40, 55, 55),
+        });
+        let s = sort(blobs);
+        assert_eq!(s.kept.len(), 3);
+        assert_eq!(s.doubtful.len(), 1);
+        assert_eq!(s.doubtful[0].bbox, (0, 40, 3, 43));
+    }
+
+    #[test]
     fn a_shelf_of_the_robots_colour_or_specks_do_not_make_the_median() {
         // Six robots of 36 px and one shelf of 400 px (a quarter of it is more than a robot):
         // the median is a robot's.
