@@ -513,6 +513,23 @@ pub fn thickness(blob: &Blob) -> f64 {
     f64::from(dist.iter().copied().max().unwrap_or(0)) / 3.0
 }
 
+/// A blob whose bounding box's diagonal, squared, is more than this many times its area is
+/// a line ([`line_like`]): two to four discs touching in a row make 3.2 to 5.4.
+pub const LINE_LIKE: f64 = 8.0;
+
+/// Whether a blob is a line rather than marks touching: longer, for its area, than four
+/// discs in a row ([`LINE_LIKE`]). A shelf's edge or rim read in a mark's colour (L0004,
+/// Q0013, Q0028: 11 to 15), or a line painted on the floor in it; since issue #29's twelfth
+/// round such a blob that [`split`] does not separate is no mark. A mark lost so leaves
+/// fewer robots than goals (or the reverse), which is refused.
+pub fn line_like(blob: &Blob) -> bool {
+    let (w, h) = (
+        f64::from(blob.bbox.2 - blob.bbox.0 + 1),
+        f64::from(blob.bbox.3 - blob.bbox.1 + 1),
+    );
+    w * w + h * h > LINE_LIKE * blob.area() as f64
+}
+
 /// A merged blob is split only when its area is this close (in medians) to a whole number.
 pub const SPLIT_SLACK: f64 = 0.3;
 /// Each piece of a split blob is within this share of the median (either way).
@@ -521,20 +538,38 @@ pub const PIECE_SPREAD: f64 = 0.4;
 /// Splits a blob of several touching robots (or goals) of median area `median` into one blob
 /// each, or `None` when that cannot be done with confidence.
 ///
-/// The count is the area in medians, accepted only when it is within [`SPLIT_SLACK`] of a
-/// whole number from 2 to 4. The blob is eroded (chamfer distance to its outside) until
+/// The count is the area in medians when it is within [`SPLIT_SLACK`] of a whole number from
+/// 2 to 4; else each of the two whole numbers next to it is tried, and the one that alone
+/// succeeds is taken. The blob is eroded (chamfer distance to its outside) until
 /// its core falls apart into exactly that many pieces, each at least a 40th of the median;
 /// the cores then grow back down the depths (at each depth, breadth first from all cores at
-/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: a
-/// count that is not clear, a core that never falls apart into that many pieces (or into
+/// once into the pixels at least that deep, in a fixed order), like a watershed. Refused: no
+/// count, or two, that succeed; a core that never falls apart into that many pieces (or into
 /// more first), or a piece whose area is more than [`PIECE_SPREAD`] from the median.
 pub fn split(blob: &Blob, median: usize) -> Option<Vec<Blob>> {
     let ratio = blob.area() as f64 / median.max(1) as f64;
     let n = ratio.round();
-    if !(2.0..=4.0).contains(&n) || (ratio - n).abs() > SPLIT_SLACK {
-        return None;
+    if (2.0..=4.0).contains(&n) && (ratio - n).abs() <= SPLIT_SLACK {
+        return split_into(blob, median, n as usize);
     }
-    let n = n as usize;
+    // Between two counts (robots of a view differ in size with blur, perspective and their
+    // shadows: F0002's two robots touching were 2.5 medians): each count from 2 to 4 next
+    // to the area is tried, and the split is taken when exactly one of them succeeds (the
+    // core falls apart into that many pieces, each within [`PIECE_SPREAD`] of the median;
+    // since issue #29's twelfth round).
+    let found: Vec<Vec<Blob>> = [ratio.floor(), ratio.ceil()]
+        .into_iter()
+        .filter(|n| (2.0..=4.0).contains(n))
+        .filter_map(|n| split_into(blob, median, n as usize))
+        .collect();
+    match <[Vec<Blob>; 1]>::try_from(found) {
+        Ok([one]) => Some(one),
+        Err(_) => None,
+    }
+}
+
+/// [`split`] into `n` blobs.
+fn split_into(blob: &Blob, median: usize, n: usize) -> Option<Vec<Blob>> {
     let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
     let (dist, bw, bh) = chamfer(blob);
     let at = |d: &[u32], x: isize, y: isize| -> u32 {
@@ -1050,6 +1085,38 @@ mod tests {
             bbox: (0, 0, 19, 7),
         };
         assert!(split(&bar, 80).is_none());
+    }
+
+    #[test]
+    fn robots_larger_than_the_median_touching_split_between_counts() {
+        // Two discs of radius 5.6 touching, against a median disc of radius 5: 2.5 medians,
+        // between two counts; only two cores are found, each piece 1.25 medians.
+        let one = discs(&[(10.0, 10.0)], 5.0).area();
+        let blob = discs(&[(20.0, 20.0), (30.8, 20.0)], 5.6);
+        let ratio = blob.area() as f64 / one as f64;
+        assert!((ratio - 2.5).abs() < 0.15, "{ratio}");
+        let pieces = split(&blob, one).expect("split");
+        assert_eq!(pieces.len(), 2);
+    }
+
+    #[test]
+    fn a_line_is_no_marks_touching() {
+        // Four discs in a row are no line; a bar 40 × 3 px and a diagonal band are.
+        let row = discs(
+            &[(10.0, 10.0), (20.0, 10.0), (30.0, 10.0), (40.0, 10.0)],
+            5.0,
+        );
+        assert!(!line_like(&row));
+        let bar = Blob {
+            pixels: (0..120).map(|k| (k % 40, 5 + k / 40)).collect(),
+            bbox: (0, 5, 39, 7),
+        };
+        assert!(line_like(&bar));
+        let band: Vec<(u32, u32)> = (0..30).flat_map(|k| [(k, k), (k + 1, k)]).collect();
+        assert!(line_like(&Blob {
+            pixels: band,
+            bbox: (0, 0, 30, 29),
+        }));
     }
 
     /// Two discs of radius 120 px touching: about 64 depths are tried, not 360.
