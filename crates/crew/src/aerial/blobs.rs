@@ -31,6 +31,29 @@ pub struct Blob {
 }
 
 impl Blob {
+    /// How elongated the blob is: the square root of the ratio of its pixels' second moments
+    /// along their principal axes (1 for a disc or a square, 2 for a bar twice as long as
+    /// wide, infinite for a line one pixel wide... or any blob of one pixel).
+    pub fn elongation(&self) -> f64 {
+        let n = self.pixels.len() as f64;
+        if n == 0.0 {
+            return f64::INFINITY;
+        }
+        let (mx, my) = self.pixels.iter().fold((0.0, 0.0), |(a, b), &(x, y)| {
+            (a + f64::from(x) / n, b + f64::from(y) / n)
+        });
+        let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
+        for &(x, y) in &self.pixels {
+            let (dx, dy) = (f64::from(x) - mx, f64::from(y) - my);
+            (xx, yy, xy) = (xx + dx * dx / n, yy + dy * dy / n, xy + dx * dy / n);
+        }
+        // A pixel is a unit square: each axis gains 1/12 (so a single pixel is a square).
+        let (xx, yy) = (xx + 1.0 / 12.0, yy + 1.0 / 12.0);
+        let half = (xx + yy) / 2.0;
+        let spread = (((xx - yy) / 2.0).powi(2) + xy * xy).sqrt();
+        ((half + spread) / (half - spread).max(1e-12)).sqrt()
+    }
+
     /// How solid the blob is: the share of its pixels whose four neighbours are all its own,
     /// over that share for a disc of its area. About 1 for a disc or a square, less for a
     /// ragged or thin blob, 0 for one too small to have an inside (since issue #29's twelfth
@@ -1097,6 +1120,33 @@ mod tests {
         assert!((ratio - 2.5).abs() < 0.15, "{ratio}");
         let pieces = split(&blob, one).expect("split");
         assert_eq!(pieces.len(), 2);
+    }
+
+    #[test]
+    fn elongation_of_discs_bars_and_lines() {
+        let disc = discs(&[(20.0, 20.0)], 6.0);
+        assert!(
+            (disc.elongation() - 1.0).abs() < 0.05,
+            "{}",
+            disc.elongation()
+        );
+        let bar = Blob {
+            pixels: (0..200).map(|k| (k % 20, k / 20)).collect(),
+            bbox: (0, 0, 19, 9),
+        };
+        assert!(
+            (bar.elongation() - 2.0).abs() < 0.05,
+            "{}",
+            bar.elongation()
+        );
+        // The same bar on its diagonal.
+        let diagonal = Blob {
+            pixels: (0..20)
+                .flat_map(|k| (0..3).map(move |j| (k + j, k)))
+                .collect(),
+            bbox: (0, 0, 21, 19),
+        };
+        assert!(diagonal.elongation() > 4.0, "{}", diagonal.elongation());
     }
 
     #[test]

@@ -81,6 +81,10 @@ pub const SWALLOWED: usize = blobs::MIN_AREA;
 /// A blob at least this many times the larger of the median robot and the median goal is
 /// more than the most marks touching that `blobs::split` separates (4).
 pub const MARKS_LARGE: f64 = 4.5;
+/// A robot-sized blob at least this elongated ([`Blob::elongation`]) that fills two cells is
+/// a shelf: a robot, a disc or a square, is 1 (a tall one leaning under a tilted camera a
+/// little more), a shelf of two cells 2 or more.
+pub const SHELF_LONG: f64 = 1.7;
 /// The share of a cell's middle such a blob must fill, in two cells side by side.
 pub const LOOSE: f64 = 0.5;
 /// A robot-coloured piece left of a shelf at most this thick, in widths of a median robot
@@ -299,18 +303,24 @@ fn filled_cells(
         width,
         maps,
         floor,
-        (known, ALIGNED, FILLED),
+        (known, ALIGNED, FILLED, false),
     )
 }
 
-/// The cells of the grid shifted by `shift` a blob fills, as [`filled_cells`].
+/// The cells of the grid shifted by `shift` a blob fills, as [`filled_cells`] (`alone`: with
+/// its own pixels only, not with the obstacle pixels beside them).
 fn filled_shifted(
     pixels: &[usize],
     classes: &[u8],
     width: usize,
     maps: (&Homography, &Homography),
     floor: (u32, u32),
-    (known, shift, share): (&mut std::collections::BTreeMap<usize, Middle>, Shift, f64),
+    (known, shift, share, alone): (
+        &mut std::collections::BTreeMap<usize, Middle>,
+        Shift,
+        f64,
+        bool,
+    ),
 ) -> Vec<usize> {
     let image_to_floor = maps.1;
     // The blob's pixels other than obstacle pixels in the middle of each cell it holds, by
@@ -328,7 +338,8 @@ fn filled_shifted(
         .into_iter()
         .filter(|&(c, n)| {
             let m = middle_shifted(known, classes, width, maps, floor, (c, shift));
-            m.pixels > 0 && f64::from(n + m.obstacle) >= share * f64::from(m.pixels)
+            let obstacle = if alone { 0 } else { m.obstacle };
+            m.pixels > 0 && f64::from(n + obstacle) >= share * f64::from(m.pixels)
         })
         .map(|(c, _)| c)
         .collect();
@@ -386,7 +397,7 @@ pub fn absorb(
     // camera, but not most of a view's robots), and the pixels of the robot-sized ones
     // (from [`SLIVER`] to [`LARGER`] median robots), which stay robots and take no part in a
     // shelf's shape (a large robot touching a goal would otherwise fill two cells with it).
-    let (robot_median, robot_sized) = {
+    let (robot_median, robot_sized, shelf_like) = {
         let found = blobs::find(classes, width, Class::Robot as u8);
         let index = |b: &blobs::Blob| -> Vec<usize> {
             b.pixels
@@ -403,20 +414,47 @@ pub fn absorb(
             .cloned()
             .collect();
         let median = (robot_median_area(robots) as f64).max(blobs::MIN_AREA as f64);
-        // One bit a pixel.
+        // One bit a pixel: robots (robot-sized, or separated into robots), and robot-sized
+        // blobs at least [`SHELF_LONG`] times as long as wide that fill two cells on their
+        // own and do not split into robots: shelves of the robots' colour (Q0003: terracotta
+        // shelves, under box robots 1.6 cells wide, are 1.6 robots large; a robot that wide
+        // nearly fills two cells' middles too, but it is as wide as long; issue #29's twelfth
+        // round).
         let mut sized = vec![0u64; classes.len().div_ceil(64)];
-        for i in found
-            .iter()
-            .filter(|b| {
-                let robots = b.area() as f64 / median;
-                (SLIVER..LARGER).contains(&robots)
-                    || (robots >= LARGER && blobs::split(b, median as usize).is_some())
-            })
-            .flat_map(index)
-        {
-            sized[i / 64] |= 1 << (i % 64);
+        let mut shelf_like = vec![0u64; classes.len().div_ceil(64)];
+        for b in &found {
+            let robots = b.area() as f64 / median;
+            let splits = || blobs::split(b, median as usize).is_some();
+            let mut fills_two = || {
+                b.area() >= two_cells && {
+                    let pixels = index(b);
+                    (0..(SHIFT_STEPS * SHIFT_STEPS) as usize).any(|k| {
+                        let known = if k == 0 {
+                            &mut known
+                        } else {
+                            &mut Default::default()
+                        };
+                        let share = (known, shift_of(k), FILLED, true);
+                        !filled_shifted(&pixels, classes, width, maps, floor, share).is_empty()
+                    })
+                }
+            };
+            let bits = if (SLIVER..LARGER).contains(&robots) {
+                if b.elongation() < SHELF_LONG || !fills_two() || splits() {
+                    &mut sized
+                } else {
+                    &mut shelf_like
+                }
+            } else if robots >= LARGER && splits() {
+                &mut sized
+            } else {
+                continue;
+            };
+            for i in index(b) {
+                bits[i / 64] |= 1 << (i % 64);
+            }
         }
-        (median, sized)
+        (median, sized, shelf_like)
     };
     let without_robots: Vec<Vec<usize>> = blobs_found
         .into_iter()
@@ -447,13 +485,10 @@ pub fn absorb(
         vec![Default::default(); 2 * steps];
     let mut fills = |b: &[usize], classes: &[u8], j: usize, share: f64| {
         (usize::from(j == 0)..steps).find_map(|k| {
-            let step = f64::from(SHIFT_STEPS);
-            let shift = (
-                (k % SHIFT_STEPS as usize) as f64 / step,
-                (k / SHIFT_STEPS as usize) as f64 / step,
-            );
+            let shift = shift_of(k);
             let known = &mut shifted[j * steps + k];
-            let cells = filled_shifted(b, classes, width, maps, floor, (known, shift, share));
+            let cells =
+                filled_shifted(b, classes, width, maps, floor, (known, shift, share, false));
             (!cells.is_empty()).then_some((cells, shift))
         })
     };
@@ -523,9 +558,10 @@ pub fn absorb(
             b,
             Class::Goal,
             &in_filled,
-            &|area, outside, solid| {
-                let goals = area as f64 / median.max(1) as f64;
-                if outside >= GOAL_OUTSIDE || (GOAL_SIZED.contains(&goals) && solid >= SOLID) {
+            &|piece, outside| {
+                let goals = piece.len() as f64 / median.max(1) as f64;
+                let solid = || Blob::from_indices(piece, width).solidity() >= SOLID;
+                if outside >= GOAL_OUTSIDE || (GOAL_SIZED.contains(&goals) && solid()) {
                     Keep::All
                 } else {
                     Keep::None
@@ -538,7 +574,20 @@ pub fn absorb(
             b,
             Class::Robot,
             &in_filled,
-            &|area, outside, _| robot_piece(area as f64 / robot_median, outside),
+            &|piece, outside| {
+                // A piece that is mostly a robot-sized shelf of the robots' colour counts as
+                // one larger than robots.
+                let shelf = piece
+                    .iter()
+                    .filter(|&&i| shelf_like[i / 64] & (1 << (i % 64)) != 0)
+                    .count();
+                let robots = if 2 * shelf >= piece.len() {
+                    LARGER
+                } else {
+                    piece.len() as f64 / robot_median
+                };
+                robot_piece(robots, outside)
+            },
         );
         let robots = without_shelf_pieces(robots, width, height, robot_median);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
@@ -559,6 +608,16 @@ pub fn absorb(
         out.turned += 1;
     }
     out
+}
+
+/// The `k`-th grid shifted by quarters of a cell ([`SHIFT_STEPS`]), row-major from the
+/// grid itself (`k` = 0).
+fn shift_of(k: usize) -> Shift {
+    let step = f64::from(SHIFT_STEPS);
+    (
+        (k % SHIFT_STEPS as usize) as f64 / step,
+        (k / SHIFT_STEPS as usize) as f64 / step,
+    )
 }
 
 /// The median goal (as [`blobs::sort`] takes it) among the goal pixels outside the blobs
@@ -693,7 +752,7 @@ fn marks_within(
     blob: &[usize],
     class: Class,
     in_filled: &dyn Fn(usize) -> bool,
-    keep: &dyn Fn(usize, f64, f64) -> Keep,
+    keep: &dyn Fn(&[usize], f64) -> Keep,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -706,11 +765,7 @@ fn marks_within(
     for piece in pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         let share = outside as f64 / piece.len() as f64;
-        match keep(
-            piece.len(),
-            share,
-            Blob::from_indices(&piece, width).solidity(),
-        ) {
+        match keep(&piece, share) {
             Keep::All => kept.extend(piece),
             Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
             Keep::None => {}
@@ -881,7 +936,7 @@ mod tests {
             40,
             maps,
             (4, 2),
-            (&mut known, (0.5, 0.0), FILLED),
+            (&mut known, (0.5, 0.0), FILLED, false),
         );
         assert_eq!(half, vec![0, 1]);
         assert_eq!(absorb(&mut classes, 40, maps, (4, 2)).turned, 1);
@@ -1080,6 +1135,30 @@ mod tests {
         assert_eq!(classes[3 * 40 + 10], Class::Obstacle as u8);
         assert_eq!(classes[4 * 40 + 33], Class::Goal as u8);
         assert_eq!(classes[15 * 40 + 25], Class::Robot as u8);
+    }
+
+    #[test]
+    fn a_shelf_of_the_robots_colour_as_large_as_a_robot_is_an_obstacle() {
+        // A robot 14 px square (1.4 cells) over cells (2, 0) to (3, 1); a robot-coloured
+        // shelf 18 × 8 px over cells (0, 0) and (1, 0): 0.73 robots, but twice as long as
+        // wide, filling two cells.
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (23, 3, 37, 17), Class::Robot);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Robot);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
+        assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
+        assert_eq!(classes[10 * 40 + 30], Class::Robot as u8);
+        // A robot 18 × 14 px over cells (0, 0) to (1, 1) nearly fills two cells' middles, but
+        // it is not twice as long as wide: it stays a robot.
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (23, 3, 37, 17), Class::Robot);
+        paint(&mut classes, 40, (1, 1, 19, 15), Class::Robot);
+        let before = classes.clone();
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2));
+        assert_eq!(classes, before);
     }
 
     #[test]
