@@ -3,7 +3,8 @@
 //! The binary is glue: it parses arguments, calls the libraries (every result checked by its
 //! validator there), and prints. One module per subcommand in [`cmd`]. Exit codes: 0 success,
 //! 1 infeasible or nothing found in the budget, 2 bad input or usage, 3 a launched team's
-//! merged trace fails its check, 130 interrupted.
+//! merged trace fails its check, 130 interrupted, 141 standard output closed early (a pipe into
+//! `head`; quietly, as a program killed by SIGPIPE).
 
 mod cmd;
 mod fail;
@@ -80,7 +81,30 @@ fn run(cli: Cli) -> fail::CliResult<()> {
     }
 }
 
+/// Exit code when standard output is closed before everything is printed (128 + SIGPIPE).
+const STDOUT_CLOSED: i32 = 141;
+
+/// Makes a write to a closed standard output end the process quietly with [`STDOUT_CLOSED`]
+/// (`mason … | head`), not with a panic's message: `print!` panics on a broken pipe, and
+/// Rust ignores SIGPIPE (restoring it would take `unsafe`, which the workspace forbids).
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(STDOUT_CLOSED);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_closed_stdout();
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,

@@ -814,3 +814,21 @@ fn a_bad_team_model_from_a_cost_model_names_the_file() {
         &["arena.toml", "MAX_ARENA_POINTS"],
     );
 }
+
+#[test]
+fn a_closed_pipe_on_stdout_ends_quietly_with_141() {
+    // About 200 kB of wall text, more than a pipe holds; the reader stops after 10 bytes.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mason"))
+        .args(["generate", "wall", "--bricks", "100000", "--levels", "50"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut out = child.stdout.take().unwrap();
+    let mut first = [0u8; 10];
+    std::io::Read::read_exact(&mut out, &mut first).unwrap();
+    drop(out);
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(141), "{}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "quiet: {}", stderr(&o));
+}

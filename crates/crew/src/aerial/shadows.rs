@@ -123,14 +123,14 @@ pub struct Uncast {
     pub bins: usize,
 }
 
-/// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
-/// `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright the
-/// lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
-pub fn uncast(
+/// The floor's bins, `gw × SIDE` wide, row-major: each one's [`Kind`], and whether a robot's
+/// pixels are in it or beside it; `None` for a floor with no bins.
+fn grid(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
     (gw, gh): (u32, u32),
-) -> Option<Uncast> {
+    robot_share: f64,
+) -> Option<(Vec<Kind>, Vec<bool>)> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
     if cells.len() != gw as usize * gh as usize || bw == 0 || bh == 0 {
         return None;
@@ -147,10 +147,15 @@ pub fn uncast(
             }
         })
         .collect();
-    // Bins with a robot's pixels in them or beside them.
+    // Bins with a robot's pixels in them (more than `robot_share` of their pixels) or beside
+    // them.
     let robot = |bx: usize, by: usize| match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
         None => false,
-        Some(b) => b[(by % SIDE) * SIDE + bx % SIDE].robot > 0,
+        Some(b) => {
+            let b = &b[(by % SIDE) * SIDE + bx % SIDE];
+            let all = b.dark + b.lit + b.solid + b.mark;
+            b.robot > 0 && f64::from(b.robot) >= robot_share * f64::from(all)
+        }
     };
     let mut robot_near = vec![false; bw * bh];
     for by in 0..bh {
@@ -164,6 +169,19 @@ pub fn uncast(
             }
         }
     }
+    Some((kinds, robot_near))
+}
+
+/// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
+/// `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright the
+/// lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
+pub fn uncast(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<Uncast> {
+    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
+    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.0)?;
     let mut seen = vec![false; bw * bh];
     let mut stack = Vec::new();
     for start in 0..bw * bh {
@@ -200,6 +218,157 @@ pub fn uncast(
         let cast = caster || (mark && size <= ROBOT_SHADOW);
         if !cast && size >= MIN_SHADOW {
             let (bx, by) = (start % bw, start / bw);
+            return Some(Uncast {
+                cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
+                at: (
+                    (bx as f64 + 0.5) / SIDE as f64,
+                    (by as f64 + 0.5) / SIDE as f64,
+                ),
+                bins: size,
+            });
+        }
+    }
+    None
+}
+
+/// Directions tried for the sun ([`unattached`]), evenly around the circle.
+pub const DIRECTIONS: usize = 64;
+/// How far (cells) a shadow may reach from its caster: a shelf 2 high under a sun 20° up.
+pub const REACH: f64 = 6.0;
+/// The share of the shadow's bins (sampled) that one direction must explain for the view to
+/// have one sun ([`unattached`]); with less (soft light, lamps), the check is not made.
+pub const ONE_SUN: f64 = 0.85;
+/// The fewest bins, connected, of shadow not attached to a caster that are refused (a cell).
+pub const UNATTACHED: usize = BINS;
+/// The most dark bins sampled to find the sun's direction.
+const SAMPLE: usize = 4096;
+
+/// Whether walking from bin `(bx, by)` toward the sun (`dir`, in bins a step) reaches a caster
+/// (an obstacle, a blocked cell, a robot) over shadow, goals and lit gaps of at most one bin;
+/// leaving the floor, or walking [`REACH`] cells, counts as reaching one.
+fn attached(
+    kinds: &[Kind],
+    robot_near: &[bool],
+    (bw, bh): (usize, usize),
+    (bx, by): (usize, usize),
+    dir: (f64, f64),
+) -> bool {
+    let steps = (REACH * SIDE as f64 * 2.0) as usize;
+    let (x0, y0) = (bx as f64 + 0.5, by as f64 + 0.5);
+    let mut gap = 0;
+    for j in 1..=steps {
+        let t = j as f64 * 0.5;
+        let (x, y) = (x0 + dir.0 * t, y0 + dir.1 * t);
+        if x < 0.0 || y < 0.0 || x >= bw as f64 || y >= bh as f64 {
+            return true;
+        }
+        let i = y as usize * bw + x as usize;
+        if robot_near[i] {
+            return true;
+        }
+        match kinds[i] {
+            Kind::Caster | Kind::Empty => return true,
+            Kind::Dark | Kind::Mark => gap = 0,
+            Kind::Lit => {
+                gap += 1;
+                if gap > 2 {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
+///
+/// One sun casts every shadow the same way: walking from any point of a shadow toward the sun,
+/// one stays in the shadow until the thing that casts it. So the direction that explains the
+/// most shadow bins (of [`DIRECTIONS`], on a sample) is taken for the sun's when it explains
+/// at least [`ONE_SUN`] of them, and a connected region of [`UNATTACHED`] or more shadow bins
+/// from which that walk (or one a direction either side) crosses lit floor before any caster
+/// is refused: its caster stands on floor read as free, a shelf of the floor's own look
+/// whose shadow touches another's (V0028's graphite shelf, whose shadow joined that of the
+/// pale shelf below it; issue #29's twelfth round). `cells` and `levels` as for [`uncast`].
+pub fn unattached(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<Uncast> {
+    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
+    // A robot casts a shadow from where it stands: bins a quarter its pixels or more (a robot
+    // pixel or two in a bin are noise in a shadow, a dark red's).
+    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.25)?;
+    let dark: Vec<usize> = (0..bw * bh)
+        .filter(|&i| kinds[i] == Kind::Dark && !robot_near[i])
+        .collect();
+    if dark.len() < UNATTACHED {
+        return None;
+    }
+    let dir = |k: usize| {
+        let a = (k % DIRECTIONS) as f64 * std::f64::consts::TAU / DIRECTIONS as f64;
+        (a.cos(), a.sin())
+    };
+    let at = |i: usize| (i % bw, i / bw);
+    let stride = dark.len().div_ceil(SAMPLE);
+    let sample: Vec<usize> = dark.iter().copied().step_by(stride).collect();
+    let explained = |k: usize| {
+        sample
+            .iter()
+            .filter(|&&i| attached(&kinds, &robot_near, (bw, bh), at(i), dir(k)))
+            .count()
+    };
+    let (best, count) = {
+        use rayon::prelude::*;
+        (0..DIRECTIONS)
+            .into_par_iter()
+            .map(|k| (k, explained(k)))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b })
+    };
+    if (count as f64) < ONE_SUN * sample.len() as f64 {
+        return None;
+    }
+    let mut loose = vec![false; bw * bh];
+    for &i in &dark {
+        loose[i] = [best + DIRECTIONS - 1, best, best + 1]
+            .iter()
+            .all(|&k| !attached(&kinds, &robot_near, (bw, bh), at(i), dir(k)));
+    }
+    let mut seen = vec![false; bw * bh];
+    let mut stack = Vec::new();
+    for start in 0..bw * bh {
+        if seen[start] || !loose[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut size = 0usize;
+        while let Some(i) = stack.pop() {
+            size += 1;
+            let (x, y) = at(i);
+            let mut step = |j: usize| {
+                if loose[j] && !seen[j] {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            };
+            if x > 0 {
+                step(i - 1);
+            }
+            if x + 1 < bw {
+                step(i + 1);
+            }
+            if y > 0 {
+                step(i - bw);
+            }
+            if y + 1 < bh {
+                step(i + bw);
+            }
+        }
+        if size >= UNATTACHED {
+            let (bx, by) = at(start);
             return Some(Uncast {
                 cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
                 at: (
@@ -372,6 +541,76 @@ mod tests {
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 2] = ROBOT; // bin (6, 7)
         assert_eq!(uncast(&cells, &[], (5, 4)), None);
+    }
+
+    /// A 12 × 12-cell floor with shelves (blocked) on cells (1, 0), (1, 2), …, (1, 10), each
+    /// casting a shadow 1.5 cells long to the right (+x) over its row's bins; with `hidden`, a
+    /// shelf of the floor's look on cell (7, 5) (lit, free) casting its shadow too (a seventh
+    /// of the shadows: the sun's direction still explains more than 85 % of them).
+    fn sunlit(hidden: bool) -> Vec<Option<[Bin; BINS]>> {
+        let mut dark = Vec::new();
+        let rows: Vec<(usize, usize)> = (0..6).map(|k| (2 * SIDE, 2 * k * SIDE)).collect();
+        let hidden_row = [(8 * SIDE, 5 * SIDE)];
+        let with = if hidden { &hidden_row[..] } else { &[] };
+        for &(x0, y0) in rows.iter().chain(with) {
+            for by in y0..y0 + SIDE {
+                for bx in x0..x0 + 6 {
+                    dark.push((bx, by));
+                }
+            }
+        }
+        let mut cells = floor(12, 12, &dark);
+        for k in 0..6 {
+            cells[2 * k * 12 + 1] = None;
+        }
+        cells
+    }
+
+    #[test]
+    fn a_shadow_behind_lit_floor_seen_from_the_sun_is_found() {
+        // The shelves' shadows lie behind them, seen from the sun (to the left).
+        assert_eq!(unattached(&sunlit(false), &[], (12, 12)), None);
+        // The hidden shelf's shadow touches nothing but lit floor toward the sun.
+        let u = unattached(&sunlit(true), &[], (12, 12)).unwrap();
+        assert_eq!(u.cell, (8, 5));
+        assert_eq!(u.bins, 24);
+        // A blocked cell there casts it.
+        let mut cells = sunlit(true);
+        cells[5 * 12 + 7] = None;
+        assert_eq!(unattached(&cells, &[], (12, 12)), None);
+        // With a shelf on cell (9, 5), away from the sun, the shadow left on cell (8, 5)
+        // touches it, so it has a caster by `uncast`'s test, but it still lies behind lit
+        // floor.
+        let mut cells = sunlit(true);
+        cells[5 * 12 + 9] = None;
+        assert_eq!(uncast(&cells, &[], (12, 12)), None);
+        assert_eq!(unattached(&cells, &[], (12, 12)).unwrap().cell, (8, 5));
+    }
+
+    #[test]
+    fn shadows_of_no_one_sun_are_not_judged() {
+        // Shadows cast to the right of one shelf and below another: no direction explains
+        // 85 % of them, so a shadow behind lit floor is not refused by this check.
+        let mut dark = Vec::new();
+        for by in SIDE..2 * SIDE {
+            for bx in 2 * SIDE..2 * SIDE + 6 {
+                dark.push((bx, by));
+            }
+        }
+        for by in 5 * SIDE..5 * SIDE + 6 {
+            for bx in 8 * SIDE..9 * SIDE {
+                dark.push((bx, by));
+            }
+        }
+        for by in 2 * SIDE..3 * SIDE {
+            for bx in 4 * SIDE..4 * SIDE + 6 {
+                dark.push((bx, by));
+            }
+        }
+        let mut cells = floor(12, 8, &dark);
+        cells[12 + 1] = None;
+        cells[4 * 12 + 8] = None;
+        assert_eq!(unattached(&cells, &[], (12, 8)), None);
     }
 
     #[test]
