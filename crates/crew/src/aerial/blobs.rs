@@ -540,17 +540,24 @@ pub fn thickness(blob: &Blob) -> f64 {
 /// a line ([`line_like`]): two to four discs touching in a row make 3.2 to 5.4.
 pub const LINE_LIKE: f64 = 8.0;
 
-/// Whether a blob is a line rather than marks touching: longer, for its area, than four
-/// discs in a row ([`LINE_LIKE`]). A shelf's edge or rim read in a mark's colour (L0004,
-/// Q0013, Q0028: 11 to 15), or a line painted on the floor in it; since issue #29's twelfth
-/// round such a blob that [`split`] does not separate is no mark. A mark lost so leaves
-/// fewer robots than goals (or the reverse), which is refused.
-pub fn line_like(blob: &Blob) -> bool {
+/// A line is at most this share of a mark's thickness (its radius, as a disc of the median
+/// area) thick.
+pub const LINE_THIN: f64 = 0.75;
+
+/// Whether a blob is a line rather than marks touching, against marks of `median` area:
+/// longer, for its area, than four discs in a row ([`LINE_LIKE`]), and thinner than a mark
+/// ([`LINE_THIN`]; a mark touching the line would make it a mark's thickness there). A
+/// shelf's edge or rim read in a mark's colour (L0004, Q0013: 11 to 15 long, 2 to 3 px thick
+/// against marks 4 px), or a line painted on the floor in it; since issue #29's twelfth round
+/// such a blob that [`split`] does not separate is no mark. A mark lost so leaves fewer
+/// robots than goals (or the reverse), which is refused.
+pub fn line_like(blob: &Blob, median: usize) -> bool {
     let (w, h) = (
         f64::from(blob.bbox.2 - blob.bbox.0 + 1),
         f64::from(blob.bbox.3 - blob.bbox.1 + 1),
     );
-    w * w + h * h > LINE_LIKE * blob.area() as f64
+    let mark = (median as f64 / std::f64::consts::PI).sqrt();
+    w * w + h * h > LINE_LIKE * blob.area() as f64 && thickness(blob) < LINE_THIN * mark
 }
 
 /// A merged blob is split only when its area is this close (in medians) to a whole number.
@@ -1156,17 +1163,22 @@ mod tests {
             &[(10.0, 10.0), (20.0, 10.0), (30.0, 10.0), (40.0, 10.0)],
             5.0,
         );
-        assert!(!line_like(&row));
+        assert!(!line_like(&row, 80));
         let bar = Blob {
             pixels: (0..120).map(|k| (k % 40, 5 + k / 40)).collect(),
             bbox: (0, 5, 39, 7),
         };
-        assert!(line_like(&bar));
+        assert!(line_like(&bar, 80));
+        // Against marks of 12 px (2 px thick), the bar (2 px thick) is as thick as one.
+        assert!(!line_like(&bar, 12));
         let band: Vec<(u32, u32)> = (0..30).flat_map(|k| [(k, k), (k + 1, k)]).collect();
-        assert!(line_like(&Blob {
-            pixels: band,
-            bbox: (0, 0, 30, 29),
-        }));
+        assert!(line_like(
+            &Blob {
+                pixels: band,
+                bbox: (0, 0, 30, 29),
+            },
+            80
+        ));
     }
 
     /// Two discs of radius 120 px touching: about 64 depths are tried, not 360.

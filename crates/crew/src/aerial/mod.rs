@@ -1078,9 +1078,10 @@ fn marks(
     let mut sorted = blobs::sort(found);
     for b in std::mem::take(&mut sorted.merged) {
         let Some(pieces) = blobs::split(&b, sorted.median_area) else {
-            // A line of the mark's colour, longer than four marks in a row: a shelf's edge
-            // or rim, or a line painted on the floor, not marks (see `blobs::line_like`).
-            if blobs::line_like(&b) {
+            // A line of the mark's colour, longer than four marks in a row and thinner than a
+            // mark: a shelf's edge or rim, or a line painted on the floor, not marks (see
+            // `blobs::line_like`).
+            if blobs::line_like(&b, sorted.median_area) {
                 continue;
             }
             return Err(at_pixel(
