@@ -212,6 +212,18 @@ FAMILIES = {
                              (0.26, 0.27, 0.29)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # W: held out from issue #29's twelfth round, rendered after its very last change to the
+    # reader and scored once. Box-with-a-dome, yawed-box and dome robots, ring, ellipse and
+    # diamond goals, light concrete, dark brown-grey and blue-grey floors tiled every fifth of a
+    # cell, teal, pale yellow, maroon, slate and lavender shelves from 0.3 to 2.0 high inset
+    # 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and a
+    # camera from 45 to 165 cells per 24 high.
+    "W": dict(robot_shapes=("boxdome", "rotbox", "dome"), goal_shapes=("ring", "ellipse", "diamond"),
+              floors=((0.66, 0.66, 0.64), (0.36, 0.33, 0.30), (0.50, 0.54, 0.60)),
+              shelf_colours=((0.10, 0.45, 0.45), (0.88, 0.82, 0.50), (0.45, 0.12, 0.16), (0.40, 0.44, 0.50),
+                             (0.62, 0.56, 0.76)),
+              shelf_height=(0.3, 2.0), tiles=0.2, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
