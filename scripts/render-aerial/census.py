@@ -30,6 +30,7 @@ KINDS = [
     ("a covered cell on the floor's far edge", r"on the floor's edge is covered"),
     ("a run's far cell a top could cover whole", r"cover it whole"),
     ("a free cell unlike the floor", r"would be free but do(es)? not look"),
+    ("a shadow behind lit floor, seen from the sun", r"lies behind lit floor"),
     ("a shadow with no caster", r"shadow on free floor"),
     ("a piece too small", r"too large for noise|too small"),
     ("touching", r"touching"),
@@ -45,7 +46,7 @@ KINDS = [
 
 
 # The kinds whose reason names a cell the reading doubts (not a mark's cell).
-CELL_KINDS = {name for name, _ in KINDS[:6]} | {"a cell showing no floor", "a painted line that does not show"}
+CELL_KINDS = {name for name, _ in KINDS[:7]} | {"a cell showing no floor", "a painted line that does not show"}
 
 
 def kind_of(reason):

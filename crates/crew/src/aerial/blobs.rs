@@ -32,8 +32,9 @@ pub struct Blob {
 
 impl Blob {
     /// How elongated the blob is: the square root of the ratio of its pixels' second moments
-    /// along their principal axes (1 for a disc or a square, 2 for a bar twice as long as
-    /// wide, infinite for a line one pixel wide... or any blob of one pixel).
+    /// along their principal axes, each pixel a unit square (1 for a disc, a square or a
+    /// single pixel, 2 for a bar twice as long as wide, its length for a line one pixel wide;
+    /// infinite for no pixel).
     pub fn elongation(&self) -> f64 {
         let n = self.pixels.len() as f64;
         if n == 0.0 {

@@ -18,19 +18,22 @@
 //!    where lit, and no three side by side brighter or more tinted than the lit floor around
 //!    them, and not mostly leaning pale: [`looks`]), and every shadow on the free floor must
 //!    touch what casts it ([`shadows`]: a shelf of the floor's own colour shows by its shadow;
-//!    in a lamp's pool of light a shadow is judged against the light around it), and on a
+//!    in a lamp's pool of light a shadow is judged against the light around it) and, under one
+//!    sun, lie behind it, not behind lit floor ([`shadows::unattached`]), and on a
 //!    floor with painted lines every line between free cells must show ([`painted`]);
 //! 3. robots and goals as [`blobs`] of their colour, sized against the typical one of their
 //!    kind (the most alike blobs by count times area), each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
-//!    several touching is split when its area and shape tell how ([`blobs::split`]).
+//!    several touching is split when its area and shape tell how ([`blobs::split`]); a line of
+//!    their colour, or a ragged speck, is none ([`blobs::line_like`], [`blobs::RAGGED`]).
 //!
 //! Whatever cannot be read with confidence is refused with the reason and the pixel, never
 //! guessed: two robots touching that cannot be separated, a robot or goal on a cell border, a
 //! colour between the robots' or goals' and another, a cell half covered that no leaning top
 //! explains, a covered cell on the floor's far edge, or at the far end of a run of blocked
 //! cells, that a leaning top may cover whole, a free cell
-//! that does not look like the floor, a shadow that nothing casts, a painted line that does
+//! that does not look like the floor, a shadow that nothing casts (or that lies behind lit
+//! floor, seen from the sun), a painted line that does
 //! not show between free cells, more goals than robots (unless the floor has goals to spare:
 //! [`AerialConfig::spare_goals`]), a grid that does not fit the image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
 //! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks.

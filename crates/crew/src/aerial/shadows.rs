@@ -172,6 +172,20 @@ fn grid(
     Some((kinds, robot_near))
 }
 
+impl Uncast {
+    /// A shadow of `bins` bins whose first bin is `(bx, by)` (floor bin coordinates).
+    fn from_bin((bx, by): (usize, usize), bins: usize) -> Uncast {
+        Uncast {
+            cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
+            at: (
+                (bx as f64 + 0.5) / SIDE as f64,
+                (by as f64 + 0.5) / SIDE as f64,
+            ),
+            bins,
+        }
+    }
+}
+
 /// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
 /// `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright the
 /// lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
@@ -217,15 +231,7 @@ pub fn uncast(
         }
         let cast = caster || (mark && size <= ROBOT_SHADOW);
         if !cast && size >= MIN_SHADOW {
-            let (bx, by) = (start % bw, start / bw);
-            return Some(Uncast {
-                cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
-                at: (
-                    (bx as f64 + 0.5) / SIDE as f64,
-                    (by as f64 + 0.5) / SIDE as f64,
-                ),
-                bins: size,
-            });
+            return Some(Uncast::from_bin((start % bw, start / bw), size));
         }
     }
     None
@@ -368,15 +374,7 @@ pub fn unattached(
             }
         }
         if size >= UNATTACHED {
-            let (bx, by) = at(start);
-            return Some(Uncast {
-                cell: ((bx / SIDE) as u32, (by / SIDE) as u32),
-                at: (
-                    (bx as f64 + 0.5) / SIDE as f64,
-                    (by as f64 + 0.5) / SIDE as f64,
-                ),
-                bins: size,
-            });
+            return Some(Uncast::from_bin(at(start), size));
         }
     }
     None

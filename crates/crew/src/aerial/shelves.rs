@@ -13,14 +13,17 @@
 //! (from [`SLIVER`] to [`LARGER`] times the median robot of the view, taken over the robot
 //! blobs that do not fill two cells on their own), and the larger robot blobs that
 //! [`blobs::split`] separates into robots (robots touching): those stay robots and take no part in
-//! the shape. The floor pixels it encloses count as its own (its holes: a brown or grey
+//! the shape. A robot-sized blob at least [`SHELF_LONG`] times as long as wide that fills two
+//! cells with its own pixels and does not split is a shelf of the robots' colour, and takes
+//! part (since issue #29's twelfth round). The floor pixels it encloses count as its own (its holes: a brown or grey
 //! top's specks whose colour, dimmed or desaturated, reads as floor, each with the blob's
 //! pixels within [`HOLE`] of a cell on both sides along its row and its column; since issue
 //! #29's eleventh round). It is an obstacle when it fills (at least [`FILLED`]
 //! of the pixels of the middle [`INNER`] of each cell along both axes) two cells side by side,
 //! of the grid or, since the eleventh round, of the grid shifted by quarters of a cell (a top
 //! that leans off its own cells under a tilted camera fills the cells of a shifted grid; a
-//! blob more than [`MARKS_LARGE`] marks large, more than the touching marks that
+//! blob more than [`MARKS_LARGE`] marks of its colours large (the median goal taken without
+//! the blobs that fill cells at [`FILLED`]), more than the touching marks that
 //! [`blobs::split`] separates, fills them at [`LOOSE`]: a top whose colour reads as a mark's
 //! over part of its width only), and it is at least [`LARGER`] times the median goal of the view (two goals touching fill
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
