@@ -561,6 +561,28 @@ pub fn line_like(blob: &Blob, median: usize) -> bool {
     w * w + h * h > LINE_LIKE * blob.area() as f64 && thickness(blob) < LINE_THIN * mark
 }
 
+/// A blob at most this many medians large may be one larger mark ([`one_large`]).
+pub const ONE_LARGE: f64 = 2.2;
+/// ... when it is at most this elongated ([`Blob::elongation`]): two discs touching are 1.9 or
+/// more (two of a disc's radius apart at least, their centres), one disc 1.
+pub const ROUND: f64 = 1.35;
+/// ... and at least this solid ([`Blob::solidity`]): two discs joined by a neck are less.
+pub const ROUND_SOLID: f64 = 0.85;
+
+/// Whether a blob that [`split`] does not separate, against marks of `median` area, is one
+/// mark larger than the typical one rather than marks touching: at most [`ONE_LARGE`] medians,
+/// as round as one mark ([`ROUND`]) and as solid ([`ROUND_SOLID`]). Marks of one view are
+/// alike, but a robot seen nearer the camera, a tall one's leaning side, or its shadow's edge
+/// read in its colour make some twice the median (O0016's robot: 1.8 medians, 8 × 7 px); two
+/// marks touching, each at least a fifth of a cell from the other, make a blob at least twice
+/// as long as wide. Since issue #29's twelfth round. A view that loses a mark so, or gains one,
+/// has fewer robots than goals (or the reverse), which is refused.
+pub fn one_large(blob: &Blob, median: usize) -> bool {
+    (blob.area() as f64) <= ONE_LARGE * median as f64
+        && blob.elongation() <= ROUND
+        && blob.solidity() >= ROUND_SOLID
+}
+
 /// A merged blob is split only when its area is this close (in medians) to a whole number.
 pub const SPLIT_SLACK: f64 = 0.3;
 /// Each piece of a split blob is within this share of the median (either way).
@@ -1155,6 +1177,20 @@ mod tests {
             bbox: (0, 0, 21, 19),
         };
         assert!(diagonal.elongation() > 4.0, "{}", diagonal.elongation());
+    }
+
+    #[test]
+    fn one_larger_mark_is_not_marks_touching() {
+        // A disc of radius 6.7 against marks of radius 5: 1.8 medians, round and solid.
+        let one = discs(&[(10.0, 10.0)], 5.0).area();
+        let large = discs(&[(30.0, 30.0)], 6.7);
+        assert!(large.area() as f64 > 1.7 * one as f64);
+        assert!(one_large(&large, one));
+        // Two discs of radius 5 touching: as large, but twice as long as wide.
+        let two = discs(&[(20.0, 20.0), (29.5, 21.0)], 5.0);
+        assert!(!one_large(&two, one));
+        // A disc of 2.4 medians is more than one mark.
+        assert!(!one_large(&discs(&[(30.0, 30.0)], 7.9), one));
     }
 
     #[test]

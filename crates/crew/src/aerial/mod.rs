@@ -1087,6 +1087,11 @@ fn marks(
             if blobs::line_like(&b, sorted.median_area) {
                 continue;
             }
+            // One mark larger than the typical one, not marks touching (see `blobs::one_large`).
+            if blobs::one_large(&b, sorted.median_area) {
+                sorted.kept.push(b);
+                continue;
+            }
             return Err(at_pixel(
                 source,
                 b.centroid(),
