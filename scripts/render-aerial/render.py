@@ -224,6 +224,18 @@ FAMILIES = {
                              (0.62, 0.56, 0.76)),
               shelf_height=(0.3, 2.0), tiles=0.2, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # X: held out from issue #29's twelfth round, rendered after its very last change to the
+    # reader (one larger mark, after W had been scored) and scored once. Cylinder, puck and
+    # box robots, cross, square and disc goals, sand, cool mid-grey and dark olive-grey floors
+    # tiled every half cell, orange, steel grey, forest green, light blue and plum shelves from
+    # 0.3 to 2.0 high inset 0.06 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and
+    # cooler light, and a camera from 45 to 165 cells per 24 high.
+    "X": dict(robot_shapes=("cylinder", "puck", "box"), goal_shapes=("cross", "square", "disc"),
+              floors=((0.72, 0.66, 0.54), (0.48, 0.50, 0.54), (0.34, 0.35, 0.30)),
+              shelf_colours=((0.85, 0.45, 0.12), (0.52, 0.54, 0.56), (0.14, 0.34, 0.16), (0.66, 0.80, 0.90),
+                             (0.42, 0.20, 0.40)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
