@@ -842,30 +842,22 @@ fn read(
             looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
         drop(looks);
         let levels = looks::local_levels(&bright, (gw, gh));
-        let at = |u: &shadows::Uncast| floor_to_image.apply(u.at).unwrap_or((0.0, 0.0));
+        let doubt = |u: shadows::Uncast, why: &str| {
+            let (x, y) = u.cell;
+            at_pixel(
+                source,
+                floor_to_image.apply(u.at).unwrap_or((0.0, 0.0)),
+                format!(
+                    "a shadow on free floor from cell ({x}, {y}) ({:.1} cells of it) that {why}: something of the floor's colour may stand there",
+                    u.bins as f64 / shadows::BINS as f64
+                ),
+            )
+        };
         shadows::uncast(&bins, &levels, (gw, gh))
-            .map(|u| {
-                let (x, y) = u.cell;
-                at_pixel(
-                    source,
-                    at(&u),
-                    format!(
-                        "a shadow on free floor from cell ({x}, {y}) ({:.1} cells of it) that no obstacle or robot in the image casts: something of the floor's colour may stand there",
-                        u.bins as f64 / shadows::BINS as f64
-                    ),
-                )
-            })
+            .map(|u| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
                 shadows::unattached(&bins, &levels, (gw, gh)).map(|u| {
-                    let (x, y) = u.cell;
-                    at_pixel(
-                        source,
-                        at(&u),
-                        format!(
-                            "a shadow on free floor from cell ({x}, {y}) ({:.1} cells of it) that lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give): something of the floor's colour may stand there",
-                            u.bins as f64 / shadows::BINS as f64
-                        ),
-                    )
+                    doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give)")
                 })
             })
     };

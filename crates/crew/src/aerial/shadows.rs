@@ -196,45 +196,61 @@ pub fn uncast(
 ) -> Option<Uncast> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
     let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.0)?;
+    let dark: Vec<bool> = kinds.iter().map(|&k| k == Kind::Dark).collect();
+    regions(&dark, (bw, bh)).into_iter().find_map(|region| {
+        // What touches the region, its 8-neighbours included.
+        let (mut caster, mut mark) = (false, false);
+        for &i in &region {
+            mark |= robot_near[i];
+            let (x, y) = ((i % bw) as i64, (i / bw) as i64);
+            for (nx, ny) in (-1..=1i64).flat_map(|dy| (-1..=1i64).map(move |dx| (x + dx, y + dy))) {
+                if nx < 0 || ny < 0 || nx >= bw as i64 || ny >= bh as i64 {
+                    continue;
+                }
+                let j = ny as usize * bw + nx as usize;
+                caster |= kinds[j] == Kind::Caster;
+                mark |= kinds[j] == Kind::Mark && robot_near[j];
+            }
+        }
+        let size = region.len();
+        let cast = caster || (mark && size <= ROBOT_SHADOW);
+        (!cast && size >= MIN_SHADOW)
+            .then(|| Uncast::from_bin((region[0] % bw, region[0] / bw), size))
+    })
+}
+
+/// The 4-connected regions of the bins `inside` (a grid `bw` × `bh`, row-major), each as its
+/// bins with its lowest index first, in row-major order of those.
+fn regions(inside: &[bool], (bw, bh): (usize, usize)) -> Vec<Vec<usize>> {
     let mut seen = vec![false; bw * bh];
+    let mut out = Vec::new();
     let mut stack = Vec::new();
     for start in 0..bw * bh {
-        if seen[start] || kinds[start] != Kind::Dark {
+        if seen[start] || !inside[start] {
             continue;
         }
         seen[start] = true;
         stack.push(start);
-        let (mut size, mut caster, mut mark) = (0usize, false, false);
+        let mut region = Vec::new();
         while let Some(i) = stack.pop() {
-            size += 1;
-            mark |= robot_near[i];
-            let (x, y) = ((i % bw) as i64, (i / bw) as i64);
-            for dy in -1..=1i64 {
-                for dx in -1..=1i64 {
-                    let (nx, ny) = (x + dx, y + dy);
-                    if (dx, dy) == (0, 0) || nx < 0 || ny < 0 || nx >= bw as i64 || ny >= bh as i64
-                    {
-                        continue;
-                    }
-                    let j = ny as usize * bw + nx as usize;
-                    match kinds[j] {
-                        Kind::Caster => caster = true,
-                        Kind::Mark if robot_near[j] => mark = true,
-                        Kind::Dark if (dx == 0 || dy == 0) && !seen[j] => {
-                            seen[j] = true;
-                            stack.push(j);
-                        }
-                        _ => {}
-                    }
+            region.push(i);
+            let (x, y) = (i % bw, i / bw);
+            let neighbours = [
+                (x > 0).then(|| i - 1),
+                (x + 1 < bw).then_some(i + 1),
+                (y > 0).then(|| i - bw),
+                (y + 1 < bh).then_some(i + bw),
+            ];
+            for j in neighbours.into_iter().flatten() {
+                if inside[j] && !seen[j] {
+                    seen[j] = true;
+                    stack.push(j);
                 }
             }
         }
-        let cast = caster || (mark && size <= ROBOT_SHADOW);
-        if !cast && size >= MIN_SHADOW {
-            return Some(Uncast::from_bin((start % bw, start / bw), size));
-        }
+        out.push(region);
     }
-    None
+    out
 }
 
 /// Directions tried for the sun ([`unattached`]), evenly around the circle.
@@ -342,42 +358,10 @@ pub fn unattached(
             .iter()
             .all(|&k| !attached(&kinds, &robot_near, (bw, bh), at(i), dir(k)));
     }
-    let mut seen = vec![false; bw * bh];
-    let mut stack = Vec::new();
-    for start in 0..bw * bh {
-        if seen[start] || !loose[start] {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        let mut size = 0usize;
-        while let Some(i) = stack.pop() {
-            size += 1;
-            let (x, y) = at(i);
-            let mut step = |j: usize| {
-                if loose[j] && !seen[j] {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            };
-            if x > 0 {
-                step(i - 1);
-            }
-            if x + 1 < bw {
-                step(i + 1);
-            }
-            if y > 0 {
-                step(i - bw);
-            }
-            if y + 1 < bh {
-                step(i + bw);
-            }
-        }
-        if size >= UNATTACHED {
-            return Some(Uncast::from_bin(at(start), size));
-        }
-    }
-    None
+    regions(&loose, (bw, bh))
+        .into_iter()
+        .find(|region| region.len() >= UNATTACHED)
+        .map(|region| Uncast::from_bin(at(region[0]), region.len()))
 }
 
 #[cfg(test)]
