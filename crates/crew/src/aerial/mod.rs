@@ -892,7 +892,11 @@ fn read(
     };
     let grid = Grid::new(gw, gh, blocked);
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
-    let (robots, robots_aside) = marks(
+    let ReadMarks {
+        marks: robots,
+        set_aside: robots_aside,
+        on_shelf: robots_on_shelf,
+    } = marks(
         blobs::find(&mut classes, width, Class::Robot as u8),
         "robot",
         &grid,
@@ -901,7 +905,11 @@ fn read(
         source,
         (&classes, width),
     )?;
-    let (goals, goals_aside) = marks(
+    let ReadMarks {
+        marks: goals,
+        set_aside: goals_aside,
+        on_shelf: goals_on_shelf,
+    } = marks(
         blobs::find(&mut classes, width, Class::Goal as u8),
         "goal",
         &grid,
@@ -958,6 +966,29 @@ fn read(
     if let Some(e) = robots_aside.or(goals_aside) {
         if goals.len() != robots.len() {
             return Err(e);
+        }
+    }
+    // A blob of a mark's colour on blocked cells was read as the obstacle's; had it been a
+    // mark on a cell misread as blocked, its pair would be left over.
+    if goals.len() != robots.len() {
+        let (kind, on_shelf) = if goals.len() > robots.len() {
+            ("robot", robots_on_shelf)
+        } else {
+            ("goal", goals_on_shelf)
+        };
+        if let Some((at, area)) = on_shelf {
+            let (u, v) = image_to_floor.apply(at).unwrap_or((-1.0, -1.0));
+            return Err(at_pixel(
+                source,
+                at,
+                format!(
+                    "a {kind}-coloured blob of {area} px on cell ({}, {}), which an obstacle covers, was read as part of the obstacle, and the view has {} goals but {} robots: a {kind} may stand there",
+                    u.floor(),
+                    v.floor(),
+                    goals.len(),
+                    robots.len()
+                ),
+            ));
         }
     }
     if let Some(at) = absorbed.swallowed.filter(|_| goals.len() > robots.len()) {
@@ -1069,8 +1100,23 @@ fn marks(
     px_on_floor: f64,
     source: &str,
     (classes, width): (&[u8], usize),
-) -> Result<(Vec<Mark>, Option<CrewError>), CrewError> {
+) -> Result<ReadMarks, CrewError> {
+    // A blob whose pixels lie on blocked cells is part of the obstacle there: marks stand on
+    // the floor (see `on_shelf`). The largest such blob not too small for a mark (noise, see
+    // `blobs::sort`) is kept to be named should the view then have fewer robots than goals,
+    // or the reverse.
+    let (shelf, found): (Vec<blobs::Blob>, Vec<blobs::Blob>) = found
+        .into_iter()
+        .partition(|b| on_shelf(b, grid, image_to_floor));
     let mut sorted = blobs::sort(found);
+    let on_shelf = shelf
+        .iter()
+        .filter(|b| {
+            b.area() >= blobs::MIN_AREA
+                && b.area() as f64 >= blobs::NOISE * sorted.median_area as f64
+        })
+        .max_by_key(|b| b.area())
+        .map(|b| (b.centroid(), b.area()));
     for b in std::mem::take(&mut sorted.merged) {
         let Some(pieces) = blobs::split(&b, sorted.median_area) else {
             // A line of the mark's colour, longer than four marks in a row and thinner than a
@@ -1200,7 +1246,52 @@ fn marks(
             confidence,
         });
     }
-    Ok((out, set_aside))
+    Ok(ReadMarks {
+        marks: out,
+        set_aside,
+        on_shelf,
+    })
+}
+
+/// The marks of one kind read by [`marks`], with what it left out that may have been one.
+struct ReadMarks {
+    marks: Vec<Mark>,
+    /// The first piece set aside as what an obstacle's edge or a mark it hides leaves.
+    set_aside: Option<CrewError>,
+    /// The largest blob of the kind's colour on blocked cells, read as the obstacle's: its
+    /// pixel and area.
+    on_shelf: Option<(Point, usize)>,
+}
+
+/// A blob with at least this share of its pixels (on the floor) on blocked cells lies on a
+/// shelf. A mark on a free cell beside a shelf has a few of its pixels there at most (its top
+/// leaning, or a large robot reaching over the border); 0.5 and 0.6 read families A–V alike,
+/// 0.75 two scenes fewer (L0005, R0017: a shelf's robot-coloured specks partly off its cells).
+pub const ON_SHELF: f64 = 0.6;
+
+/// Whether a mark-coloured blob lies on blocked cells (at least [`ON_SHELF`] of its pixels on
+/// the floor): the reddest or greenest pixels of a shelf of a colour near a mark's (walnut,
+/// terracotta, olive, dark green), not a mark, which stands on the floor. Since issue #29's
+/// thirteenth round; until then such a blob was refused as a mark on a blocked cell, or, too
+/// small or too large for a mark, as a piece or as marks touching. A mark so taken from a cell
+/// misread as blocked leaves the view with fewer robots than goals (or the reverse), which
+/// is refused, naming the blob.
+fn on_shelf(blob: &blobs::Blob, grid: &Grid, image_to_floor: &Homography) -> bool {
+    let on = blobs::on_floor(blob, image_to_floor);
+    if on.is_empty() {
+        return false;
+    }
+    let blocked = on
+        .iter()
+        .filter(|&&(u, v)| {
+            u >= 0.0
+                && v >= 0.0
+                && grid
+                    .cell(u.floor() as i64, v.floor() as i64)
+                    .is_some_and(|c| !grid.is_free(c))
+        })
+        .count();
+    blocked as f64 >= ON_SHELF * on.len() as f64
 }
 
 #[cfg(test)]

@@ -352,6 +352,55 @@ fn a_robot_against_a_shelf_of_its_colour_is_not_lost_without_a_word() {
 }
 
 #[test]
+fn a_blob_on_blocked_cells_is_the_obstacle_s() {
+    // A 4 × 4 floor of 10 px cells, straight down; cell (1, 1) blocked.
+    let f2i = Homography::floor_to_image(
+        4.0,
+        4.0,
+        [(0.0, 0.0), (40.0, 0.0), (40.0, 40.0), (0.0, 40.0)],
+    )
+    .unwrap();
+    let i2f = f2i.inverse().unwrap();
+    let mut blocked = vec![false; 16];
+    blocked[4 + 1] = true;
+    let g = Grid::new(4, 4, blocked);
+    let square = |x0: u32, y0: u32, side: u32| {
+        let px: Vec<usize> = (y0..y0 + side)
+            .flat_map(|y| (x0..x0 + side).map(move |x| (y * 40 + x) as usize))
+            .collect();
+        blobs::Blob::from_indices(&px, 40)
+    };
+    // Inside the blocked cell (x 10..20); on the free cell beside it; two thirds on it (x
+    // 16..22), and half (x 17..23).
+    assert!(on_shelf(&square(12, 12, 6), &g, &i2f));
+    assert!(!on_shelf(&square(22, 12, 6), &g, &i2f));
+    assert!(on_shelf(&square(16, 12, 6), &g, &i2f));
+    assert!(!on_shelf(&square(17, 12, 6), &g, &i2f));
+}
+
+#[test]
+fn a_mark_coloured_blob_on_a_shelf_is_read_as_the_shelf_s() {
+    // A robot-coloured disc on the shelf (its reddest pixels, over the border of two of its
+    // cells), two robots and two goals on the floor: read, the disc as the shelf's.
+    let mut p = scene();
+    let third_goal = p.goals.pop().unwrap();
+    p.robots.push((3.5, 2.02));
+    let r = read_aerial(&png(&p.straight(12)), "v.png", &grid(8, 5)).unwrap();
+    let mut robots = xy(&r, &r.robots);
+    robots.sort_unstable();
+    assert_eq!(robots, [(0, 0), (6, 3)]);
+    assert!(!r.grid.is_free(r.grid.cell(3, 2).unwrap()));
+    // With a goal more than robots, that disc may have been a robot on a cell misread as
+    // blocked: refused, naming it.
+    p.goals.push(third_goal);
+    let e = refusal(&p, &grid(8, 5));
+    assert!(
+        e.contains("robot-coloured blob") && e.contains("on cell (3, 2), which an obstacle covers"),
+        "{e}"
+    );
+}
+
+#[test]
 fn a_shadow_needs_a_caster() {
     // A shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
     // goal: a shelf of the floor's own colour casts it, and the view is refused.
