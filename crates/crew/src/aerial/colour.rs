@@ -146,6 +146,9 @@ pub struct Classifier {
     /// sum), before white balance.
     floor_bright: f64,
     floor_chromaticity: [f64; 3],
+    /// The saturation after white balance from which a lit floor-coloured pixel leans pale
+    /// (see [`Classifier::leaning`]).
+    lean_tint: f64,
 }
 
 /// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
@@ -184,7 +187,25 @@ impl Classifier {
             goal,
             floor_bright: bright,
             floor_chromaticity: floor.map(|c| c / sum),
+            lean_tint: super::pale::LEANING.2,
         }
+    }
+
+    /// The classifier with the saturation from which a lit pixel leans pale raised to
+    /// `tint`, if that is more than the loose limit of [`super::pale::LEANING`]: on a dark,
+    /// noisy or finely tinted floor the lit floor's own pixels reach that limit (see
+    /// [`super::pale::lean_tint`]).
+    pub fn with_lean_tint(self, tint: f64) -> Classifier {
+        Classifier {
+            lean_tint: tint.max(super::pale::LEANING.2),
+            ..self
+        }
+    }
+
+    /// Whether a colour after white balance leans pale: at least [`super::pale::LEANING`]'s
+    /// brightness, or lit and at least this classifier's leaning saturation.
+    pub fn leaning(&self, balanced: [f64; 3]) -> bool {
+        super::pale::is_leaning_with(balanced, self.lean_tint)
     }
 
     /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:

@@ -558,13 +558,16 @@ fn read(
     );
     let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
     let px = cell_size_px(&floor_to_image, (fw, fh));
-    let mut classes = pixels::classify(
+    let radius = pixels::denoise_radius(px);
+    // A lit floor-coloured pixel leans pale from a saturation above the floor's own noise.
+    let classifier = classifier.with_lean_tint(pale::lean_tint(&mut pixels::floor_saturations(
         img,
         &classifier,
         &image_to_floor,
         (gw, gh),
-        pixels::denoise_radius(px),
-    );
+        radius,
+    )));
+    let mut classes = pixels::classify(img, &classifier, &image_to_floor, (gw, gh), radius);
     let width = img.width() as usize;
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);

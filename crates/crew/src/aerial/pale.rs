@@ -93,8 +93,48 @@ pub fn is_pale(rgb: [f64; 3]) -> bool {
 
 /// Whether a colour after white balance leans pale (the loose limits [`LEANING`]).
 pub fn is_leaning(rgb: [f64; 3]) -> bool {
+    is_leaning_with(rgb, LEANING.2)
+}
+
+/// Whether a colour after white balance leans pale, lit ones from saturation `tint`.
+pub fn is_leaning_with(rgb: [f64; 3], tint: f64) -> bool {
     let (max, s) = bright_and_saturation(rgb);
-    max >= LEANING.0 || (max >= LEANING.1 && s >= LEANING.2)
+    max >= LEANING.0 || (max >= LEANING.1 && s >= tint)
+}
+
+/// The lit floor leans pale by its tint from this many times its median saturation.
+pub const TINT_NOISE: f64 = 2.0;
+
+/// The saturation from which a lit floor-coloured pixel leans pale in this view: the loose
+/// limit of [`LEANING`], or [`TINT_NOISE`] times the median saturation of the lit floor's
+/// pixels after white balance, `saturations` (each pixel's colour as it is judged: averaged
+/// over its square), whichever is more.
+///
+/// The loose limit is chosen for a clean floor. On a dark floor the camera's noise and JPEG's
+/// colour blocks tint every pixel: a floor at a quarter of white with noise of 2 % of white
+/// has a median saturation near 0.1 (E0022's after averaging over 3 × 3 pixels: 0.11), and
+/// half its pixels then leaned pale, so that free cells were refused for looking unlike the
+/// floor all over the view (issue #29's thirteenth round). For noise twice the median
+/// saturation is about its 95th percentile. `saturations` is reordered.
+pub fn lean_tint(saturations: &mut [f64]) -> f64 {
+    if saturations.is_empty() {
+        return LEANING.2;
+    }
+    let mid = saturations.len() / 2;
+    let median = *saturations.select_nth_unstable_by(mid, f64::total_cmp).1;
+    (TINT_NOISE * median).max(LEANING.2)
+}
+
+/// The saturation after white balance of a colour.
+pub fn saturation(rgb: [f64; 3]) -> f64 {
+    bright_and_saturation(rgb).1
+}
+
+/// Whether a colour after white balance is of the lit floor's brightness: neither in a
+/// shadow nor brighter than a pixel leaning pale.
+pub fn lit_floor_bright(rgb: [f64; 3]) -> bool {
+    let max = rgb[0].max(rgb[1]).max(rgb[2]);
+    (LEANING.1..LEANING.0).contains(&max)
 }
 
 /// The side in pixels of the squares for cells `cell_px` wide: at least 3.
@@ -431,5 +471,18 @@ mod tests {
         assert_eq!(square_px(8.0), 4);
         assert_eq!(square_px(4.0), 3);
         assert_eq!(square_px(30.0), 15);
+    }
+
+    #[test]
+    fn the_leaning_tint_rises_with_the_floor_s_own() {
+        // A clean floor keeps the loose limit; a noisy one twice its median saturation.
+        assert_eq!(lean_tint(&mut []), LEANING.2);
+        assert_eq!(lean_tint(&mut [0.03, 0.01, 0.04]), LEANING.2);
+        let mut noisy = [0.2, 0.05, 0.09, 0.12, 0.08];
+        assert!((lean_tint(&mut noisy) - 0.18).abs() < 1e-12);
+        assert!(is_leaning_with([1.0, 0.85, 0.85], 0.1));
+        assert!(!is_leaning_with([1.0, 0.85, 0.85], 0.18));
+        // Brightness leans whatever the tint.
+        assert!(is_leaning_with([1.35, 1.35, 1.35], 0.5));
     }
 }

@@ -230,6 +230,51 @@ fn floor_span(
     Some(lo..hi.max(lo))
 }
 
+/// The saturation after white balance of the lit floor's pixels (of the floor's colour class
+/// and brightness, see [`pale::lit_floor_bright`]), each judged as [`classify`] judges it
+/// (averaged over its square of radius `radius`), sampled every 8th pixel of every 8th row
+/// inside the floor, each row of samples shifted by 3 pixels from the one before: for
+/// [`pale::lean_tint`].
+pub fn floor_saturations(
+    img: &RgbImage,
+    classifier: &Classifier,
+    image_to_floor: &Homography,
+    (w, h): (u32, u32),
+    radius: usize,
+) -> Vec<f64> {
+    let (width, height) = (img.width() as usize, img.height() as usize);
+    let raw = img.as_raw();
+    let (fw, fh) = (f64::from(w), f64::from(h));
+    let mut out = Vec::new();
+    for y in (0..height).step_by(8) {
+        for x in ((y / 8 * 3) % 8..width).step_by(8) {
+            let inside = image_to_floor
+                .apply((x as f64 + 0.5, y as f64 + 0.5))
+                .is_some_and(|(u, v)| u >= 0.0 && v >= 0.0 && u < fw && v < fh);
+            if !inside {
+                continue;
+            }
+            let (x0, x1) = (x.saturating_sub(radius), (x + radius).min(width - 1));
+            let (y0, y1) = (y.saturating_sub(radius), (y + radius).min(height - 1));
+            let mut sum = [0u32; 3];
+            for yy in y0..=y1 {
+                for xx in x0..=x1 {
+                    for (c, s) in sum.iter_mut().enumerate() {
+                        *s += u32::from(raw[(yy * width + xx) * 3 + c]);
+                    }
+                }
+            }
+            let n = ((x1 - x0 + 1) * (y1 - y0 + 1)) as u32;
+            let mean = sum.map(|s| ((s + n / 2) / n) as u8);
+            let balanced = classifier.balanced(mean);
+            if classifier.classify(mean) == Class::Floor && pale::lit_floor_bright(balanced) {
+                out.push(pale::saturation(balanced));
+            }
+        }
+    }
+    out
+}
+
 /// Classifies every pixel (class codes of [`Class`], [`pale::PALE`] for floor-coloured pixels
 /// that lean pale, to be settled by [`pale::settle`], or [`OUTSIDE`]) of a floor of `w` × `h`
 /// cells seen through `image_to_floor`, colours other than marks averaged over a square of
@@ -263,7 +308,7 @@ pub fn classify(
                 classifier.greyish_row(own, &mut own_grey);
                 let mut visit = |k: usize| {
                     let colour = |p: &[u8]| [p[3 * k], p[3 * k + 1], p[3 * k + 2]];
-                    let leaning = |p: [u8; 3]| pale::is_leaning(classifier.balanced(p));
+                    let leaning = |p: [u8; 3]| classifier.leaning(classifier.balanced(p));
                     if own_grey[k] && mean_grey[k] {
                         // Floor by its own colour and by the mean's (by its own alone when
                         // colours are not averaged): pale or not, as below.

@@ -31,6 +31,9 @@ struct Paint {
     lines: bool,
     shelf: [f64; 3],
     line: [f64; 3],
+    floor: [f64; 3],
+    /// The camera's noise: each channel of each pixel off by up to this much, either way.
+    noise: f64,
 }
 
 impl Paint {
@@ -44,6 +47,8 @@ impl Paint {
             lines: false,
             shelf: [40.0, 70.0, 170.0],
             line: [40.0; 3],
+            floor: [170.0, 165.0, 155.0],
+            noise: 0.0,
         }
     }
 
@@ -71,7 +76,16 @@ impl Paint {
                     && !self.blocked.contains(&(u as u32, v as u32))
             });
             let shade = if shaded { 0.45 } else { 1.0 };
-            let sh = |c: [f64; 3]| Rgb(c.map(|x| (x * shade) as u8));
+            // Noise from a hash of the pixel and the channel, the same on every run.
+            let noise = |c: usize| {
+                let mut k = (u64::from(x) << 32 | u64::from(y)) * 4 + c as u64;
+                k = (k ^ (k >> 31)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+                k = (k ^ (k >> 29)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                self.noise * ((k >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0)
+            };
+            let sh = |c: [f64; 3]| {
+                Rgb([0, 1, 2].map(|i| (c[i] * shade + noise(i)).clamp(0.0, 255.0) as u8))
+            };
             if self.robots.iter().any(near) {
                 return sh([200.0, 30.0, 25.0]);
             }
@@ -83,11 +97,7 @@ impl Paint {
             }
             let line = self.lines
                 && (u.fract() < 0.05 || u.fract() > 0.95 || v.fract() < 0.05 || v.fract() > 0.95);
-            sh(if line {
-                self.line
-            } else {
-                [170.0, 165.0, 155.0]
-            })
+            sh(if line { self.line } else { self.floor })
         })
     }
 
@@ -398,6 +408,20 @@ fn a_mark_coloured_blob_on_a_shelf_is_read_as_the_shelf_s() {
         e.contains("robot-coloured blob") && e.contains("on cell (3, 2), which an obstacle covers"),
         "{e}"
     );
+}
+
+#[test]
+fn a_dark_noisy_floor_looks_like_the_floor() {
+    // A dark floor (a quarter of white) whose pixels the camera's noise tints, at 10 px a cell
+    // (colours not averaged): its own pixels must not lean pale.
+    let mut p = scene();
+    p.goals.pop();
+    p.floor = [60.0, 60.0, 60.0];
+    p.noise = 6.0;
+    let r = read_aerial(&png(&p.straight(10)), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(r.robots.len(), 2);
+    assert!(!r.grid.is_free(r.grid.cell(3, 2).unwrap()));
+    assert!(r.grid.is_free(r.grid.cell(5, 2).unwrap()));
 }
 
 #[test]
