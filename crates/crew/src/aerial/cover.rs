@@ -306,7 +306,8 @@ pub enum Beyond {
 /// cells on the side away from the nadir by (k − 1) times their distance from the nadir (plus
 /// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
 /// when a top with that k, ending at the cell's inner border, would cover all but
-/// [`EVIDENCE`] of it.
+/// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
+/// blocked cells is returned (a step in cells).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
     classes: &[u8],
@@ -317,7 +318,7 @@ pub fn lean_doubt(
     nadir: Point,
     (x, y): (u32, u32),
     beyond: Beyond,
-) -> bool {
+) -> Option<(i64, i64)> {
     let height = classes.len() / width.max(1);
     let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
     let is_blocked =
@@ -412,10 +413,10 @@ pub fn lean_doubt(
             (1.0 + (w + INSET) / d_lat).min(MAX_K)
         };
         if (k - 1.0) * (inner - na).abs() >= 1.0 - EVIDENCE {
-            return true;
+            return Some((dx, dy));
         }
     }
-    false
+    None
 }
 
 #[cfg(test)]
@@ -463,6 +464,7 @@ mod tests {
                 cell,
                 Beyond::Edge,
             )
+            .is_some()
         };
         let doubt = |over: f64, nadir: Point| doubt_at(over, nadir, (1, 3));
         // No overhang beside the obstacle: k at most 1 + 0.1 / 1.5; from a nadir 2.5 cells

@@ -717,6 +717,10 @@ fn read(
     // measured precisely enough on a large floor (a cell 99 cells from the nadir is under a
     // top of k = 1.01), and it would refuse nearly every shelf ending at the far edge; such a
     // view is read as before (see the README: not checked).
+    // The shadow beside such a cell may still show that the obstacle's base reaches it (see
+    // `shadows::base_reaches`): these cells are judged once the free cells' shadows are
+    // known, below.
+    let mut far_cells: Vec<(usize, (i64, i64))> = Vec::new();
     if let (Some(n), Some(_)) = (nadir, config.corners) {
         for i in 0..cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
@@ -729,19 +733,11 @@ fn read(
             } else {
                 cover::Beyond::Free
             };
-            if !cover::lean_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y), beyond) {
-                continue;
+            if let Some(dir) =
+                cover::lean_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y), beyond)
+            {
+                far_cells.push((i, dir));
             }
-            let why = if edge {
-                "on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends)"
-            } else {
-                "is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked"
-            };
-            doubt!(at_pixel(
-                source,
-                cell_centre_px(i),
-                format!("cell ({x}, {y}) {why}"),
-            ));
         }
     }
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
@@ -838,13 +834,36 @@ fn read(
             )
         })
     };
+    let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
+        looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
+    drop(looks);
+    let levels = looks::local_levels(&bright, (gw, gh));
+    // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
+    // top may cover whole, unless the shadow beside them shows the base reaching them.
+    if !far_cells.is_empty() {
+        let sun = shadows::sun(&bins, &levels, (gw, gh));
+        for (i, dir) in far_cells {
+            let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            if sun.is_some_and(|s| shadows::base_reaches(&bins, &levels, (gw, gh), s, (x, y), dir))
+            {
+                continue;
+            }
+            let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
+            let why = if edge {
+                "on the floor's edge is covered, but the top of the obstacle beside it, toward the camera, may lean over it to the edge: cannot tell whether it is blocked (nothing beyond the edge shows where the top ends, nor does a shadow beside it show the obstacle standing there)"
+            } else {
+                "is covered, but the top of the obstacle beside it, toward the camera, leans far enough (measured beside that obstacle) to cover it whole: cannot tell whether it is blocked (no shadow beside it shows the obstacle standing there)"
+            };
+            doubt!(at_pixel(
+                source,
+                cell_centre_px(i),
+                format!("cell ({x}, {y}) {why}"),
+            ));
+        }
+    }
     // Every shadow on the free floor must have a caster (see `shadows`): a shelf of the
     // floor's own colour and brightness shows only by its shadow.
     let uncast = {
-        let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
-            looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
-        drop(looks);
-        let levels = looks::local_levels(&bright, (gw, gh));
         let doubt = |u: shadows::Uncast, why: &str| {
             let (x, y) = u.cell;
             at_pixel(

@@ -302,6 +302,169 @@ fn attached(
     true
 }
 
+/// Direction `k` of [`DIRECTIONS`] on the floor: a unit vector.
+fn dir(k: usize) -> (f64, f64) {
+    let a = (k % DIRECTIONS) as f64 * std::f64::consts::TAU / DIRECTIONS as f64;
+    (a.cos(), a.sin())
+}
+
+/// The direction (of [`DIRECTIONS`]) toward the sun: the one along which walking from the
+/// most of the `dark` bins (sampled) reaches a caster, when that is at least [`ONE_SUN`] of
+/// them; `None` with fewer dark bins than [`UNATTACHED`].
+fn sun_index(
+    kinds: &[Kind],
+    robot_near: &[bool],
+    (bw, bh): (usize, usize),
+    dark: &[usize],
+) -> Option<usize> {
+    if dark.len() < UNATTACHED {
+        return None;
+    }
+    let at = |i: usize| (i % bw, i / bw);
+    let stride = dark.len().div_ceil(SAMPLE);
+    let sample: Vec<usize> = dark.iter().copied().step_by(stride).collect();
+    let explained = |k: usize| {
+        sample
+            .iter()
+            .filter(|&&i| attached(kinds, robot_near, (bw, bh), at(i), dir(k)))
+            .count()
+    };
+    let (best, count) = {
+        use rayon::prelude::*;
+        (0..DIRECTIONS)
+            .into_par_iter()
+            .map(|k| (k, explained(k)))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b })
+    };
+    ((count as f64) >= ONE_SUN * sample.len() as f64).then_some(best)
+}
+
+/// The bins of the floor that a robot casts from (a quarter of a bin's pixels or more, or
+/// beside such a bin), and the dark bins among the rest, with each bin's kind: for
+/// [`unattached`] and [`sun`].
+fn dark_bins(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<(Vec<Kind>, Vec<bool>, Vec<usize>)> {
+    // A robot casts a shadow from where it stands: bins a quarter its pixels or more (a robot
+    // pixel or two in a bin are noise in a shadow, a dark red's).
+    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.25)?;
+    let dark: Vec<usize> = (0..kinds.len())
+        .filter(|&i| kinds[i] == Kind::Dark && !robot_near[i])
+        .collect();
+    Some((kinds, robot_near, dark))
+}
+
+/// The direction toward the sun on the floor (a unit vector, in cells), when one sun casts
+/// the view's shadows (see [`unattached`]). `cells` and `levels` as for [`uncast`].
+pub fn sun(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Option<(f64, f64)> {
+    let (kinds, robot_near, dark) = dark_bins(cells, levels, (gw, gh))?;
+    let bw = gw as usize * SIDE;
+    sun_index(&kinds, &robot_near, (bw, gh as usize * SIDE), &dark).map(dir)
+}
+
+/// The most the shadow may run along a run of blocked cells (away from the nadir) for each
+/// cell it runs beside it: the band beside the run's far cell must be far enough from where a
+/// base ending a cell short would cast it ([`base_reaches`]).
+pub const ALONG_PER_LATERAL: f64 = 1.0;
+/// The least share of the shadow's direction across the run for its band beside the run to
+/// be judged ([`base_reaches`]).
+pub const ACROSS: f64 = 0.35;
+
+/// Whether the shadow beside the blocked cell `(x, y)`, the far cell of a run of blocked
+/// cells along `(dx, dy)` (away from the nadir), shows that the obstacle's base reaches the
+/// cell's outer half, so that the cell is its own and not only under its leaning top.
+///
+/// The base of a box casts a band of shadow along each side that faces away from the sun
+/// (`sun`: the direction toward it on the floor), as wide as the shadow is long across the
+/// run, from the base's foot. Right beside the base, within a quarter cell of it, the band
+/// runs along the base's whole side, and a shadow cast forward (away from the nadir) reaches
+/// past the base's end by at most a quarter cell times the shadow's run along per cell across.
+/// So the cell is the base's own when, on a side that the shadow falls to (at least
+/// [`ACROSS`] of its direction across the run, and at most [`ALONG_PER_LATERAL`] along the
+/// run per cell across), the free cell beside it shows shadow (a [`Kind::Dark`] bin with no
+/// robot near) in the bin next to it (a quarter cell wide) over its outer half (the third
+/// quarter along the run: past a base ending at the cell's inner border and the quarter cell
+/// its shadow may run forward, plus a margin), and in at least two of the bins next to the
+/// run's cell before it (the band along the base, not a stain). Nothing else must stand where
+/// it could cast that shadow: the free cells beyond the far cell and beside it (toward the
+/// sun from the band when the sun shines from beyond) must be free of robots.
+///
+/// `cells` and `levels` as for [`uncast`]; a cell outside the floor is `None` there too.
+pub fn base_reaches(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+    sun: (f64, f64),
+    (x, y): (u32, u32),
+    (dx, dy): (i64, i64),
+) -> bool {
+    let Some((kinds, robot_near)) = grid(cells, levels, (gw, gh), 0.25) else {
+        return false;
+    };
+    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
+    let shadow = (-sun.0, -sun.1);
+    let along = shadow.0 * dx as f64 + shadow.1 * dy as f64;
+    let free = |cx: i64, cy: i64| {
+        cx >= 0
+            && cy >= 0
+            && cx < i64::from(gw)
+            && cy < i64::from(gh)
+            && cells[(cy * i64::from(gw) + cx) as usize].is_some()
+    };
+    let outside = |cx: i64, cy: i64| cx < 0 || cy < 0 || cx >= i64::from(gw) || cy >= i64::from(gh);
+    // The bin beside the run's cell `(cx, cy)` on side `p` (in the free cell there, next to
+    // the run) at `a` quarters along the run from the cell's inner border.
+    let bin = |(cx, cy): (i64, i64), a: usize, p: (i64, i64)| -> Option<usize> {
+        let t = (a as f64 + 0.5) / SIDE as f64 - 0.5;
+        let u = cx as f64 + 0.5 + dx as f64 * t + p.0 as f64 * (0.5 + 0.5 / SIDE as f64);
+        let v = cy as f64 + 0.5 + dy as f64 * t + p.1 as f64 * (0.5 + 0.5 / SIDE as f64);
+        let (bx, by) = ((u * SIDE as f64).floor(), (v * SIDE as f64).floor());
+        (bx >= 0.0 && by >= 0.0 && (bx as usize) < bw && (by as usize) < bh)
+            .then(|| by as usize * bw + bx as usize)
+    };
+    let dark = |i: Option<usize>| i.is_some_and(|i| kinds[i] == Kind::Dark && !robot_near[i]);
+    let (xi, yi) = (i64::from(x), i64::from(y));
+    for p in [(-dy, dx), (dy, -dx)] {
+        let across = shadow.0 * p.0 as f64 + shadow.1 * p.1 as f64;
+        if across < ACROSS || along.max(0.0) > ALONG_PER_LATERAL * across {
+            continue;
+        }
+        let (beside, before) = ((xi + p.0, yi + p.1), (xi - dx + p.0, yi - dy + p.1));
+        if !free(beside.0, beside.1) || !free(before.0, before.1) {
+            continue;
+        }
+        // Toward the sun from the band, when it shines from beyond the far cell: the cells
+        // beyond the far cell and beside those, free (or off the floor) and without a robot.
+        let clear = |cx: i64, cy: i64| {
+            outside(cx, cy)
+                || (free(cx, cy)
+                    && (0..SIDE * SIDE).all(|k| {
+                        let (bx, by) =
+                            (cx as usize * SIDE + k % SIDE, cy as usize * SIDE + k / SIDE);
+                        !robot_near[by * bw + bx]
+                    }))
+        };
+        if along < 0.0 && !(clear(xi + dx, yi + dy) && clear(xi + dx + p.0, yi + dy + p.1)) {
+            continue;
+        }
+        let band_before = (1..SIDE)
+            .filter(|&a| dark(bin((xi - dx, yi - dy), a, p)))
+            .count();
+        if dark(bin((xi, yi), 2, p)) && band_before >= 2 {
+            return true;
+        }
+    }
+    false
+}
+
 /// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
 ///
 /// One sun casts every shadow the same way: walking from any point of a shadow toward the sun,
@@ -318,40 +481,9 @@ pub fn unattached(
     (gw, gh): (u32, u32),
 ) -> Option<Uncast> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
-    // A robot casts a shadow from where it stands: bins a quarter its pixels or more (a robot
-    // pixel or two in a bin are noise in a shadow, a dark red's).
-    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.25)?;
-    let dark: Vec<usize> = (0..bw * bh)
-        .filter(|&i| kinds[i] == Kind::Dark && !robot_near[i])
-        .collect();
-    if dark.len() < UNATTACHED {
-        return None;
-    }
-    let dir = |k: usize| {
-        let a = (k % DIRECTIONS) as f64 * std::f64::consts::TAU / DIRECTIONS as f64;
-        (a.cos(), a.sin())
-    };
+    let (kinds, robot_near, dark) = dark_bins(cells, levels, (gw, gh))?;
+    let best = sun_index(&kinds, &robot_near, (bw, bh), &dark)?;
     let at = |i: usize| (i % bw, i / bw);
-    let stride = dark.len().div_ceil(SAMPLE);
-    let sample: Vec<usize> = dark.iter().copied().step_by(stride).collect();
-    let explained = |k: usize| {
-        sample
-            .iter()
-            .filter(|&&i| attached(&kinds, &robot_near, (bw, bh), at(i), dir(k)))
-            .count()
-    };
-    let (best, count) = {
-        use rayon::prelude::*;
-        (0..DIRECTIONS)
-            .into_par_iter()
-            .map(|k| (k, explained(k)))
-            .collect::<Vec<_>>()
-            .into_iter()
-            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b })
-    };
-    if (count as f64) < ONE_SUN * sample.len() as f64 {
-        return None;
-    }
     let mut loose = vec![false; bw * bh];
     for &i in &dark {
         loose[i] = [best + DIRECTIONS - 1, best, best + 1]
@@ -610,5 +742,47 @@ mod tests {
         // A mismatched list of cells is no finding, not a panic.
         assert_eq!(uncast(&floor(3, 3, &dark), &[], (4, 3)), None);
         assert_eq!(uncast(&[], &[], (0, 0)), None);
+    }
+
+    #[test]
+    fn a_shadow_beside_a_run_s_far_cell_shows_its_base_there() {
+        // A run of blocked cells (2, 1)–(2, 3) along +v, away from the nadir, on a 6 × 6
+        // floor; the sun toward −u, so the shadow falls beside the run toward +u. `band` rows
+        // of bins (along v) of the first bin column of the cells at u = 3 are dark.
+        let reaches = |rows: std::ops::Range<usize>, sun: (f64, f64), robot_beyond: bool| {
+            let dark: Vec<(usize, usize)> = rows.map(|by| (3 * SIDE, by)).collect();
+            let mut cells = floor(6, 6, &dark);
+            for y in 1..=3 {
+                cells[y * 6 + 2] = None;
+            }
+            if robot_beyond {
+                cells[4 * 6 + 2].as_mut().unwrap()[5] = ROBOT;
+            }
+            base_reaches(&cells, &[], (6, 6), sun, (2, 3), (0, 1))
+        };
+        let west = (-1.0, 0.0);
+        // The band along the whole run, to the far cell's outer border: its base is there.
+        assert!(reaches(4..16, west, false));
+        // A band ending at the far cell's inner border: a base ending there, whose top may
+        // lean over the far cell.
+        assert!(!reaches(4..12, west, false));
+        // Shadow beside the far cell alone: a stain, or something else's.
+        assert!(!reaches(12..16, west, false));
+        // A shadow running forward more than across: a base ending a cell short casts it too.
+        let low_ahead = (-0.5, -0.87);
+        assert!(!reaches(4..16, low_ahead, false));
+        // A sun from beyond the run, shadows cast back toward the nadir: judged, unless a
+        // robot beyond the far cell may cast that shadow.
+        let behind = (-0.8, 0.6);
+        assert!(reaches(4..16, behind, false));
+        assert!(!reaches(4..16, behind, true));
+        // The far cell's neighbour blocked: nothing to see.
+        let dark: Vec<(usize, usize)> = (4..16).map(|by| (3 * SIDE, by)).collect();
+        let mut cells = floor(6, 6, &dark);
+        for y in 1..=3 {
+            cells[y * 6 + 2] = None;
+        }
+        cells[3 * 6 + 3] = None;
+        assert!(!base_reaches(&cells, &[], (6, 6), west, (2, 3), (0, 1)));
     }
 }
