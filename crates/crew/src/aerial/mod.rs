@@ -940,19 +940,18 @@ fn read(
         source,
         (&classes, width),
     )?;
-    // A blob of a colour between the robots' (or goals') and another's, as large as a robot.
+    // A blob of a colour between the robots' (or goals') and another's, as large as a robot,
+    // on the floor (on blocked cells it is the obstacle's, as a mark-coloured one is: see
+    // `on_shelf`).
     let smallest = robots
         .iter()
         .chain(&goals)
         .map(|m| m.area)
         .min()
         .unwrap_or(blobs::MIN_AREA);
-    if let Some(b) = unsure
-        .kept
-        .iter()
-        .chain(&unsure.merged)
-        .find(|b| 2 * b.area() >= smallest)
-    {
+    if let Some(b) = unsure.kept.iter().chain(&unsure.merged).find(|b| {
+        2 * b.area() >= smallest && !on_shelf(b, &grid, &image_to_floor, (&classes, width))
+    }) {
         return Err(at_pixel(
             source,
             b.centroid(),
@@ -1129,7 +1128,7 @@ fn marks(
     // or the reverse.
     let (shelf, found): (Vec<blobs::Blob>, Vec<blobs::Blob>) = found
         .into_iter()
-        .partition(|b| on_shelf(b, grid, image_to_floor));
+        .partition(|b| on_shelf(b, grid, image_to_floor, (classes, width)));
     let mut sorted = blobs::sort(found);
     let on_shelf = shelf
         .iter()
@@ -1285,6 +1284,10 @@ struct ReadMarks {
     on_shelf: Option<(Point, usize)>,
 }
 
+/// A blob with this share of the pixels around it, or more, of the floor stands on the floor,
+/// wherever it lies ([`on_shelf`]).
+pub const FLOOR_AROUND: f64 = 0.75;
+
 /// A blob with at least this share of its pixels (on the floor) on blocked cells lies on a
 /// shelf. A mark on a free cell beside a shelf has a few of its pixels there at most (its top
 /// leaning, or a large robot reaching over the border); 0.5 and 0.6 read families A–V alike,
@@ -1298,9 +1301,15 @@ pub const ON_SHELF: f64 = 0.6;
 /// small or too large for a mark, as a piece or as marks touching. A mark so taken from a cell
 /// misread as blocked leaves the view with fewer robots than goals (or the reverse), which
 /// is refused, naming the blob.
-fn on_shelf(blob: &blobs::Blob, grid: &Grid, image_to_floor: &Homography) -> bool {
+fn on_shelf(
+    blob: &blobs::Blob,
+    grid: &Grid,
+    image_to_floor: &Homography,
+    (classes, width): (&[u8], usize),
+) -> bool {
     let on = blobs::on_floor(blob, image_to_floor);
-    if on.is_empty() {
+    if on.is_empty() || blobs::ring_share(blob, classes, width, Class::Floor as u8) >= FLOOR_AROUND
+    {
         return false;
     }
     let blocked = on

@@ -31,14 +31,29 @@ pub struct Coverage {
     pub obstacle: Vec<u32>,
     /// Pixels per cell that showed floor, robots or goals.
     pub floor: Vec<u32>,
+    /// Of those, the goals' pixels.
+    pub goal: Vec<u32>,
 }
 
 impl Coverage {
     /// The share of the middle of cell `i` an obstacle covers; `None` when no pixel was
-    /// counted there.
+    /// counted there. Goal-coloured pixels count as floor when they are half the pixels or
+    /// more (a goal painted on the cell), and not at all otherwise: a goal is flat paint, which
+    /// an obstacle beside it hides rather than covers with its own colour, while a shelf of a
+    /// colour near the goals' (olive, dark green) reads partly as goal on the cells it stands
+    /// on (issue #29's thirteenth round: E0004's olive shelf read 46 % covered).
     pub fn share(&self, i: usize) -> Option<f64> {
-        let total = self.obstacle[i] + self.floor[i];
-        (total > 0).then(|| f64::from(self.obstacle[i]) / f64::from(total))
+        let (obstacle, floor, goal) = (self.obstacle[i], self.floor[i], self.goal[i]);
+        let total = obstacle + floor;
+        if total == 0 {
+            return None;
+        }
+        let judged = if 2 * goal < total {
+            total - goal
+        } else {
+            total
+        };
+        Some(f64::from(obstacle) / f64::from(judged.max(1)))
     }
 }
 
@@ -392,11 +407,17 @@ pub fn coverage(
     let count = |cov: &mut Coverage, class: u8, cell: usize| match class {
         c if c == Class::Obstacle as u8 => cov.obstacle[cell] += 1,
         c if c == Class::Unsure as u8 || c == OUTSIDE => {}
-        _ => cov.floor[cell] += 1,
+        c => {
+            cov.floor[cell] += 1;
+            if c == Class::Goal as u8 {
+                cov.goal[cell] += 1;
+            }
+        }
     };
     let empty = || Coverage {
         obstacle: vec![0; cells],
         floor: vec![0; cells],
+        goal: vec![0; cells],
     };
     // Counts per run of bands (as many as the cores split the rows into), then their sums:
     // whole numbers, so the totals do not depend on how the rows were split.
@@ -437,6 +458,9 @@ pub fn coverage(
             for (t, n) in total.floor.iter_mut().zip(&c.floor) {
                 *t += n;
             }
+            for (t, n) in total.goal.iter_mut().zip(&c.goal) {
+                *t += n;
+            }
             total
         })
 }
@@ -444,6 +468,21 @@ pub fn coverage(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn goal_coloured_pixels_count_as_floor_only_as_a_goal() {
+        let cov = Coverage {
+            obstacle: vec![60, 10, 0, 0],
+            floor: vec![40, 90, 0, 5],
+            goal: vec![30, 60, 0, 5],
+        };
+        // A shelf of a colour near the goals' over a third of its cell: covered as the rest.
+        assert_eq!(cov.share(0), Some(60.0 / 70.0));
+        // A goal painted on the cell: its pixels are floor.
+        assert_eq!(cov.share(1), Some(0.1));
+        assert_eq!(cov.share(2), None);
+        assert_eq!(cov.share(3), Some(0.0));
+    }
 
     #[test]
     fn a_straight_down_row_s_span_is_the_pixels_its_row_visits() {

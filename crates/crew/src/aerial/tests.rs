@@ -380,12 +380,21 @@ fn a_blob_on_blocked_cells_is_the_obstacle_s() {
             .collect();
         blobs::Blob::from_indices(&px, 40)
     };
-    // Inside the blocked cell (x 10..20); on the free cell beside it; two thirds on it (x
-    // 16..22), and half (x 17..23).
-    assert!(on_shelf(&square(12, 12, 6), &g, &i2f));
-    assert!(!on_shelf(&square(22, 12, 6), &g, &i2f));
-    assert!(on_shelf(&square(16, 12, 6), &g, &i2f));
-    assert!(!on_shelf(&square(17, 12, 6), &g, &i2f));
+    // The blocked cell's pixels (x and y 10..20) an obstacle's, the rest floor.
+    let mut classes = vec![Class::Floor as u8; 40 * 40];
+    paint(&mut classes, 40, (10, 10, 20, 20), Class::Obstacle);
+    let on = |b: &blobs::Blob| on_shelf(b, &g, &i2f, (&classes, 40));
+    // Inside the blocked cell; on the free cell beside it; two thirds on it (x 16..22), and
+    // half (x 17..23).
+    assert!(on(&square(12, 12, 6)));
+    assert!(!on(&square(22, 12, 6)));
+    assert!(on(&square(16, 12, 6)));
+    assert!(!on(&square(17, 12, 6)));
+    // A blob on the blocked cell with floor all around it stands on the floor: a mark on a
+    // cell misread as blocked (refused as such, not taken for the shelf's).
+    let mut floor_around = classes.clone();
+    paint(&mut floor_around, 40, (10, 10, 20, 20), Class::Floor);
+    assert!(!on_shelf(&square(12, 12, 6), &g, &i2f, (&floor_around, 40)));
 }
 
 #[test]
