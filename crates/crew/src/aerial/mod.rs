@@ -841,11 +841,10 @@ fn read(
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
     // top may cover whole, unless the shadow beside them shows the base reaching them.
     if !far_cells.is_empty() {
-        let sun = shadows::sun(&bins, &levels, (gw, gh));
+        let suns = shadows::suns(&bins, &levels, (gw, gh));
         for (i, dir) in far_cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-            if sun.is_some_and(|s| shadows::base_reaches(&bins, &levels, (gw, gh), s, (x, y), dir))
-            {
+            if shadows::base_reaches(&bins, &levels, (gw, gh), &suns, (x, y), dir) {
                 continue;
             }
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;

@@ -317,6 +317,24 @@ fn sun_index(
     (bw, bh): (usize, usize),
     dark: &[usize],
 ) -> Option<usize> {
+    let (counts, sampled) = explained(kinds, robot_near, (bw, bh), dark)?;
+    let (best, count) =
+        counts
+            .into_iter()
+            .enumerate()
+            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b });
+    ((count as f64) >= ONE_SUN * sampled as f64).then_some(best)
+}
+
+/// For each of the [`DIRECTIONS`], how many of the `dark` bins (sampled) walking toward it
+/// reaches a caster from, and how many were sampled; `None` with fewer dark bins than
+/// [`UNATTACHED`].
+fn explained(
+    kinds: &[Kind],
+    robot_near: &[bool],
+    (bw, bh): (usize, usize),
+    dark: &[usize],
+) -> Option<(Vec<usize>, usize)> {
     if dark.len() < UNATTACHED {
         return None;
     }
@@ -329,16 +347,14 @@ fn sun_index(
             .filter(|&&i| attached(kinds, robot_near, (bw, bh), at(i), dir(k)))
             .count()
     };
-    let (best, count) = {
+    let counts = {
         use rayon::prelude::*;
         (0..DIRECTIONS)
             .into_par_iter()
-            .map(|k| (k, explained(k)))
+            .map(explained)
             .collect::<Vec<_>>()
-            .into_iter()
-            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b })
     };
-    ((count as f64) >= ONE_SUN * sample.len() as f64).then_some(best)
+    Some((counts, sample.len()))
 }
 
 /// The bins of the floor that a robot casts from (a quarter of a bin's pixels or more, or
@@ -358,22 +374,38 @@ fn dark_bins(
     Some((kinds, robot_near, dark))
 }
 
-/// The direction toward the sun on the floor (a unit vector, in cells), when one sun casts
-/// the view's shadows (see [`unattached`]). `cells` and `levels` as for [`uncast`].
-pub fn sun(
+/// Every direction toward the sun on the floor (unit vectors, in cells) that explains the
+/// view's shadows as one sun's: walking toward it reaches a caster from at least [`ONE_SUN`] of
+/// the shadow bins (sampled; see [`unattached`]). Empty when none does. The walk forgives gaps
+/// and a long caster explains its shadow from many directions, so these may span a wide arc
+/// (X0037's from the true direction to 53° off it). `cells` and `levels` as for [`uncast`].
+pub fn suns(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
     (gw, gh): (u32, u32),
-) -> Option<(f64, f64)> {
-    let (kinds, robot_near, dark) = dark_bins(cells, levels, (gw, gh))?;
-    let bw = gw as usize * SIDE;
-    sun_index(&kinds, &robot_near, (bw, gh as usize * SIDE), &dark).map(dir)
+) -> Vec<(f64, f64)> {
+    let Some((kinds, robot_near, dark)) = dark_bins(cells, levels, (gw, gh)) else {
+        return Vec::new();
+    };
+    let size = (gw as usize * SIDE, gh as usize * SIDE);
+    let Some((counts, sampled)) = explained(&kinds, &robot_near, size, &dark) else {
+        return Vec::new();
+    };
+    counts
+        .into_iter()
+        .enumerate()
+        .filter(|&(_, n)| n as f64 >= ONE_SUN * sampled as f64)
+        .map(|(k, _)| dir(k))
+        .collect()
 }
 
 /// The most the shadow may run along a run of blocked cells (away from the nadir) for each
-/// cell it runs beside it: the band beside the run's far cell must be far enough from where a
-/// base ending a cell short would cast it ([`base_reaches`]).
-pub const ALONG_PER_LATERAL: f64 = 1.0;
+/// cell it runs across it ([`base_reaches`]). Right beside a base ending a cell short, its
+/// shadow reaches past its end by up to 1.25 cells (its width and the quarter cell beside it)
+/// times this: the shadow of its far face's every point, not only of its side, runs there.
+/// With 0.25 that is 0.31 cell, short of the far cell's third quarter. 1.0 until the end of
+/// issue #29's thirteenth round, which counted the side's shadow alone.
+pub const ALONG_PER_LATERAL: f64 = 0.25;
 /// The least share of the shadow's direction across the run for its band beside the run to
 /// be judged ([`base_reaches`]).
 pub const ACROSS: f64 = 0.35;
@@ -383,16 +415,18 @@ pub const ACROSS: f64 = 0.35;
 /// cell's outer half, so that the cell is its own and not only under its leaning top.
 ///
 /// The base of a box casts a band of shadow along each side that faces away from the sun
-/// (`sun`: the direction toward it on the floor), as wide as the shadow is long across the
+/// (`suns`: every direction toward it on the floor that the view's shadows allow, see
+/// [`suns`]; each must show the base), as wide as the shadow is long across the
 /// run, from the base's foot. Right beside the base, within a quarter cell of it, the band
 /// runs along the base's whole side, and a shadow cast forward (away from the nadir) reaches
-/// past the base's end by at most a quarter cell times the shadow's run along per cell across.
+/// past the base's end by at most 1.25 cells (the base's width and the quarter cell beside it)
+/// times the shadow's run along per cell across: every point of the base's far face casts it.
 /// So the cell is the base's own when, on a side that the shadow falls to (at least
 /// [`ACROSS`] of its direction across the run, and at most [`ALONG_PER_LATERAL`] along the
 /// run per cell across), the free cell beside it shows shadow (a [`Kind::Dark`] bin with no
 /// robot near) in the bin next to it (a quarter cell wide) over its outer half (the third
-/// quarter along the run: past a base ending at the cell's inner border and the quarter cell
-/// its shadow may run forward, plus a margin), and in at least two of the bins next to the
+/// quarter along the run: past a base ending at the cell's inner border and the 0.31 cell
+/// its shadow may then run forward, plus a margin), and in at least two of the bins next to the
 /// run's cell before it (the band along the base, not a stain). Nothing else must stand where
 /// it could cast that shadow: the free cells beyond the far cell and beside it (toward the
 /// sun from the band when the sun shines from beyond) must be free of robots.
@@ -402,7 +436,7 @@ pub fn base_reaches(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
     (gw, gh): (u32, u32),
-    sun: (f64, f64),
+    suns: &[(f64, f64)],
     (x, y): (u32, u32),
     (dx, dy): (i64, i64),
 ) -> bool {
@@ -410,8 +444,6 @@ pub fn base_reaches(
         return false;
     };
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
-    let shadow = (-sun.0, -sun.1);
-    let along = shadow.0 * dx as f64 + shadow.1 * dy as f64;
     let free = |cx: i64, cy: i64| {
         cx >= 0
             && cy >= 0
@@ -432,37 +464,38 @@ pub fn base_reaches(
     };
     let dark = |i: Option<usize>| i.is_some_and(|i| kinds[i] == Kind::Dark && !robot_near[i]);
     let (xi, yi) = (i64::from(x), i64::from(y));
-    for p in [(-dy, dx), (dy, -dx)] {
-        let across = shadow.0 * p.0 as f64 + shadow.1 * p.1 as f64;
-        if across < ACROSS || along.max(0.0) > ALONG_PER_LATERAL * across {
-            continue;
-        }
-        let (beside, before) = ((xi + p.0, yi + p.1), (xi - dx + p.0, yi - dy + p.1));
-        if !free(beside.0, beside.1) || !free(before.0, before.1) {
-            continue;
-        }
-        // Toward the sun from the band, when it shines from beyond the far cell: the cells
-        // beyond the far cell and beside those, free (or off the floor) and without a robot.
-        let clear = |cx: i64, cy: i64| {
-            outside(cx, cy)
-                || (free(cx, cy)
-                    && (0..SIDE * SIDE).all(|k| {
-                        let (bx, by) =
-                            (cx as usize * SIDE + k % SIDE, cy as usize * SIDE + k / SIDE);
-                        !robot_near[by * bw + bx]
-                    }))
-        };
-        if along < 0.0 && !(clear(xi + dx, yi + dy) && clear(xi + dx + p.0, yi + dy + p.1)) {
-            continue;
-        }
-        let band_before = (1..SIDE)
-            .filter(|&a| dark(bin((xi - dx, yi - dy), a, p)))
-            .count();
-        if dark(bin((xi, yi), 2, p)) && band_before >= 2 {
-            return true;
-        }
-    }
-    false
+    // Free (or off the floor) and without a robot: toward the sun from the band, when it
+    // shines from beyond the far cell, nothing else may cast it.
+    let clear = |cx: i64, cy: i64| {
+        outside(cx, cy)
+            || (free(cx, cy)
+                && (0..SIDE * SIDE).all(|k| {
+                    let (bx, by) = (cx as usize * SIDE + k % SIDE, cy as usize * SIDE + k / SIDE);
+                    !robot_near[by * bw + bx]
+                }))
+    };
+    // Whether the band beside the cell shows its base under a sun toward `sun`, on a side.
+    let shows = |sun: (f64, f64)| {
+        let shadow = (-sun.0, -sun.1);
+        let along = shadow.0 * dx as f64 + shadow.1 * dy as f64;
+        [(-dy, dx), (dy, -dx)].into_iter().any(|p| {
+            let across = shadow.0 * p.0 as f64 + shadow.1 * p.1 as f64;
+            let (beside, before) = ((xi + p.0, yi + p.1), (xi - dx + p.0, yi - dy + p.1));
+            across >= ACROSS
+                && along.max(0.0) <= ALONG_PER_LATERAL * across
+                && free(beside.0, beside.1)
+                && free(before.0, before.1)
+                && (along >= 0.0
+                    || (clear(xi + dx, yi + dy) && clear(xi + dx + p.0, yi + dy + p.1)))
+                && dark(bin((xi, yi), 2, p))
+                && (1..SIDE)
+                    .filter(|&a| dark(bin((xi - dx, yi - dy), a, p)))
+                    .count()
+                    >= 2
+        })
+    };
+    // Every direction the view's shadows allow for the sun must show it.
+    !suns.is_empty() && suns.iter().all(|&sun| shows(sun))
 }
 
 /// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
@@ -758,7 +791,7 @@ mod tests {
             if robot_beyond {
                 cells[4 * 6 + 2].as_mut().unwrap()[5] = ROBOT;
             }
-            base_reaches(&cells, &[], (6, 6), sun, (2, 3), (0, 1))
+            base_reaches(&cells, &[], (6, 6), &[sun], (2, 3), (0, 1))
         };
         let west = (-1.0, 0.0);
         // The band along the whole run, to the far cell's outer border: its base is there.
@@ -768,9 +801,14 @@ mod tests {
         assert!(!reaches(4..12, west, false));
         // Shadow beside the far cell alone: a stain, or something else's.
         assert!(!reaches(12..16, west, false));
-        // A shadow running forward more than across: a base ending a cell short casts it too.
+        // A shadow running forward more than a quarter as far as across: a base ending a cell
+        // short casts it there too, from its far face (X0037: 1.3 times as far).
         let low_ahead = (-0.5, -0.87);
         assert!(!reaches(4..16, low_ahead, false));
+        let ahead = (-0.89, -0.45);
+        assert!(!reaches(4..16, ahead, false));
+        let barely_ahead = (-0.97, -0.2);
+        assert!(reaches(4..16, barely_ahead, false));
         // A sun from beyond the run, shadows cast back toward the nadir: judged, unless a
         // robot beyond the far cell may cast that shadow.
         let behind = (-0.8, 0.6);
@@ -782,7 +820,26 @@ mod tests {
         for y in 1..=3 {
             cells[y * 6 + 2] = None;
         }
+        let all_free = cells.clone();
         cells[3 * 6 + 3] = None;
-        assert!(!base_reaches(&cells, &[], (6, 6), west, (2, 3), (0, 1)));
+        assert!(!base_reaches(&cells, &[], (6, 6), &[west], (2, 3), (0, 1)));
+        // Every direction the shadows allow must show it; none known, nothing shows.
+        assert!(base_reaches(
+            &all_free,
+            &[],
+            (6, 6),
+            &[west, barely_ahead],
+            (2, 3),
+            (0, 1)
+        ));
+        assert!(!base_reaches(
+            &all_free,
+            &[],
+            (6, 6),
+            &[west, ahead],
+            (2, 3),
+            (0, 1)
+        ));
+        assert!(!base_reaches(&all_free, &[], (6, 6), &[], (2, 3), (0, 1)));
     }
 }
