@@ -236,6 +236,31 @@ FAMILIES = {
                              (0.42, 0.20, 0.40)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # Y: held out from issue #29's thirteenth round, rendered after what was meant as its last
+    # change to the reader and scored once, with it and with the round's final reader (which
+    # mended the far cell's shadow test after X0037 was read wrongly). Cylinder, dome and yawed-box robots, diamond, disc and ellipse
+    # goals, warm beige-grey, dark charcoal-blue and light green-grey floors tiled every quarter
+    # cell, dark teal, mustard, cool white, brick and navy shelves from 0.3 to 2.0 high inset
+    # 0.07 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and a
+    # camera from 45 to 165 cells per 24 high.
+    "Y": dict(robot_shapes=("cylinder", "dome", "rotbox"), goal_shapes=("diamond", "disc", "ellipse"),
+              floors=((0.62, 0.58, 0.52), (0.20, 0.22, 0.26), (0.60, 0.64, 0.58)),
+              shelf_colours=((0.10, 0.30, 0.32), (0.80, 0.65, 0.20), (0.88, 0.90, 0.92), (0.55, 0.22, 0.16),
+                             (0.12, 0.16, 0.36)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # Z: held out from issue #29's thirteenth round, rendered after its final reader and scored
+    # once. Puck, box-with-a-dome and cylinder robots, ring, square and cross goals, pale
+    # warm-grey, dark slate-green and mid blue-grey floors tiled every third of a cell, rust,
+    # light grey, dark violet, sea green and ochre shelves from 0.3 to 2.0 high inset 0.05 cell,
+    # a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and a camera from 45
+    # to 165 cells per 24 high.
+    "Z": dict(robot_shapes=("puck", "boxdome", "cylinder"), goal_shapes=("ring", "square", "cross"),
+              floors=((0.70, 0.67, 0.62), (0.22, 0.28, 0.25), (0.45, 0.50, 0.58)),
+              shelf_colours=((0.50, 0.22, 0.10), (0.75, 0.76, 0.78), (0.28, 0.16, 0.40), (0.20, 0.50, 0.38),
+                             (0.76, 0.58, 0.18)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
