@@ -991,12 +991,12 @@ fn read(
     // A blob of a mark's colour on blocked cells was read as the obstacle's; had it been a
     // mark on a cell misread as blocked, its pair would be left over.
     if goals.len() != robots.len() {
-        let (kind, on_shelf) = if goals.len() > robots.len() {
+        let (kind, taken) = if goals.len() > robots.len() {
             ("robot", robots_on_shelf)
         } else {
             ("goal", goals_on_shelf)
         };
-        if let Some((at, area)) = on_shelf {
+        if let Some((at, area)) = taken {
             let (u, v) = image_to_floor.apply(at).unwrap_or((-1.0, -1.0));
             return Err(at_pixel(
                 source,
@@ -1129,7 +1129,7 @@ fn marks(
         .into_iter()
         .partition(|b| on_shelf(b, grid, image_to_floor, (classes, width)));
     let mut sorted = blobs::sort(found);
-    let on_shelf = shelf
+    let largest_on_shelf = shelf
         .iter()
         .filter(|b| {
             b.area() >= blobs::MIN_AREA
@@ -1269,7 +1269,7 @@ fn marks(
     Ok(ReadMarks {
         marks: out,
         set_aside,
-        on_shelf,
+        on_shelf: largest_on_shelf,
     })
 }
 
@@ -1290,7 +1290,8 @@ pub const FLOOR_AROUND: f64 = 0.75;
 /// A blob with at least this share of its pixels (on the floor) on blocked cells lies on a
 /// shelf. A mark on a free cell beside a shelf has a few of its pixels there at most (its top
 /// leaning, or a large robot reaching over the border); 0.5 and 0.6 read families A–V alike,
-/// 0.75 two scenes fewer (L0005, R0017: a shelf's robot-coloured specks partly off its cells).
+/// 0.75 two scenes fewer (L0005, R0017: a shelf's robot-coloured specks partly off its cells;
+/// measured before [`FLOOR_AROUND`]).
 pub const ON_SHELF: f64 = 0.6;
 
 /// Whether a mark-coloured blob lies on blocked cells (at least [`ON_SHELF`] of its pixels on
@@ -1299,7 +1300,10 @@ pub const ON_SHELF: f64 = 0.6;
 /// thirteenth round; until then such a blob was refused as a mark on a blocked cell, or, too
 /// small or too large for a mark, as a piece or as marks touching. A mark so taken from a cell
 /// misread as blocked leaves the view with fewer robots than goals (or the reverse), which
-/// is refused, naming the blob.
+/// is refused, naming the blob; and a blob with [`FLOOR_AROUND`] of the pixels around it of
+/// the floor is a mark wherever it lies (a mark on a cell misread as blocked, refused as such:
+/// S0025's robot and goal, both taken for shelves' in the audit before this held, left the
+/// counts equal).
 fn on_shelf(
     blob: &blobs::Blob,
     grid: &Grid,
@@ -1307,10 +1311,6 @@ fn on_shelf(
     (classes, width): (&[u8], usize),
 ) -> bool {
     let on = blobs::on_floor(blob, image_to_floor);
-    if on.is_empty() || blobs::ring_share(blob, classes, width, Class::Floor as u8) >= FLOOR_AROUND
-    {
-        return false;
-    }
     let blocked = on
         .iter()
         .filter(|&&(u, v)| {
@@ -1321,7 +1321,9 @@ fn on_shelf(
                     .is_some_and(|c| !grid.is_free(c))
         })
         .count();
-    blocked as f64 >= ON_SHELF * on.len() as f64
+    !on.is_empty()
+        && blocked as f64 >= ON_SHELF * on.len() as f64
+        && blobs::ring_share(blob, classes, width, Class::Floor as u8) < FLOOR_AROUND
 }
 
 #[cfg(test)]
