@@ -470,6 +470,63 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_lit_floor_s_saturations_are_sampled_inside_the_floor() {
+        // A grey floor of 10 × 10 cells of 8 px, straight down, with every pixel of its left
+        // half tinted (+12 red) by noise of one sign: half the samples are tinted, and the
+        // median saturation is that of the grey half or the tinted one.
+        let img = RgbImage::from_fn(80, 80, |x, _| {
+            if x < 40 {
+                image::Rgb([132, 120, 120])
+            } else {
+                image::Rgb([120, 120, 120])
+            }
+        });
+        let classifier = Classifier::new(
+            [120.0; 3],
+            super::super::colour::Hue::RED,
+            super::super::colour::Hue::GREEN,
+        );
+        let to_floor = Homography::floor_to_image(
+            10.0,
+            10.0,
+            [(0.0, 0.0), (80.0, 0.0), (80.0, 80.0), (0.0, 80.0)],
+        )
+        .unwrap()
+        .inverse()
+        .unwrap();
+        let mut s = floor_saturations(&img, &classifier, &to_floor, (10, 10), 0);
+        assert_eq!(s.len(), 100);
+        assert_eq!(s.iter().filter(|&&x| x > 0.0).count(), 50);
+        let tinted = 1.0 - 1.0 / 1.1;
+        assert!(s.iter().all(|&x| x == 0.0 || (x - tinted).abs() < 1e-9));
+        // Twice the median (of 100: the 51st, tinted) is above the loose limit.
+        assert!((pale::lean_tint(&mut s) - 2.0 * tinted).abs() < 1e-9);
+        // A floor only a quarter of whose pixels are tinted keeps the loose limit.
+        let quarter = RgbImage::from_fn(80, 80, |x, _| {
+            image::Rgb(if x < 20 {
+                [132, 120, 120]
+            } else {
+                [120, 120, 120]
+            })
+        });
+        let mut s = floor_saturations(&quarter, &classifier, &to_floor, (10, 10), 0);
+        assert_eq!(pale::lean_tint(&mut s), pale::LEANING.2);
+        // Outside the floor nothing is sampled.
+        let half_floor = Homography::floor_to_image(
+            10.0,
+            10.0,
+            [(0.0, 0.0), (40.0, 0.0), (40.0, 80.0), (0.0, 80.0)],
+        )
+        .unwrap()
+        .inverse()
+        .unwrap();
+        assert_eq!(
+            floor_saturations(&img, &classifier, &half_floor, (10, 10), 0).len(),
+            50
+        );
+    }
+
+    #[test]
     fn goal_coloured_pixels_count_as_floor_only_as_a_goal() {
         let cov = Coverage {
             obstacle: vec![60, 10, 0, 0],

@@ -735,6 +735,26 @@ mod tests {
     }
 
     #[test]
+    fn the_suns_the_shadows_allow_include_the_true_one_only() {
+        // The shelves' shadows run to the right: the sun is to the left (−x). Every direction
+        // returned points that way (the walk toward the sun from a shadow bin reaches its
+        // shelf), and the one straight to the left is among them.
+        let suns = suns(&sunlit(false), &[], (12, 12));
+        assert!(!suns.is_empty());
+        assert!(suns.iter().all(|&(x, _)| x < 0.0), "{suns:?}");
+        assert!(
+            suns.iter().any(|&(x, y)| x < -0.99 && y.abs() < 0.1),
+            "{suns:?}"
+        );
+        // No shadow, or shadows of no one sun: no direction.
+        assert!(suns_of_nothing().is_empty());
+    }
+
+    fn suns_of_nothing() -> Vec<(f64, f64)> {
+        suns(&floor(4, 4, &[]), &[], (4, 4))
+    }
+
+    #[test]
     fn shadows_of_no_one_sun_are_not_judged() {
         // Shadows cast to the right of one shelf and below another: no direction explains
         // 85 % of them, so a shadow behind lit floor is not refused by this check.
