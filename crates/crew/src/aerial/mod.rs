@@ -1285,14 +1285,14 @@ struct ReadMarks {
 
 /// A blob with this share of the pixels around it, or more, of the floor stands on the floor,
 /// wherever it lies ([`on_shelf`]).
-pub const FLOOR_AROUND: f64 = 0.75;
+const FLOOR_AROUND: f64 = 0.75;
 
 /// A blob with at least this share of its pixels (on the floor) on blocked cells lies on a
 /// shelf. A mark on a free cell beside a shelf has a few of its pixels there at most (its top
 /// leaning, or a large robot reaching over the border); 0.5 and 0.6 read families A–V alike,
 /// 0.75 two scenes fewer (L0005, R0017: a shelf's robot-coloured specks partly off its cells;
 /// measured before [`FLOOR_AROUND`]).
-pub const ON_SHELF: f64 = 0.6;
+const ON_SHELF: f64 = 0.6;
 
 /// Whether a mark-coloured blob lies on blocked cells (at least [`ON_SHELF`] of its pixels on
 /// the floor): the reddest or greenest pixels of a shelf of a colour near a mark's (walnut,

@@ -359,7 +359,7 @@ fn explained(
 
 /// The bins of the floor that a robot casts from (a quarter of a bin's pixels or more, or
 /// beside such a bin), and the dark bins among the rest, with each bin's kind: for
-/// [`unattached`] and [`sun`].
+/// [`unattached`] and [`suns`].
 fn dark_bins(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
