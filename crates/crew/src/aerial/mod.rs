@@ -19,7 +19,7 @@
 //!    them, and not mostly leaning pale: [`looks`]), and every shadow on the free floor must
 //!    touch what casts it ([`shadows`]: a shelf of the floor's own colour shows by its shadow;
 //!    in a lamp's pool of light a shadow is judged against the light around it) and, under one
-//!    sun, lie behind it, not behind lit floor ([`shadows::unattached`]), and on a
+//!    sun, lie behind it, not behind lit floor ([`shadows::Sunlit::unattached`]), and on a
 //!    floor with painted lines every line between free cells must show ([`painted`]);
 //! 3. robots and goals as [`blobs`] of their colour, sized against the typical one of their
 //!    kind (the most alike blobs by count times area), each put on the cell under its centre on
@@ -718,7 +718,7 @@ fn read(
     // top of k = 1.01), and it would refuse nearly every shelf ending at the far edge; such a
     // view is read as before (see the README: not checked).
     // The shadow beside such a cell may still show that the obstacle's base reaches it (see
-    // `shadows::base_reaches`): these cells are judged once the free cells' shadows are
+    // `shadows::Sunlit::base_reaches`): these cells are judged once the free cells' shadows are
     // known, below.
     let mut far_cells: Vec<(usize, (i64, i64))> = Vec::new();
     if let (Some(n), Some(_)) = (nadir, config.corners) {
@@ -838,13 +838,22 @@ fn read(
         looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
     drop(looks);
     let levels = looks::local_levels(&bright, (gw, gh));
+    // The free floor's shadow bins and the sun's directions, found once for the far cells
+    // and the shadows behind lit floor.
+    let sunlit = shadows::Sunlit::new(&bins, &levels, (gw, gh));
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
     // top may cover whole, unless the shadow beside them shows the base reaching them.
     if !far_cells.is_empty() {
-        let suns = shadows::suns(&bins, &levels, (gw, gh));
+        let suns = sunlit
+            .as_ref()
+            .map(shadows::Sunlit::suns)
+            .unwrap_or_default();
         for (i, dir) in far_cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-            if shadows::base_reaches(&bins, &levels, (gw, gh), &suns, (x, y), dir) {
+            if sunlit
+                .as_ref()
+                .is_some_and(|s| s.base_reaches(&suns, (x, y), dir))
+            {
                 continue;
             }
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
@@ -877,7 +886,7 @@ fn read(
         shadows::uncast(&bins, &levels, (gw, gh))
             .map(|u| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
-                shadows::unattached(&bins, &levels, (gw, gh)).map(|u| {
+                sunlit.as_ref()?.unattached().map(|u| {
                     doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give)")
                 })
             })

@@ -253,12 +253,12 @@ fn regions(inside: &[bool], (bw, bh): (usize, usize)) -> Vec<Vec<usize>> {
     out
 }
 
-/// Directions tried for the sun ([`unattached`]), evenly around the circle.
+/// Directions tried for the sun ([`Sunlit::unattached`]), evenly around the circle.
 pub const DIRECTIONS: usize = 64;
 /// How far (cells) a shadow may reach from its caster: a shelf 2 high under a sun 20° up.
 pub const REACH: f64 = 6.0;
 /// The share of the shadow's bins (sampled) that one direction must explain for the view to
-/// have one sun ([`unattached`]); with less (soft light, lamps), the check is not made.
+/// have one sun ([`Sunlit::unattached`]); with less (soft light, lamps), the check is not made.
 pub const ONE_SUN: f64 = 0.85;
 /// The fewest bins, connected, of shadow not attached to a caster that are refused (a cell).
 pub const UNATTACHED: usize = BINS;
@@ -308,24 +308,6 @@ fn dir(k: usize) -> (f64, f64) {
     (a.cos(), a.sin())
 }
 
-/// The direction (of [`DIRECTIONS`]) toward the sun: the one along which walking from the
-/// most of the `dark` bins (sampled) reaches a caster, when that is at least [`ONE_SUN`] of
-/// them; `None` with fewer dark bins than [`UNATTACHED`].
-fn sun_index(
-    kinds: &[Kind],
-    robot_near: &[bool],
-    (bw, bh): (usize, usize),
-    dark: &[usize],
-) -> Option<usize> {
-    let (counts, sampled) = explained(kinds, robot_near, (bw, bh), dark)?;
-    let (best, count) =
-        counts
-            .into_iter()
-            .enumerate()
-            .fold((0, 0), |b, (k, n)| if n > b.1 { (k, n) } else { b });
-    ((count as f64) >= ONE_SUN * sampled as f64).then_some(best)
-}
-
 /// For each of the [`DIRECTIONS`], how many of the `dark` bins (sampled) walking toward it
 /// reaches a caster from, and how many were sampled; `None` with fewer dark bins than
 /// [`UNATTACHED`].
@@ -357,181 +339,239 @@ fn explained(
     Some((counts, sample.len()))
 }
 
-/// The bins of the floor that a robot casts from (a quarter of a bin's pixels or more, or
-/// beside such a bin), and the dark bins among the rest, with each bin's kind: for
-/// [`unattached`] and [`suns`].
-fn dark_bins(
-    cells: &[Option<[Bin; BINS]>],
-    levels: &[f64],
-    (gw, gh): (u32, u32),
-) -> Option<(Vec<Kind>, Vec<bool>, Vec<usize>)> {
-    // A robot casts a shadow from where it stands: bins a quarter its pixels or more (a robot
-    // pixel or two in a bin are noise in a shadow, a dark red's).
-    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.25)?;
-    let dark: Vec<usize> = (0..kinds.len())
-        .filter(|&i| kinds[i] == Kind::Dark && !robot_near[i])
-        .collect();
-    Some((kinds, robot_near, dark))
-}
-
-/// Every direction toward the sun on the floor (unit vectors, in cells) that explains the
-/// view's shadows as one sun's: walking toward it reaches a caster from at least [`ONE_SUN`] of
-/// the shadow bins (sampled; see [`unattached`]). Empty when none does. The walk forgives gaps
-/// and a long caster explains its shadow from many directions, so these may span a wide arc
-/// (X0037's from the true direction to 53° off it). `cells` and `levels` as for [`uncast`].
-pub fn suns(
-    cells: &[Option<[Bin; BINS]>],
-    levels: &[f64],
-    (gw, gh): (u32, u32),
-) -> Vec<(f64, f64)> {
-    let Some((kinds, robot_near, dark)) = dark_bins(cells, levels, (gw, gh)) else {
-        return Vec::new();
-    };
-    let size = (gw as usize * SIDE, gh as usize * SIDE);
-    let Some((counts, sampled)) = explained(&kinds, &robot_near, size, &dark) else {
-        return Vec::new();
-    };
-    counts
-        .into_iter()
-        .enumerate()
-        .filter(|&(_, n)| n as f64 >= ONE_SUN * sampled as f64)
-        .map(|(k, _)| dir(k))
-        .collect()
+/// The free floor's bins judged once for the checks that need the sun's direction: each bin's
+/// kind, the bins a robot casts from (a quarter of a bin's pixels or more, or beside such a
+/// bin: in a shadow, noise makes a dark red pixel here and there), the dark bins among the
+/// rest, and, found once when first asked, how many of those each direction explains.
+pub struct Sunlit<'a> {
+    cells: &'a [Option<[Bin; BINS]>],
+    floor: (u32, u32),
+    kinds: Vec<Kind>,
+    robot_near: Vec<bool>,
+    dark: Vec<usize>,
+    explained: std::cell::OnceCell<Option<(Vec<usize>, usize)>>,
 }
 
 /// The most the shadow may run along a run of blocked cells (away from the nadir) for each
-/// cell it runs across it ([`base_reaches`]). Right beside a base ending a cell short, its
+/// cell it runs across it ([`Sunlit::base_reaches`]). Right beside a base ending a cell short, its
 /// shadow reaches past its end by up to 1.25 cells (its width and the quarter cell beside it)
 /// times this: the shadow of its far face's every point, not only of its side, runs there.
 /// With 0.25 that is 0.31 cell, short of the far cell's third quarter. 1.0 until the end of
 /// issue #29's thirteenth round, which counted the side's shadow alone.
 pub const ALONG_PER_LATERAL: f64 = 0.25;
 /// The least share of the shadow's direction across the run for its band beside the run to
-/// be judged ([`base_reaches`]).
+/// be judged ([`Sunlit::base_reaches`]).
 pub const ACROSS: f64 = 0.35;
 
-/// Whether the shadow beside the blocked cell `(x, y)`, the far cell of a run of blocked
-/// cells along `(dx, dy)` (away from the nadir), shows that the obstacle's base reaches the
-/// cell's outer half, so that the cell is its own and not only under its leaning top.
-///
-/// The base of a box casts a band of shadow along each side that faces away from the sun
-/// (`suns`: every direction toward it on the floor that the view's shadows allow, see
-/// [`suns`]; each must show the base), as wide as the shadow is long across the
-/// run, from the base's foot. Right beside the base, within a quarter cell of it, the band
-/// runs along the base's whole side, and a shadow cast forward (away from the nadir) reaches
-/// past the base's end by at most 1.25 cells (the base's width and the quarter cell beside it)
-/// times the shadow's run along per cell across: every point of the base's far face casts it.
-/// So the cell is the base's own when, on a side that the shadow falls to (at least
-/// [`ACROSS`] of its direction across the run, and at most [`ALONG_PER_LATERAL`] along the
-/// run per cell across), the free cell beside it shows shadow (a [`Kind::Dark`] bin with no
-/// robot near) in the bin next to it (a quarter cell wide) over its outer half (the third
-/// quarter along the run: past a base ending at the cell's inner border and the 0.31 cell
-/// its shadow may then run forward, plus a margin), and in at least two of the bins next to the
-/// run's cell before it (the band along the base, not a stain). Nothing else must stand where
-/// it could cast that shadow: the free cells beyond the far cell and beside it (toward the
-/// sun from the band when the sun shines from beyond) must be free of robots.
-///
-/// `cells` and `levels` as for [`uncast`]; a cell outside the floor is `None` there too.
-pub fn base_reaches(
-    cells: &[Option<[Bin; BINS]>],
-    levels: &[f64],
-    (gw, gh): (u32, u32),
-    suns: &[(f64, f64)],
-    (x, y): (u32, u32),
-    (dx, dy): (i64, i64),
-) -> bool {
-    let Some((kinds, robot_near)) = grid(cells, levels, (gw, gh), 0.25) else {
-        return false;
-    };
-    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
-    let free = |cx: i64, cy: i64| {
-        cx >= 0
-            && cy >= 0
-            && cx < i64::from(gw)
-            && cy < i64::from(gh)
-            && cells[(cy * i64::from(gw) + cx) as usize].is_some()
-    };
-    let outside = |cx: i64, cy: i64| cx < 0 || cy < 0 || cx >= i64::from(gw) || cy >= i64::from(gh);
-    // The bin beside the run's cell `(cx, cy)` on side `p` (in the free cell there, next to
-    // the run) at `a` quarters along the run from the cell's inner border.
-    let bin = |(cx, cy): (i64, i64), a: usize, p: (i64, i64)| -> Option<usize> {
-        let t = (a as f64 + 0.5) / SIDE as f64 - 0.5;
-        let u = cx as f64 + 0.5 + dx as f64 * t + p.0 as f64 * (0.5 + 0.5 / SIDE as f64);
-        let v = cy as f64 + 0.5 + dy as f64 * t + p.1 as f64 * (0.5 + 0.5 / SIDE as f64);
-        let (bx, by) = ((u * SIDE as f64).floor(), (v * SIDE as f64).floor());
-        (bx >= 0.0 && by >= 0.0 && (bx as usize) < bw && (by as usize) < bh)
-            .then(|| by as usize * bw + bx as usize)
-    };
-    let dark = |i: Option<usize>| i.is_some_and(|i| kinds[i] == Kind::Dark && !robot_near[i]);
-    let (xi, yi) = (i64::from(x), i64::from(y));
-    // Free (or off the floor) and without a robot: toward the sun from the band, when it
-    // shines from beyond the far cell, nothing else may cast it.
-    let clear = |cx: i64, cy: i64| {
-        outside(cx, cy)
-            || (free(cx, cy)
-                && (0..SIDE * SIDE).all(|k| {
-                    let (bx, by) = (cx as usize * SIDE + k % SIDE, cy as usize * SIDE + k / SIDE);
-                    !robot_near[by * bw + bx]
-                }))
-    };
-    // Whether the band beside the cell shows its base under a sun toward `sun`, on a side.
-    let shows = |sun: (f64, f64)| {
-        let shadow = (-sun.0, -sun.1);
-        let along = shadow.0 * dx as f64 + shadow.1 * dy as f64;
-        [(-dy, dx), (dy, -dx)].into_iter().any(|p| {
-            let across = shadow.0 * p.0 as f64 + shadow.1 * p.1 as f64;
-            let (beside, before) = ((xi + p.0, yi + p.1), (xi - dx + p.0, yi - dy + p.1));
-            across >= ACROSS
-                && along.max(0.0) <= ALONG_PER_LATERAL * across
-                && free(beside.0, beside.1)
-                && free(before.0, before.1)
-                && (along >= 0.0
-                    || (clear(xi + dx, yi + dy) && clear(xi + dx + p.0, yi + dy + p.1)))
-                && dark(bin((xi, yi), 2, p))
-                && (1..SIDE)
-                    .filter(|&a| dark(bin((xi - dx, yi - dy), a, p)))
-                    .count()
-                    >= 2
+impl<'a> Sunlit<'a> {
+    /// The bins of a floor of `gw` × `gh` cells; `cells` and `levels` as for [`uncast`].
+    /// `None` for a floor with no bins (or `cells` not of its size).
+    pub fn new(
+        cells: &'a [Option<[Bin; BINS]>],
+        levels: &[f64],
+        (gw, gh): (u32, u32),
+    ) -> Option<Sunlit<'a>> {
+        let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.25)?;
+        let dark: Vec<usize> = (0..kinds.len())
+            .filter(|&i| kinds[i] == Kind::Dark && !robot_near[i])
+            .collect();
+        Some(Sunlit {
+            cells,
+            floor: (gw, gh),
+            kinds,
+            robot_near,
+            dark,
+            explained: std::cell::OnceCell::new(),
         })
-    };
-    // Every direction the view's shadows allow for the sun must show it.
-    !suns.is_empty() && suns.iter().all(|&sun| shows(sun))
-}
-
-/// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
-///
-/// One sun casts every shadow the same way: walking from any point of a shadow toward the sun,
-/// one stays in the shadow until the thing that casts it. So the direction that explains the
-/// most shadow bins (of [`DIRECTIONS`], on a sample) is taken for the sun's when it explains
-/// at least [`ONE_SUN`] of them, and a connected region of [`UNATTACHED`] or more shadow bins
-/// from which that walk (or one a direction either side) crosses lit floor before any caster
-/// is refused: its caster stands on floor read as free, a shelf of the floor's own look
-/// whose shadow touches another's (V0028's graphite shelf, whose shadow joined that of the
-/// pale shelf below it; issue #29's twelfth round). `cells` and `levels` as for [`uncast`].
-pub fn unattached(
-    cells: &[Option<[Bin; BINS]>],
-    levels: &[f64],
-    (gw, gh): (u32, u32),
-) -> Option<Uncast> {
-    let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
-    let (kinds, robot_near, dark) = dark_bins(cells, levels, (gw, gh))?;
-    let best = sun_index(&kinds, &robot_near, (bw, bh), &dark)?;
-    let at = |i: usize| (i % bw, i / bw);
-    let mut loose = vec![false; bw * bh];
-    for &i in &dark {
-        loose[i] = [best + DIRECTIONS - 1, best, best + 1]
-            .iter()
-            .all(|&k| !attached(&kinds, &robot_near, (bw, bh), at(i), dir(k)));
     }
-    regions(&loose, (bw, bh))
-        .into_iter()
-        .find(|region| region.len() >= UNATTACHED)
-        .map(|region| Uncast::from_bin(at(region[0]), region.len()))
+
+    /// Bins along each side of the floor.
+    fn size(&self) -> (usize, usize) {
+        (self.floor.0 as usize * SIDE, self.floor.1 as usize * SIDE)
+    }
+
+    /// How many of the dark bins (sampled) each direction explains, and how many were sampled
+    /// (see [`explained`]).
+    fn counts(&self) -> Option<&(Vec<usize>, usize)> {
+        self.explained
+            .get_or_init(|| explained(&self.kinds, &self.robot_near, self.size(), &self.dark))
+            .as_ref()
+    }
+
+    /// Every direction toward the sun on the floor (unit vectors, in cells) that explains the
+    /// view's shadows as one sun's: walking toward it reaches a caster from at least
+    /// [`ONE_SUN`] of the shadow bins (sampled; see [`Sunlit::unattached`]). Empty when none
+    /// does. The walk forgives gaps and a long caster explains its shadow from many
+    /// directions, so these may span a wide arc (X0037's from the true direction to 53° off
+    /// it).
+    pub fn suns(&self) -> Vec<(f64, f64)> {
+        let Some((counts, sampled)) = self.counts() else {
+            return Vec::new();
+        };
+        counts
+            .iter()
+            .enumerate()
+            .filter(|&(_, &n)| n as f64 >= ONE_SUN * *sampled as f64)
+            .map(|(k, _)| dir(k))
+            .collect()
+    }
+
+    /// The direction (of [`DIRECTIONS`]) toward the sun: the one that explains the most dark
+    /// bins, when that is at least [`ONE_SUN`] of them.
+    fn sun_index(&self) -> Option<usize> {
+        let (counts, sampled) = self.counts()?;
+        let (best, count) =
+            counts
+                .iter()
+                .enumerate()
+                .fold((0, 0), |b, (k, &n)| if n > b.1 { (k, n) } else { b });
+        ((count as f64) >= ONE_SUN * *sampled as f64).then_some(best)
+    }
+
+    /// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
+    ///
+    /// One sun casts every shadow the same way: walking from any point of a shadow toward the sun,
+    /// one stays in the shadow until the thing that casts it. So the direction that explains the
+    /// most shadow bins (of [`DIRECTIONS`], on a sample) is taken for the sun's when it explains
+    /// at least [`ONE_SUN`] of them, and a connected region of [`UNATTACHED`] or more shadow bins
+    /// from which that walk (or one a direction either side) crosses lit floor before any caster
+    /// is refused: its caster stands on floor read as free, a shelf of the floor's own look
+    /// whose shadow touches another's (V0028's graphite shelf, whose shadow joined that of the
+    /// pale shelf below it; issue #29's twelfth round).
+    pub fn unattached(&self) -> Option<Uncast> {
+        let (bw, bh) = self.size();
+        let best = self.sun_index()?;
+        let (kinds, robot_near) = (&self.kinds, &self.robot_near);
+        let at = |i: usize| (i % bw, i / bw);
+        let mut loose = vec![false; bw * bh];
+        for &i in &self.dark {
+            loose[i] = [best + DIRECTIONS - 1, best, best + 1]
+                .iter()
+                .all(|&k| !attached(kinds, robot_near, (bw, bh), at(i), dir(k)));
+        }
+        regions(&loose, (bw, bh))
+            .into_iter()
+            .find(|region| region.len() >= UNATTACHED)
+            .map(|region| Uncast::from_bin(at(region[0]), region.len()))
+    }
+
+    /// Whether the shadow beside the blocked cell `(x, y)`, the far cell of a run of blocked
+    /// cells along `(dx, dy)` (away from the nadir), shows that the obstacle's base reaches the
+    /// cell's outer half, so that the cell is its own and not only under its leaning top.
+    ///
+    /// The base of a box casts a band of shadow along each side that faces away from the sun
+    /// (`suns`: every direction toward it on the floor that the view's shadows allow, see
+    /// [`Sunlit::suns`]; each must show the base), as wide as the shadow is long across the
+    /// run, from the base's foot. Right beside the base, within a quarter cell of it, the band
+    /// runs along the base's whole side, and a shadow cast forward (away from the nadir) reaches
+    /// past the base's end by at most 1.25 cells (the base's width and the quarter cell beside it)
+    /// times the shadow's run along per cell across: every point of the base's far face casts it.
+    /// So the cell is the base's own when, on a side that the shadow falls to (at least
+    /// [`ACROSS`] of its direction across the run, and at most [`ALONG_PER_LATERAL`] along the
+    /// run per cell across), the free cell beside it shows shadow (a [`Kind::Dark`] bin with no
+    /// robot near) in the bin next to it (a quarter cell wide) over its outer half (the third
+    /// quarter along the run: past a base ending at the cell's inner border and the 0.31 cell
+    /// its shadow may then run forward, plus a margin), and in at least two of the bins next to the
+    /// run's cell before it (the band along the base, not a stain). Nothing else must stand where
+    /// it could cast that shadow: the free cells beyond the far cell and beside it (toward the
+    /// sun from the band when the sun shines from beyond) must be free of robots.
+    ///
+    /// A cell outside the floor counts as blocked, as in [`uncast`].
+    pub fn base_reaches(
+        &self,
+        suns: &[(f64, f64)],
+        (x, y): (u32, u32),
+        (dx, dy): (i64, i64),
+    ) -> bool {
+        let (gw, gh) = self.floor;
+        let (bw, bh) = self.size();
+        let (cells, kinds, robot_near) = (self.cells, &self.kinds, &self.robot_near);
+        let free = |cx: i64, cy: i64| {
+            cx >= 0
+                && cy >= 0
+                && cx < i64::from(gw)
+                && cy < i64::from(gh)
+                && cells[(cy * i64::from(gw) + cx) as usize].is_some()
+        };
+        let outside =
+            |cx: i64, cy: i64| cx < 0 || cy < 0 || cx >= i64::from(gw) || cy >= i64::from(gh);
+        // The bin beside the run's cell `(cx, cy)` on side `p` (in the free cell there, next to
+        // the run) at `a` quarters along the run from the cell's inner border.
+        let bin = |(cx, cy): (i64, i64), a: usize, p: (i64, i64)| -> Option<usize> {
+            let t = (a as f64 + 0.5) / SIDE as f64 - 0.5;
+            let u = cx as f64 + 0.5 + dx as f64 * t + p.0 as f64 * (0.5 + 0.5 / SIDE as f64);
+            let v = cy as f64 + 0.5 + dy as f64 * t + p.1 as f64 * (0.5 + 0.5 / SIDE as f64);
+            let (bx, by) = ((u * SIDE as f64).floor(), (v * SIDE as f64).floor());
+            (bx >= 0.0 && by >= 0.0 && (bx as usize) < bw && (by as usize) < bh)
+                .then(|| by as usize * bw + bx as usize)
+        };
+        let dark = |i: Option<usize>| i.is_some_and(|i| kinds[i] == Kind::Dark && !robot_near[i]);
+        let (xi, yi) = (i64::from(x), i64::from(y));
+        // Free (or off the floor) and without a robot: toward the sun from the band, when it
+        // shines from beyond the far cell, nothing else may cast it.
+        let clear = |cx: i64, cy: i64| {
+            outside(cx, cy)
+                || (free(cx, cy)
+                    && (0..SIDE * SIDE).all(|k| {
+                        let (bx, by) =
+                            (cx as usize * SIDE + k % SIDE, cy as usize * SIDE + k / SIDE);
+                        !robot_near[by * bw + bx]
+                    }))
+        };
+        // Whether the band beside the cell shows its base under a sun toward `sun`, on a side.
+        let shows = |sun: (f64, f64)| {
+            let shadow = (-sun.0, -sun.1);
+            let along = shadow.0 * dx as f64 + shadow.1 * dy as f64;
+            [(-dy, dx), (dy, -dx)].into_iter().any(|p| {
+                let across = shadow.0 * p.0 as f64 + shadow.1 * p.1 as f64;
+                let (beside, before) = ((xi + p.0, yi + p.1), (xi - dx + p.0, yi - dy + p.1));
+                across >= ACROSS
+                    && along.max(0.0) <= ALONG_PER_LATERAL * across
+                    && free(beside.0, beside.1)
+                    && free(before.0, before.1)
+                    && (along >= 0.0
+                        || (clear(xi + dx, yi + dy) && clear(xi + dx + p.0, yi + dy + p.1)))
+                    && dark(bin((xi, yi), 2, p))
+                    && (1..SIDE)
+                        .filter(|&a| dark(bin((xi - dx, yi - dy), a, p)))
+                        .count()
+                        >= 2
+            })
+        };
+        // Every direction the view's shadows allow for the sun must show it.
+        !suns.is_empty() && suns.iter().all(|&sun| shows(sun))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`Sunlit::unattached`] of a floor, as `read` asks it.
+    fn unattached(
+        cells: &[Option<[Bin; BINS]>],
+        levels: &[f64],
+        floor: (u32, u32),
+    ) -> Option<Uncast> {
+        Sunlit::new(cells, levels, floor)?.unattached()
+    }
+
+    /// [`Sunlit::suns`] of a floor, none for a floor with no bins.
+    fn suns(cells: &[Option<[Bin; BINS]>], levels: &[f64], floor: (u32, u32)) -> Vec<(f64, f64)> {
+        Sunlit::new(cells, levels, floor).map_or_else(Vec::new, |s| s.suns())
+    }
+
+    /// [`Sunlit::base_reaches`] of a floor.
+    fn base_reaches(
+        cells: &[Option<[Bin; BINS]>],
+        levels: &[f64],
+        floor: (u32, u32),
+        suns: &[(f64, f64)],
+        cell: (u32, u32),
+        dir: (i64, i64),
+    ) -> bool {
+        Sunlit::new(cells, levels, floor).is_some_and(|s| s.base_reaches(suns, cell, dir))
+    }
 
     const LIT: Bin = Bin {
         dark: 0,
