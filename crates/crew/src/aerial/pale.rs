@@ -8,7 +8,7 @@
 //!
 //! Pixel by pixel that difference drowns in noise and texture, so it is judged over squares
 //! [`OPENING`] of a cell wide. [`super::pixels::classify`] marks the floor-coloured pixels
-//! that lean that way ([`is_leaning`], loose limits), and the specks of a mark's colour whose
+//! that lean that way ([`is_leaning_with`], loose limits, or above the floor's own tint), and the specks of a mark's colour whose
 //! surroundings lean that way (the reddest pixels of a tan top). A square is pale when
 //! - at least [`FULL`] of its pixels lean that way or are already an obstacle's (or of a
 //!   colour that cannot be told: the rest of a top whose colour noise splits between floor
@@ -91,12 +91,8 @@ pub fn is_pale(rgb: [f64; 3]) -> bool {
     max >= BRIGHTER || (max >= LIT && s >= TINTED)
 }
 
-/// Whether a colour after white balance leans pale (the loose limits [`LEANING`]).
-pub fn is_leaning(rgb: [f64; 3]) -> bool {
-    is_leaning_with(rgb, LEANING.2)
-}
-
-/// Whether a colour after white balance leans pale, lit ones from saturation `tint`.
+/// Whether a colour after white balance leans pale (the loose limits [`LEANING`]), lit ones
+/// from saturation `tint` (see [`lean_tint`]; [`super::colour::Classifier::leaning`]).
 pub fn is_leaning_with(rgb: [f64; 3], tint: f64) -> bool {
     let (max, s) = bright_and_saturation(rgb);
     max >= LEANING.0 || (max >= LEANING.1 && s >= tint)
@@ -368,7 +364,7 @@ mod tests {
                 r.bytes().map(|b| match b {
                     b'x' => OUTSIDE,
                     b'r' => PALE_ROBOT,
-                    _ if is_leaning(classifier.balanced(colour(b))) => PALE,
+                    _ if is_leaning_with(classifier.balanced(colour(b)), LEANING.2) => PALE,
                     _ => F,
                 })
             })
@@ -441,7 +437,7 @@ mod tests {
         // not tinted enough (under 0.17) stay floor.
         let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
         let faint = [150u8, 130, 150];
-        assert!(is_leaning(classifier.balanced(faint)));
+        assert!(is_leaning_with(classifier.balanced(faint), LEANING.2));
         assert!(!is_pale(classifier.balanced(faint)));
         let img = RgbImage::from_pixel(6, 6, image::Rgb(faint));
         let mut c = vec![PALE; 36];
@@ -458,8 +454,8 @@ mod tests {
         assert!(is_pale([1.0, 0.85, 1.05]));
         // Tinted but dark: a shadow under a blue sky, not judged here.
         assert!(!is_pale([0.4, 0.5, 0.7]));
-        assert!(!is_leaning([0.4, 0.5, 0.7]));
-        assert!(is_leaning([1.35, 1.3, 1.3]));
+        assert!(!is_leaning_with([0.4, 0.5, 0.7], LEANING.2));
+        assert!(is_leaning_with([1.35, 1.3, 1.3], LEANING.2));
     }
 
     #[test]
