@@ -27,8 +27,10 @@
 //! to the window: blocked above 70 %, refused between 30 and 70 %.
 //!
 //! Limit: a free cell that a top covers whole (a lean of a cell or more) cannot be told from
-//! the silhouette alone from a blocked one; it reads as blocked. Where the side face facing
-//! the nadir ends and the top begins would tell; this module does not look at shading.
+//! the silhouette alone from a blocked one; it reads as blocked, and [`lean_doubt`] refuses it
+//! at the far end of a run unless the cover past it runs on further than the run's top could
+//! lean (then its own top stands there). Where the side face facing the nadir ends and the top
+//! begins would tell more; this module does not look at shading.
 
 use super::colour::Class;
 use super::homography::{Homography, Point};
@@ -307,7 +309,9 @@ pub enum Beyond {
 /// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
 /// when a top with that k, ending at the cell's inner border, would cover all but
 /// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
-/// blocked cells is returned (a step in cells).
+/// blocked cells is returned (a step in cells). For [`Beyond::Free`], not when the cover runs on
+/// past the cell, over the free cells beyond, further than that top could reach ([`Past`]):
+/// the cell's own top is there (since issue #29's fourteenth round).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
     classes: &[u8],
@@ -412,11 +416,204 @@ pub fn lean_doubt(
             let w = overhangs[overhangs.len() / 2];
             (1.0 + (w + INSET) / d_lat).min(MAX_K)
         };
-        if (k - 1.0) * (inner - na).abs() >= 1.0 - EVIDENCE {
-            return Some((dx, dy));
+        let reach = (k - 1.0) * (inner - na).abs();
+        if reach < 1.0 - EVIDENCE {
+            continue;
         }
+        if beyond == Beyond::Free {
+            let maps = (floor_to_image, image_to_floor);
+            let past = Past {
+                cell: (xi, yi),
+                step: (dx, dy),
+                nadir_across: nl,
+                k,
+            };
+            if past
+                .cover(classes, width, maps, &is_blocked, inside)
+                .is_some_and(|o| 1.0 + o >= PAST_MARGIN * reach)
+            {
+                continue; // its own top shows past the reach of the run's
+            }
+        }
+        return Some((dx, dy));
     }
     None
+}
+
+/// A far cell's own top shows when the cover past it reaches this many times further than the
+/// run's top could lean from the far cell's inner border (at the largest lean measured beside
+/// the run, [`lean_doubt`]).
+pub const PAST_MARGIN: f64 = 1.2;
+
+/// The free cells past a run's far cell, away from the nadir: see [`Past::cover`].
+struct Past {
+    /// The far cell.
+    cell: (i64, i64),
+    /// One cell away from the nadir, along the run.
+    step: (i64, i64),
+    /// The nadir's coordinate across the run.
+    nadir_across: f64,
+    /// The largest lean scale of the run's top.
+    k: f64,
+}
+
+/// The slices (in cells) of the cover's profile past a far cell.
+const PAST_SLICE: f64 = 0.04;
+
+impl Past {
+    /// How far (in cells) an obstacle's cover runs on unbroken past the far cell's outer
+    /// border, away from the nadir, over the free cells there (at most two), under the middle
+    /// half of the far cell's top (at least the free cells' length when it runs on over all of
+    /// them). `None` when that cannot be measured: no free cell past it, or a blocked cell
+    /// beside those free cells, on the nadir's side, may lean its own top over them.
+    ///
+    /// If the far cell is free under the run's top, that cover ends where the run's top ends,
+    /// at most `reach − 1` past it (`reach` the largest lean from the far cell's inner
+    /// border); a cover running on further is the far cell's own top (issue #29's fourteenth
+    /// round: on families A–F and K–Z, no free far cell's cover ran on past 1.01 times the
+    /// reach, and that of 47 blocked ones past 1.2 times).
+    fn cover(
+        &self,
+        classes: &[u8],
+        width: usize,
+        maps: (&Homography, &Homography),
+        is_blocked: &dyn Fn(i64, i64) -> bool,
+        inside: impl Fn(i64, i64) -> bool,
+    ) -> Option<f64> {
+        let ((x, y), (dx, dy)) = (self.cell, self.step);
+        // Across the run: the lateral offset of a cell by `s`.
+        let beside = |cx: i64, cy: i64, s: i64| if dx != 0 { (cx, cy + s) } else { (cx + s, cy) };
+        let (a, l) = if dx != 0 { (x, y) } else { (y, x) };
+        let mut free = 0usize;
+        for t in 1..=2i64 {
+            let (cx, cy) = (x + t * dx, y + t * dy);
+            if !inside(cx, cy) || is_blocked(cx, cy) {
+                break;
+            }
+            // The side toward the nadir, or both when it is in line with the far cell.
+            let sides: &[i64] = if self.nadir_across < l as f64 {
+                &[-1]
+            } else if self.nadir_across > l as f64 + 1.0 {
+                &[1]
+            } else {
+                &[-1, 1]
+            };
+            if sides.iter().any(|&s| {
+                let (bx, by) = beside(cx, cy, s);
+                is_blocked(bx, by)
+            }) {
+                return None;
+            }
+            free += 1;
+        }
+        if free == 0 {
+            return None;
+        }
+        let along_u = dx != 0;
+        let dir = (dx + dy) as f64;
+        let outer = if dir > 0.0 { a as f64 + 1.0 } else { a as f64 };
+        // The middle half of the far cell across, where its top (or the run's) stands.
+        let nadir_l = self.nadir_across;
+        let (l0, l1) = (l as f64 + 0.25, l as f64 + 0.75);
+        let (t0, t1) = (
+            nadir_l + self.k * (l0 - nadir_l),
+            nadir_l + self.k * (l1 - nadir_l),
+        );
+        let slices = (free as f64 / PAST_SLICE).round() as usize;
+        let p = profile(
+            classes,
+            width,
+            maps,
+            along_u,
+            outer,
+            dir,
+            PAST_SLICE,
+            slices,
+            (t0.min(t1), t0.max(t1)),
+        );
+        // A cover that never ends runs on at least over those free cells.
+        Some(cover_end(&p).map_or(free as f64, |e| e as f64 * PAST_SLICE))
+    }
+}
+
+/// The share of obstacle pixels per slice of `step` cells along one floor axis (`along_u`: the
+/// u axis), from `from` in the direction `dir` (±1), over `n` slices, counting the pixels whose
+/// floor points lie within `across` on the other axis; `NaN` for a slice without pixels.
+#[allow(clippy::too_many_arguments)]
+fn profile(
+    classes: &[u8],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    along_u: bool,
+    from: f64,
+    dir: f64,
+    step: f64,
+    n: usize,
+    across: (f64, f64),
+) -> Vec<f64> {
+    let height = classes.len() / width.max(1);
+    let to = from + dir * step * n as f64;
+    let (a0, a1) = (from.min(to), from.max(to));
+    let (u0, v0, u1, v1) = if along_u {
+        (a0, across.0, a1, across.1)
+    } else {
+        (across.0, a0, across.1, a1)
+    };
+    let mut xs = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut ys = [f64::INFINITY, f64::NEG_INFINITY];
+    for c in [(u0, v0), (u1, v0), (u1, v1), (u0, v1)] {
+        let Some((x, y)) = floor_to_image.apply(c) else {
+            return Vec::new();
+        };
+        xs = [xs[0].min(x), xs[1].max(x)];
+        ys = [ys[0].min(y), ys[1].max(y)];
+    }
+    let clamp = |v: f64, m: usize| (v.max(0.0) as usize).min(m);
+    let (x0, x1) = (
+        clamp(xs[0].floor(), width),
+        clamp(xs[1].ceil() + 1.0, width),
+    );
+    let (y0, y1) = (
+        clamp(ys[0].floor(), height),
+        clamp(ys[1].ceil() + 1.0, height),
+    );
+    let mut all = vec![0u32; n];
+    let mut covered = vec![0u32; n];
+    for py in y0..y1 {
+        for px in x0..x1 {
+            let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)) else {
+                continue;
+            };
+            let (a, l) = if along_u { (u, v) } else { (v, u) };
+            let t = (a - from) * dir / step;
+            if l < across.0 || l >= across.1 || t < 0.0 || t >= n as f64 {
+                continue;
+            }
+            let c = classes[py * width + px];
+            if c == OUTSIDE {
+                continue;
+            }
+            all[t as usize] += 1;
+            covered[t as usize] += u32::from(c == Class::Obstacle as u8);
+        }
+    }
+    all.iter()
+        .zip(&covered)
+        .map(|(&a, &c)| {
+            if a == 0 {
+                f64::NAN
+            } else {
+                f64::from(c) / f64::from(a)
+            }
+        })
+        .collect()
+}
+
+/// Where the cover along a [`profile`] ends: the slices before the first one under half
+/// covered (slices without pixels, finer than the image, are passed over); `None` when it
+/// never ends.
+fn cover_end(profile: &[f64]) -> Option<usize> {
+    profile.iter().position(|&s| s < 0.5)
 }
 
 #[cfg(test)]
@@ -479,6 +676,61 @@ mod tests {
         // Not on the edge, or nothing blocked behind it.
         assert!(!doubt_at(2.0, (0.5, -20.0), (1, 2)));
         assert!(!doubt_at(2.0, (0.5, -20.0), (3, 3)));
+    }
+
+    #[test]
+    fn a_far_cell_whose_cover_runs_on_past_the_run_s_reach_is_no_doubt() {
+        // A 4 × 8 floor of 10 px cells seen straight down, the nadir at (-1, -8): cells
+        // (1, 2)–(1, 4) blocked, their top overhanging cells (2, 2)–(2, 4) by 0.2 cell, so k is
+        // at most 1 + 0.3 / 3 and the run's top reaches 1.2 cells past the far cell (1, 4)'s
+        // inner border. Its cover runs on `past` cells past the far cell.
+        let doubt_beside = |past: f64, beside: bool| {
+            let f2i = Homography::floor_to_image(
+                4.0,
+                8.0,
+                [(0.0, 0.0), (40.0, 0.0), (40.0, 80.0), (0.0, 80.0)],
+            )
+            .unwrap();
+            let i2f = f2i.inverse().unwrap();
+            let mut blocked = vec![false; 32];
+            for y in 2..5 {
+                blocked[y * 4 + 1] = true;
+            }
+            blocked[5 * 4] = beside;
+            let mut classes = vec![Class::Floor as u8; 40 * 80];
+            for y in 0..80usize {
+                for x in 0..40usize {
+                    let (u, v) = ((x as f64 + 0.5) / 10.0, (y as f64 + 0.5) / 10.0);
+                    let run = (1.0..2.2).contains(&u) && (2.0..5.0).contains(&v);
+                    let on = (1.0..2.0).contains(&u) && (5.0..5.0 + past).contains(&v);
+                    if run || on {
+                        classes[y * 40 + x] = Class::Obstacle as u8;
+                    }
+                }
+            }
+            lean_doubt(
+                &classes,
+                40,
+                (&f2i, &i2f),
+                (4, 8),
+                &blocked,
+                (-1.0, -8.0),
+                (1, 4),
+                Beyond::Free,
+            )
+        };
+        let doubt = |past: f64| doubt_beside(past, false);
+        // The cover ends 0.1 cell past the far cell: the run's top may end there, the far
+        // cell free under it.
+        assert_eq!(doubt(0.1), Some((0, 1)));
+        // It runs on 0.8 cell: further than the run's top reaches (1.8 > 1.2 × 1.2 cells from
+        // the far cell's inner border), so the far cell's own top.
+        assert_eq!(doubt(0.8), None);
+        // Over both free cells past it: as far at least.
+        assert_eq!(doubt(3.0), None);
+        // A blocked cell beside the free cell past it, toward the nadir, may lean its top
+        // over it: the cover there tells nothing.
+        assert_eq!(doubt_beside(0.8, true), Some((0, 1)));
     }
 
     /// Bins of a cell whose part with fu (along u) in `covered_u` shows an obstacle.

@@ -29,7 +29,11 @@
 //! two cells only when each fills its own, and are then twice the median). Its pixels become
 //! obstacle pixels, for the cells' coverage and for the blobs, but for goals joined to it
 //! by a colour between or by the shelf's edge (its goal pixels that make a blob on their own
-//! mostly outside the cells it fills).
+//! mostly outside the cells it fills), and, since the fourteenth round, for goals touching a
+//! shelf of the goals' colour (one piece of goal pixels with it): the pieces that piece makes
+//! outside the cells the blob fills that are a goal's size ([`GOAL_SIZED`]), solid
+//! ([`SOLID`]) and at most [`BUMP_LONG`] elongated (not the end of a top leaning off its
+//! cells).
 //! Its robot-coloured pieces become obstacle pixels when less than [`GOAL_OUTSIDE`] of one
 //! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
 //! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
@@ -45,9 +49,9 @@
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
-//! Limit: a goal touching such a blob (blur can join them when cells are under 12 px) is
-//! taken as part of it; when the view has as many goals as robots the reading is then
-//! refused ("fewer goals than robots").
+//! Limit: a goal touching such a blob mostly inside the cells it fills (a goal against the
+//! shelf's side, the grid shifted by its lean) is taken as part of it; when the view has as
+//! many goals as robots the reading is then refused ("fewer goals than robots").
 //!
 //! Cost: O(pixels) to label the blobs, and O(pixels of the cells they touch) for the cells'
 //! pixel counts when a blob is large.
@@ -71,6 +75,12 @@ pub const GOAL_OUTSIDE: f64 = 0.8;
 /// shifted by the lean, T0019): a shelf's piece that size is then read as a goal more, and the
 /// view refused for more goals than robots, not read without a goal.
 pub const GOAL_SIZED: std::ops::Range<f64> = 0.5..1.7;
+/// A goal-sized piece of a goal-coloured shelf's blob outside the cells it fills is a goal
+/// against the shelf when at most this elongated ([`Blob::elongation`]): a goal is a disc, a
+/// square, a cross or an ellipse (1.7), while the end of a shelf whose top leans off its cells
+/// is a strip as wide as the shelf and a fraction of a cell deep (M0022: a strip read as a
+/// goal stood for a goal hidden behind another shelf; issue #29's fourteenth round).
+pub const BUMP_LONG: f64 = 1.8;
 /// ... and at least this [`Blob::solidity`]: a goal is a solid disc or square, while the goal-coloured
 /// specks of a shelf of a colour near the goals' are ragged (E0007's olive shelves: 0.51 at
 /// most; goals 0.94 and more; since issue #29's twelfth round).
@@ -566,9 +576,18 @@ pub fn absorb(
                 let solid = || Blob::from_indices(piece, width).solidity() >= SOLID;
                 if outside >= GOAL_OUTSIDE || (GOAL_SIZED.contains(&goals) && solid()) {
                     Keep::All
+                } else if outside > 0.0 {
+                    Keep::MarksOutside
                 } else {
                     Keep::None
                 }
+            },
+            &|piece| {
+                let goals = piece.len() as f64 / median.max(1) as f64;
+                let blob = || Blob::from_indices(piece, width);
+                GOAL_SIZED.contains(&goals)
+                    && blob().solidity() >= SOLID
+                    && blob().elongation() <= BUMP_LONG
             },
         );
         let robots = marks_within(
@@ -591,6 +610,7 @@ pub fn absorb(
                 };
                 robot_piece(robots, outside)
             },
+            &|_| false,
         );
         let robots = without_shelf_pieces(robots, width, height, robot_median);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
@@ -722,6 +742,10 @@ enum Keep {
     All,
     /// Those outside the cells the blob fills.
     Outside,
+    /// Those outside the cells the blob fills that make, among themselves, pieces like a
+    /// mark (a goal against a goal-coloured shelf, joined to it in one piece of the goals'
+    /// colour).
+    MarksOutside,
     /// None: the piece is part of the obstacle.
     None,
 }
@@ -756,6 +780,7 @@ fn marks_within(
     class: Class,
     in_filled: &dyn Fn(usize) -> bool,
     keep: &dyn Fn(&[usize], f64) -> Keep,
+    mark_like: &dyn Fn(&[usize]) -> bool,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -771,6 +796,16 @@ fn marks_within(
         match keep(&piece, share) {
             Keep::All => kept.extend(piece),
             Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
+            Keep::MarksOutside => {
+                let mut outside: Vec<usize> =
+                    piece.into_iter().filter(|&i| !in_filled(i)).collect();
+                outside.sort_unstable();
+                for sub in pieces(&outside, width, classes.len() / width.max(1)) {
+                    if mark_like(&sub) {
+                        kept.extend(sub);
+                    }
+                }
+            }
             Keep::None => {}
         }
     }
@@ -1016,6 +1051,40 @@ mod tests {
         );
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
         assert_eq!(classes[11 * 40 + 10], Class::Goal as u8);
+    }
+
+    #[test]
+    fn a_goal_against_a_goal_coloured_shelf_in_one_piece_stays_a_goal() {
+        let (to_image, to_floor, mut classes) = floor();
+        // Goals of 36 px in cells (3, 0) and (3, 1); a goal-coloured shelf over cells (0, 0)
+        // and (1, 0), rows 1–8, and a goal of 36 px against it, one piece of the goals' colour
+        // with it, a row of it in the shelf's cells: the piece outside is a goal's (issue #29's
+        // fourteenth round: Q0020, X0031).
+        paint(&mut classes, 40, (33, 2, 39, 8), Class::Goal);
+        paint(&mut classes, 40, (33, 12, 39, 18), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
+        paint(&mut classes, 40, (7, 9, 13, 15), Class::Goal);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            1
+        );
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        assert_eq!(classes[12 * 40 + 10], Class::Goal as u8);
+    }
+
+    #[test]
+    fn the_end_of_a_goal_coloured_top_past_its_cells_is_no_goal() {
+        let (to_image, to_floor, mut classes) = floor();
+        // As above, but past the shelf's cells a strip as wide as the shelf, 4 px deep, as a
+        // top leaning off its cells shows: a goal's size and solid, but no goal's shape
+        // (M0022: such a strip stood for a goal hidden elsewhere).
+        paint(&mut classes, 40, (33, 2, 39, 8), Class::Goal);
+        paint(&mut classes, 40, (33, 12, 39, 18), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
+        paint(&mut classes, 40, (3, 9, 15, 14), Class::Goal);
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2));
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        assert_eq!(classes[11 * 40 + 8], Class::Obstacle as u8);
     }
 
     #[test]
