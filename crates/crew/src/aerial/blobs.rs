@@ -481,6 +481,64 @@ fn typical_area(areas: &[usize]) -> usize {
     group[group.len() / 2]
 }
 
+/// A blob opened by `r` pixels (eroded by `r`, then grown back by `r` within it: what fits a
+/// disc of radius about `r` is kept, strips thinner than about `2r` are not), in its
+/// 8-connected pieces, largest first.
+pub fn opened(blob: &Blob, r: u32) -> Vec<Blob> {
+    let (x0, y0) = (blob.bbox.0 as usize, blob.bbox.1 as usize);
+    let (dist, bw, bh) = chamfer(blob);
+    let reach = 3 * r;
+    // Grown back: chamfer distance from the core (deeper than r), within the blob.
+    let mut grown = vec![u32::MAX; bw * bh];
+    let mut queue = std::collections::BinaryHeap::new();
+    for (i, &d) in dist.iter().enumerate() {
+        if d > reach {
+            grown[i] = 0;
+            queue.push(std::cmp::Reverse((0u32, i)));
+        }
+    }
+    while let Some(std::cmp::Reverse((g, i))) = queue.pop() {
+        if g > grown[i] {
+            continue;
+        }
+        let (x, y) = ((i % bw) as isize, (i / bw) as isize);
+        for (dx, dy, w) in [
+            (-1, -1, 4),
+            (0, -1, 3),
+            (1, -1, 4),
+            (-1, 0, 3),
+            (1, 0, 3),
+            (-1, 1, 4),
+            (0, 1, 3),
+            (1, 1, 4),
+        ] {
+            let (nx, ny) = (x + dx, y + dy);
+            if nx < 0 || ny < 0 || nx >= bw as isize || ny >= bh as isize {
+                continue;
+            }
+            let j = ny as usize * bw + nx as usize;
+            let ng = g + w;
+            if dist[j] > 0 && ng <= reach && ng < grown[j] {
+                grown[j] = ng;
+                queue.push(std::cmp::Reverse((ng, j)));
+            }
+        }
+    }
+    let kept: Vec<usize> = (0..bw * bh)
+        .filter(|&i| grown[i] != u32::MAX)
+        .map(|i| (i / bw + y0) * (blob.bbox.2 as usize + 1) + i % bw + x0)
+        .collect();
+    let width = blob.bbox.2 as usize + 1;
+    let mut sorted = kept;
+    sorted.sort_unstable();
+    let mut pieces: Vec<Blob> = super::shelves::pieces(&sorted, width, blob.bbox.3 as usize + 1)
+        .iter()
+        .map(|p| Blob::from_indices(p, width))
+        .collect();
+    pieces.sort_by_key(|b| std::cmp::Reverse(b.area()));
+    pieces
+}
+
 /// The chamfer distance (3 a step along an axis, 4 diagonally) of each pixel of a blob's
 /// bounding box to the blob's outside (0 outside it), by two passes over the box (padded by
 /// 0), with the box's width and height.
@@ -1075,6 +1133,44 @@ mod tests {
     }
 
     /// Pixel discs of radius `r` at the given centres, as one blob.
+    #[test]
+    fn opening_drops_a_thin_strip_and_keeps_a_disc() {
+        // A disc of radius 8 and, touching it, a strip 3 px thick and 30 long (a shelf's rim).
+        let mut blob = discs(&[(20.0, 20.0)], 8.0);
+        let disc = blob.area();
+        for y in 28..31u32 {
+            for x in 5..35u32 {
+                if !blob.pixels.contains(&(x, y)) {
+                    blob.pixels.push((x, y));
+                }
+            }
+        }
+        blob.bbox = (blob.bbox.0.min(5), blob.bbox.1, blob.bbox.2.max(34), 30);
+        let pieces = opened(&blob, 2);
+        assert_eq!(
+            pieces.len(),
+            1,
+            "{:?}",
+            pieces.iter().map(Blob::area).collect::<Vec<_>>()
+        );
+        let kept = pieces[0].area();
+        // The disc, and the few pixels of the strip where it meets the disc.
+        assert!(
+            kept * 100 <= disc * 115 && kept >= disc * 9 / 10,
+            "{kept} of {disc}"
+        );
+        // Two discs joined by a bridge 2 px wide open into two.
+        let mut pair = discs(&[(15.0, 20.0), (40.0, 20.0)], 7.0);
+        for y in 19..21u32 {
+            for x in 21..35u32 {
+                if !pair.pixels.contains(&(x, y)) {
+                    pair.pixels.push((x, y));
+                }
+            }
+        }
+        assert_eq!(opened(&pair, 2).len(), 2);
+    }
+
     fn discs(centres: &[(f64, f64)], r: f64) -> Blob {
         let mut pixels = Vec::new();
         for y in 0..60u32 {

@@ -814,7 +814,7 @@ fn marks_within(
 }
 
 /// Pixels (indices, sorted) split into their 8-connected pieces.
-fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<usize>> {
+pub(crate) fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<usize>> {
     let mut seen = vec![false; pixels.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();

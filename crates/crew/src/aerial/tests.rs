@@ -555,3 +555,56 @@ fn the_neighbours_toward_the_nadir_are_those_on_its_side() {
     assert_eq!(before, [(-1, -1), (0, -1), (-1, 0)]);
     assert_eq!(neighbours_toward((0, 0)).count(), 8);
 }
+
+#[test]
+fn a_mark_joined_to_a_shelf_s_rim_is_cut_from_it() {
+    // A robot, a disc of 201 px, and against it a strip of its colour 3 px thick (a
+    // terracotta shelf's rim), against a median robot of 201 px: the disc is the robot.
+    let disc = |cx: f64, cy: f64| -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for y in 0..80u32 {
+            for x in 0..120u32 {
+                let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                if (px - cx).powi(2) + (py - cy).powi(2) <= 64.0 {
+                    out.push((x, y));
+                }
+            }
+        }
+        out
+    };
+    let blob_of = |pixels: Vec<(u32, u32)>| {
+        let bbox = pixels
+            .iter()
+            .fold((u32::MAX, u32::MAX, 0, 0), |b, &(x, y)| {
+                (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
+            });
+        blobs::Blob { pixels, bbox }
+    };
+    let robot = disc(30.0, 20.0);
+    let median = robot.len();
+    let mut with_rim = robot.clone();
+    for y in 28..31u32 {
+        for x in 2..60u32 {
+            if !with_rim.contains(&(x, y)) {
+                with_rim.push((x, y));
+            }
+        }
+    }
+    let found = off_rim(&blob_of(with_rim), median).expect("the robot");
+    let (cx, cy) = found.centroid();
+    assert!(
+        (cx - 30.0).abs() < 0.5 && (cy - 20.0).abs() < 0.5,
+        "{cx}, {cy}"
+    );
+    // Two robots joined by such a strip stay two: not one robot's rim.
+    let mut pair = robot;
+    pair.extend(disc(70.0, 20.0));
+    for y in 28..31u32 {
+        for x in 2..100u32 {
+            if !pair.contains(&(x, y)) {
+                pair.push((x, y));
+            }
+        }
+    }
+    assert!(off_rim(&blob_of(pair), median).is_none());
+}
