@@ -60,6 +60,7 @@
 pub mod blobs;
 pub mod colour;
 pub mod cover;
+pub mod dull;
 pub mod enclosed;
 pub mod homography;
 pub mod lines;
@@ -572,6 +573,7 @@ fn read(
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
+    dull::settle(&mut classes, img, &classifier);
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh));
     enclosed::settle(&mut classes, width);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
