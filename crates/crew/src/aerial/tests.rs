@@ -608,3 +608,13 @@ fn a_mark_joined_to_a_shelf_s_rim_is_cut_from_it() {
     }
     assert!(off_rim(&blob_of(pair), median).is_none());
 }
+
+#[test]
+fn a_pale_top_decides_a_half_covered_cell_whatever_its_neighbours() {
+    // A cover standing inside the cell counts only with no neighbour's top that may lean over
+    // it; a pale top of the cell's own counts either way.
+    assert!(own_top_decides(false, || true, || false));
+    assert!(!own_top_decides(true, || true, || false));
+    assert!(own_top_decides(true, || false, || true));
+    assert!(!own_top_decides(false, || false, || false));
+}
