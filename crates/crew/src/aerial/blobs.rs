@@ -403,9 +403,16 @@ pub fn sort(mut blobs: Vec<Blob>) -> Sorted {
     blobs.retain(|b| b.area() >= MIN_AREA / 2);
     let mut areas: Vec<usize> = blobs
         .iter()
+        .filter(|b| b.area() >= MIN_AREA && b.solidity() >= RAGGED)
         .map(Blob::area)
-        .filter(|&a| a >= MIN_AREA)
         .collect();
+    if areas.is_empty() {
+        areas = blobs
+            .iter()
+            .map(Blob::area)
+            .filter(|&a| a >= MIN_AREA)
+            .collect();
+    }
     if areas.is_empty() {
         return Sorted::default();
     }
@@ -460,6 +467,10 @@ pub const ALIKE: usize = 2;
 /// Until issue #29's eleventh round this was the median of the blobs at least a quarter of
 /// the largest, and one shelf of the robots' (or goals') colour made the median its own: the
 /// robots were then refused as too small (16 of the 59 such refusals of families A–Q).
+/// [`sort`] gives it the solid blobs' areas ([`RAGGED`]) when there are any: on a dark, noisy
+/// floor the specks of a mark's colour, however ragged, outnumbered the goals and made the
+/// typical area theirs (X0026, Z0008: crosses of 140 and 245 px refused as twenty goals
+/// touching; issue #29's fourteenth round).
 fn typical_area(areas: &[usize]) -> usize {
     let mut best = (0, 0, 0);
     let mut end = 0;
@@ -1091,6 +1102,26 @@ mod tests {
         assert_eq!(s.kept[1].area(), 40);
         assert_eq!(s.merged.len(), 1);
         assert_eq!(s.doubtful.len(), 1);
+    }
+
+    #[test]
+    fn many_ragged_specks_do_not_make_the_median() {
+        // Four goals of 100 px (crosses on a dark floor), and forty specks of noise of the
+        // goals' colour, diagonal lines of 7 px each (X0026: the median was a speck's).
+        let mut blobs: Vec<Blob> = (0..4).map(|k| blob_at(k * 20, 0, 10)).collect();
+        for k in 0..40u32 {
+            let (x0, y0) = (k * 10, 30);
+            let pixels: Vec<(u32, u32)> = (0..7).map(|i| (x0 + i, y0 + i)).collect();
+            blobs.push(Blob {
+                pixels,
+                bbox: (x0, y0, x0 + 6, y0 + 6),
+            });
+        }
+        let s = sort(blobs.clone());
+        assert_eq!(s.median_area, 100);
+        assert_eq!(s.kept.len(), 4);
+        // Without the goals, the specks are all there is: their own median.
+        assert_eq!(sort(blobs.split_off(4)).median_area, 7);
     }
 
     #[test]
