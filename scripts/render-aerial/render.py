@@ -261,6 +261,18 @@ FAMILIES = {
                              (0.76, 0.58, 0.18)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # a: held out from issue #29's fourteenth round, rendered during it and not looked at until
+    # scored once with its final reader. Box, dome and puck robots, disc, diamond and square
+    # goals, mid warm concrete, dark blue-grey and light cool grey floors tiled every half cell,
+    # olive, pale lilac, dark red-brown, steel blue and orange shelves from 0.3 to 2.0 high
+    # inset 0.06 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and
+    # a camera from 45 to 165 cells per 24 high.
+    "a": dict(robot_shapes=("box", "dome", "puck"), goal_shapes=("disc", "diamond", "square"),
+              floors=((0.55, 0.52, 0.48), (0.18, 0.20, 0.24), (0.72, 0.74, 0.76)),
+              shelf_colours=((0.45, 0.45, 0.20), (0.70, 0.62, 0.78), (0.35, 0.12, 0.10), (0.30, 0.42, 0.58),
+                             (0.85, 0.45, 0.12)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
