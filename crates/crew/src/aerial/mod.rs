@@ -645,7 +645,6 @@ fn read(
         let side = nadir_side((x, y), n);
         let leaned = neighbours_toward(side)
             .any(|(dx, dy)| share_at(x + dx, y + dy).is_some_and(|s| s > HALF_COVERED.0));
-
         let colours = |x: i64, y: i64| {
             tops::window_colours(
                 img,
@@ -1348,11 +1347,11 @@ fn on_shelf(
 /// from its borders toward the nadir) only when no covered neighbour toward the nadir may lean
 /// its top over the cell (`leaned`), since such a top covers from the border they share; a
 /// `pale` top (the cell's floor-coloured pixels a pale shade of its obstacle pixels, see
-/// [`tops::Window::pale_top`]) whatever its neighbours: the window judged is the part no
-/// neighbour's top leans over, and a leaning top's own pale shade would be the neighbour's
-/// obstacle colour, not floor of the cell's (since issue #29's fourteenth round: on families
-/// A-F and K-Z, 22 half-covered cells free of doubt so, all blocked in truth; 6 views more read
-/// exactly).
+/// [`tops::Window::pale_top`]) whatever its neighbours: the window judged is the part of the
+/// cell that no neighbour's top reaches, and cover there whose floor-coloured rest is a pale
+/// shade of it is a pale top standing on the cell, read partly as floor (since issue #29's
+/// fourteenth round: on families A-F and K-Z, 22 half-covered cells free of doubt so, all
+/// blocked in truth, none of the 93 free ones; 6 views more read exactly).
 fn own_top_decides(
     leaned: bool,
     standing: impl FnOnce() -> bool,

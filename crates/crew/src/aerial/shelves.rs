@@ -1059,7 +1059,7 @@ mod tests {
         // Goals of 36 px in cells (3, 0) and (3, 1); a goal-coloured shelf over cells (0, 0)
         // and (1, 0), rows 1–8, and a goal of 36 px against it, one piece of the goals' colour
         // with it, a row of it in the shelf's cells: the piece outside is a goal's (issue #29's
-        // fourteenth round: Q0020, X0031).
+        // fourteenth round: X0031, E0005).
         paint(&mut classes, 40, (33, 2, 39, 8), Class::Goal);
         paint(&mut classes, 40, (33, 12, 39, 18), Class::Goal);
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
