@@ -492,6 +492,38 @@ fn typical_area(areas: &[usize]) -> usize {
     group[group.len() / 2]
 }
 
+/// Pixels (indices, sorted) split into their 8-connected pieces.
+pub(crate) fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<usize>> {
+    let mut seen = vec![false; pixels.len()];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..pixels.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(k) = stack.pop() {
+            let i = pixels[k];
+            piece.push(i);
+            let (x, y) = (i % width, i / width);
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    if let Ok(n) = pixels.binary_search(&(ny * width + nx)) {
+                        if !seen[n] {
+                            seen[n] = true;
+                            stack.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        out.push(piece);
+    }
+    out
+}
+
 /// A blob opened by `r` pixels (eroded by `r`, then grown back by `r` within it: what fits a
 /// disc of radius about `r` is kept, strips thinner than about `2r` are not), in its
 /// 8-connected pieces, largest first.
@@ -542,7 +574,7 @@ pub fn opened(blob: &Blob, r: u32) -> Vec<Blob> {
     let width = blob.bbox.2 as usize + 1;
     let mut sorted = kept;
     sorted.sort_unstable();
-    let mut pieces: Vec<Blob> = super::shelves::pieces(&sorted, width, blob.bbox.3 as usize + 1)
+    let mut pieces: Vec<Blob> = pieces(&sorted, width, blob.bbox.3 as usize + 1)
         .iter()
         .map(|p| Blob::from_indices(p, width))
         .collect();

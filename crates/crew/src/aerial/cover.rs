@@ -559,24 +559,10 @@ fn profile(
     } else {
         (across.0, a0, across.1, a1)
     };
-    let mut xs = [f64::INFINITY, f64::NEG_INFINITY];
-    let mut ys = [f64::INFINITY, f64::NEG_INFINITY];
-    for c in [(u0, v0), (u1, v0), (u1, v1), (u0, v1)] {
-        let Some((x, y)) = floor_to_image.apply(c) else {
-            return Vec::new();
-        };
-        xs = [xs[0].min(x), xs[1].max(x)];
-        ys = [ys[0].min(y), ys[1].max(y)];
-    }
-    let clamp = |v: f64, m: usize| (v.max(0.0) as usize).min(m);
-    let (x0, x1) = (
-        clamp(xs[0].floor(), width),
-        clamp(xs[1].ceil() + 1.0, width),
-    );
-    let (y0, y1) = (
-        clamp(ys[0].floor(), height),
-        clamp(ys[1].ceil() + 1.0, height),
-    );
+    let Some((x0, y0, x1, y1)) = floor_to_image.floor_box((u0, v0), (u1, v1), (width, height))
+    else {
+        return Vec::new();
+    };
     let mut all = vec![0u32; n];
     let mut covered = vec![0u32; n];
     for py in y0..y1 {

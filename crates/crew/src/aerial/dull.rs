@@ -34,16 +34,7 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> us
         let mut s: Vec<f64> = b
             .pixels
             .iter()
-            .map(|&(x, y)| {
-                let rgb = classifier.balanced(img.get_pixel(x, y).0);
-                let max = rgb[0].max(rgb[1]).max(rgb[2]);
-                let min = rgb[0].min(rgb[1]).min(rgb[2]);
-                if max > 0.0 {
-                    (max - min) / max
-                } else {
-                    0.0
-                }
-            })
+            .map(|&(x, y)| super::pale::saturation(classifier.balanced(img.get_pixel(x, y).0)))
             .collect();
         let mid = s.len() / 2;
         *s.select_nth_unstable_by(mid, f64::total_cmp).1

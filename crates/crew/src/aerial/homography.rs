@@ -65,13 +65,18 @@ impl Homography {
         height: usize,
     ) -> Option<(usize, usize, usize, usize)> {
         let (fx, fy) = (f64::from(cx), f64::from(cy));
+        self.floor_box((fx, fy), (fx + 1.0, fy + 1.0), (width, height))
+    }
+
+    /// Like [`Homography::cell_box`], for the floor's rectangle from `(u0, v0)` to `(u1, v1)`.
+    pub fn floor_box(
+        &self,
+        (u0, v0): Point,
+        (u1, v1): Point,
+        (width, height): (usize, usize),
+    ) -> Option<(usize, usize, usize, usize)> {
         let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, 0.0f64, 0.0f64);
-        for c in [
-            (fx, fy),
-            (fx + 1.0, fy),
-            (fx + 1.0, fy + 1.0),
-            (fx, fy + 1.0),
-        ] {
+        for c in [(u0, v0), (u1, v0), (u1, v1), (u0, v1)] {
             let (x, y) = self.apply(c)?;
             (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
         }

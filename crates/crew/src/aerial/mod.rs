@@ -665,16 +665,18 @@ fn read(
                 }
             }
         }
-        let bins = cover::bins(
-            &classes,
-            width,
-            &floor_to_image,
-            &image_to_floor,
-            (x as u32, y as u32),
-        );
         own_top_decides(
             leaned,
-            || tops::standing(&bins, side),
+            || {
+                let bins = cover::bins(
+                    &classes,
+                    width,
+                    &floor_to_image,
+                    &image_to_floor,
+                    (x as u32, y as u32),
+                );
+                tops::standing(&bins, side)
+            },
             || colours(x, y).pale_top(&ring),
         )
     };

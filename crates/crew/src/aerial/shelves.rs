@@ -790,7 +790,7 @@ fn marks_within(
         .collect();
     marked.sort_unstable();
     let mut kept = Vec::new();
-    for piece in pieces(&marked, width, classes.len() / width.max(1)) {
+    for piece in blobs::pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         let share = outside as f64 / piece.len() as f64;
         match keep(&piece, share) {
@@ -800,7 +800,7 @@ fn marks_within(
                 let mut outside: Vec<usize> =
                     piece.into_iter().filter(|&i| !in_filled(i)).collect();
                 outside.sort_unstable();
-                for sub in pieces(&outside, width, classes.len() / width.max(1)) {
+                for sub in blobs::pieces(&outside, width, classes.len() / width.max(1)) {
                     if mark_like(&sub) {
                         kept.extend(sub);
                     }
@@ -813,38 +813,6 @@ fn marks_within(
     kept
 }
 
-/// Pixels (indices, sorted) split into their 8-connected pieces.
-pub(crate) fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<usize>> {
-    let mut seen = vec![false; pixels.len()];
-    let mut out = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..pixels.len() {
-        if seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        let mut piece = Vec::new();
-        while let Some(k) = stack.pop() {
-            let i = pixels[k];
-            piece.push(i);
-            let (x, y) = (i % width, i / width);
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    if let Ok(n) = pixels.binary_search(&(ny * width + nx)) {
-                        if !seen[n] {
-                            seen[n] = true;
-                            stack.push(n);
-                        }
-                    }
-                }
-            }
-        }
-        out.push(piece);
-    }
-    out
-}
-
 /// The robot pixels kept in a shelf's blob (sorted), less the pieces (8-connected among
 /// themselves) that are the shelf's own: those at least [`LARGER`] median robots large that
 /// [`blobs::split`] does not separate into robots (no robot is that large: the shelf's top
@@ -852,7 +820,7 @@ pub(crate) fn pieces(pixels: &[usize], width: usize, height: usize) -> Vec<Vec<u
 /// thick (its rim, where the colours averaged over a square mix the shelf's with the floor's).
 fn without_shelf_pieces(kept: Vec<usize>, width: usize, height: usize, median: f64) -> Vec<usize> {
     let mut out = Vec::with_capacity(kept.len());
-    for piece in pieces(&kept, width, height) {
+    for piece in blobs::pieces(&kept, width, height) {
         let blob = blobs::Blob::from_indices(&piece, width);
         let large = piece.len() as f64 >= LARGER * median;
         if large && blobs::split(&blob, median as usize).is_none() {
