@@ -567,14 +567,13 @@ pub fn opened(blob: &Blob, r: u32) -> Vec<Blob> {
             }
         }
     }
+    // Indices in an image as wide as the box's right edge: ascending as the box's are.
+    let width = blob.bbox.2 as usize + 1;
     let kept: Vec<usize> = (0..bw * bh)
         .filter(|&i| grown[i] != u32::MAX)
-        .map(|i| (i / bw + y0) * (blob.bbox.2 as usize + 1) + i % bw + x0)
+        .map(|i| (i / bw + y0) * width + i % bw + x0)
         .collect();
-    let width = blob.bbox.2 as usize + 1;
-    let mut sorted = kept;
-    sorted.sort_unstable();
-    let mut pieces: Vec<Blob> = pieces(&sorted, width, blob.bbox.3 as usize + 1)
+    let mut pieces: Vec<Blob> = pieces(&kept, width, blob.bbox.3 as usize + 1)
         .iter()
         .map(|p| Blob::from_indices(p, width))
         .collect();
