@@ -574,7 +574,11 @@ fn read(
     let maps = (&floor_to_image, &image_to_floor);
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     dull::settle(&mut classes, img, &classifier);
-    let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh));
+    let hue_of = |i: usize| {
+        let p = img.get_pixel((i % width) as u32, (i / width) as u32).0;
+        colour::hue_saturation(classifier.balanced(p))
+    };
+    let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {

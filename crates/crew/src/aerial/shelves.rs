@@ -85,6 +85,18 @@ pub const BUMP_LONG: f64 = 1.8;
 /// specks of a shelf of a colour near the goals' are ragged (E0007's olive shelves: 0.51 at
 /// most; goals 0.94 and more; since issue #29's twelfth round).
 pub const SOLID: f64 = 0.7;
+/// A piece of a goal-coloured shelf's blob outside the cells it fills that is not like a goal
+/// is opened ([`blobs::opened`]) by this share of a median goal's width (the square root of
+/// its area): a goal joined to the strip of the shelf's top that leans off those cells stays a
+/// goal when the strip is thinner than about twice that and the goal's hue is apart from the
+/// shelf's ([`BUMP_HUE`]; Q0020: a goal against a teal shelf's leaning top; issue #29's
+/// fifteenth round).
+pub const BUMP_CORE: f64 = 0.25;
+/// ... by at least this many degrees between the medians of the opened piece's hue and of the
+/// blob's goal-coloured pixels in the cells it fills: the end of the top (one paint, one
+/// light) opens into pieces of the top's hue (within 0.5 degrees on families A-Z), a goal
+/// painted apart is 12 degrees and more from it.
+pub const BUMP_HUE: f64 = 6.0;
 /// A robot-coloured piece of an obstacle blob under this share of the median robot is a
 /// sliver of the shelf's edge or of its noise (a shelf of a colour near the robots': orange,
 /// brown), not a robot.
@@ -391,6 +403,7 @@ pub fn absorb(
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     floor: (u32, u32),
+    hue_of: &dyn Fn(usize) -> (f64, f64),
 ) -> Absorbed {
     let height = classes.len() / width.max(1);
     let mut out = Absorbed::default();
@@ -589,6 +602,8 @@ pub fn absorb(
                     && blob().solidity() >= SOLID
                     && blob().elongation() <= BUMP_LONG
             },
+            (BUMP_CORE * (median.max(1) as f64).sqrt()).ceil() as u32,
+            hue_of,
         );
         let robots = marks_within(
             classes,
@@ -611,6 +626,8 @@ pub fn absorb(
                 robot_piece(robots, outside)
             },
             &|_| false,
+            0,
+            hue_of,
         );
         let robots = without_shelf_pieces(robots, width, height, robot_median);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
@@ -781,6 +798,8 @@ fn marks_within(
     in_filled: &dyn Fn(usize) -> bool,
     keep: &dyn Fn(&[usize], f64) -> Keep,
     mark_like: &dyn Fn(&[usize]) -> bool,
+    bump_core: u32,
+    hue_of: &dyn Fn(usize) -> (f64, f64),
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -790,6 +809,28 @@ fn marks_within(
         .collect();
     marked.sort_unstable();
     let mut kept = Vec::new();
+    // Whether a piece's hue is apart from that of the blob's pixels of that class in the
+    // cells it fills, by at least [`BUMP_HUE`] (medians; that of the filled pixels counted
+    // once, when first asked).
+    let filled_hue = std::cell::OnceCell::new();
+    let apart = |piece: &[usize]| {
+        let filled = *filled_hue.get_or_init(|| {
+            median_hue(
+                blob.iter()
+                    .copied()
+                    .filter(|&i| classes[i] == class as u8 && in_filled(i)),
+                hue_of,
+            )
+        });
+        let own = median_hue(piece.iter().copied(), hue_of);
+        match (own, filled) {
+            (Some(a), Some(b)) => {
+                let d = (a - b).abs() % 360.0;
+                d.min(360.0 - d) >= BUMP_HUE
+            }
+            _ => false,
+        }
+    };
     for piece in blobs::pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         let share = outside as f64 / piece.len() as f64;
@@ -800,9 +841,24 @@ fn marks_within(
                 let mut outside: Vec<usize> =
                     piece.into_iter().filter(|&i| !in_filled(i)).collect();
                 outside.sort_unstable();
-                for sub in blobs::pieces(&outside, width, classes.len() / width.max(1)) {
+                let height = classes.len() / width.max(1);
+                for sub in blobs::pieces(&outside, width, height) {
                     if mark_like(&sub) {
                         kept.extend(sub);
+                    } else if bump_core > 0 {
+                        // A goal joined to the strip of the shelf's top that leans off the
+                        // cells it fills: opened, the strip drops and the goal stays.
+                        let subblob = Blob::from_indices(&sub, width);
+                        for core in blobs::opened(&subblob, bump_core) {
+                            let core: Vec<usize> = core
+                                .pixels
+                                .iter()
+                                .map(|&(x, y)| y as usize * width + x as usize)
+                                .collect();
+                            if mark_like(&core) && apart(&core) {
+                                kept.extend(core);
+                            }
+                        }
                     }
                 }
             }
@@ -811,6 +867,20 @@ fn marks_within(
     }
     kept.sort_unstable();
     kept
+}
+
+/// The median hue (degrees) of some pixels; `None` for none. The hues of one paint lie within
+/// a few degrees, far from 0/360 for the goals' green (the median is taken on the line).
+fn median_hue(
+    pixels: impl Iterator<Item = usize>,
+    hue_of: &dyn Fn(usize) -> (f64, f64),
+) -> Option<f64> {
+    let mut h: Vec<f64> = pixels.map(|i| hue_of(i).0).collect();
+    if h.is_empty() {
+        return None;
+    }
+    let mid = h.len() / 2;
+    Some(*h.select_nth_unstable_by(mid, f64::total_cmp).1)
 }
 
 /// The robot pixels kept in a shelf's blob (sorted), less the pieces (8-connected among
@@ -840,6 +910,11 @@ mod tests {
     use super::*;
     use crate::aerial::tests::paint;
 
+    /// Every pixel's hue and saturation: one paint.
+    fn one_hue(_: usize) -> (f64, f64) {
+        (120.0, 0.5)
+    }
+
     /// A 4 × 2-cell floor, 10 px per cell, straight down: floor → image, image → floor.
     fn floor() -> (Homography, Homography, Vec<u8>) {
         let to_image = Homography::floor_to_image(
@@ -865,7 +940,7 @@ mod tests {
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
         paint(&mut classes, 40, (5, 2, 7, 4), Class::Unsure);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
@@ -899,7 +974,7 @@ mod tests {
         assert_eq!(whole.len(), shelf.len() + 15);
         assert_eq!(filled(&whole, &mut known), vec![0, 1]);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(
@@ -945,7 +1020,7 @@ mod tests {
             (&mut known, (0.5, 0.0), FILLED, false),
         );
         assert_eq!(half, vec![0, 1]);
-        assert_eq!(absorb(&mut classes, 40, maps, (4, 2)).turned, 1);
+        assert_eq!(absorb(&mut classes, 40, maps, (4, 2), &one_hue).turned, 1);
         assert_eq!(classes[5 * 40 + 7], Class::Obstacle as u8);
         assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
     }
@@ -964,7 +1039,7 @@ mod tests {
         goals(&mut classes);
         paint(&mut classes, 40, (1, 1, 19, 6), Class::Goal);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[3 * 40 + 10], Class::Obstacle as u8);
@@ -975,7 +1050,7 @@ mod tests {
         paint(&mut classes, 40, (4, 1, 16, 6), Class::Goal);
         let before = classes.clone();
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             0
         );
         assert_eq!(classes, before);
@@ -996,7 +1071,7 @@ mod tests {
         paint(&mut classes, 40, (19, 5, 21, 6), Class::Robot);
         let before = classes.clone();
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             0
         );
         assert_eq!(classes, before);
@@ -1014,7 +1089,7 @@ mod tests {
         paint(&mut classes, 40, (8, 8, 12, 9), Class::Unsure);
         paint(&mut classes, 40, (8, 9, 12, 13), Class::Goal);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
@@ -1033,7 +1108,7 @@ mod tests {
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
         paint(&mut classes, 40, (7, 9, 13, 15), Class::Goal);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
@@ -1050,9 +1125,48 @@ mod tests {
         paint(&mut classes, 40, (33, 12, 39, 18), Class::Goal);
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Goal);
         paint(&mut classes, 40, (3, 9, 15, 14), Class::Goal);
-        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2));
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue);
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
         assert_eq!(classes[11 * 40 + 8], Class::Obstacle as u8);
+    }
+
+    /// Goals of 36 px in cells (3, 0) and (3, 1); a goal-coloured shelf over cells (0, 0) and
+    /// (1, 0), rows 1–8, its top leaning off them in a strip 2 px deep past row 9, and a goal
+    /// of 36 px against that strip, one piece of the goals' colour with it, its hue `goal_hue`
+    /// (the shelf's 150 degrees): whether the goal's middle stays a goal.
+    fn goal_against_a_leaning_top(goal_hue: f64) -> bool {
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (33, 2, 39, 8), Class::Goal);
+        paint(&mut classes, 40, (33, 12, 39, 18), Class::Goal);
+        paint(&mut classes, 40, (1, 1, 19, 12), Class::Goal);
+        paint(&mut classes, 40, (7, 12, 13, 18), Class::Goal);
+        let hue_of = |i: usize| {
+            let (x, y) = (i % 40, i / 40);
+            let goal = (7..13).contains(&x) && (12..18).contains(&y);
+            (if goal { goal_hue } else { 150.0 }, 0.5)
+        };
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &hue_of);
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        assert_eq!(
+            classes[11 * 40 + 2],
+            Class::Obstacle as u8,
+            "the strip is the top's"
+        );
+        classes[15 * 40 + 10] == Class::Goal as u8
+    }
+
+    #[test]
+    fn a_goal_against_a_goal_coloured_top_leaning_off_its_cells_stays_a_goal() {
+        // The strip and the goal make two goals' worth outside the shelf's cells, elongated:
+        // opened, the strip drops and the goal, painted apart from the shelf, stays (issue
+        // #29's fifteenth round: Q0009, T0001).
+        assert!(goal_against_a_leaning_top(110.0));
+    }
+
+    #[test]
+    fn a_piece_of_a_leaning_top_of_the_top_s_own_hue_is_no_goal() {
+        // The same shape in the shelf's hue: the end of its top (E0005, Q0003, Q0036).
+        assert!(!goal_against_a_leaning_top(151.0));
     }
 
     #[test]
@@ -1066,7 +1180,7 @@ mod tests {
         paint(&mut classes, 40, (33, 3, 37, 7), Class::Goal);
         paint(&mut classes, 40, (33, 13, 37, 17), Class::Goal);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
@@ -1083,7 +1197,7 @@ mod tests {
         paint(&mut classes, 40, (0, 11, 10, 20), Class::Goal);
         let before = classes.clone();
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             0
         );
         assert_eq!(classes, before);
@@ -1104,7 +1218,7 @@ mod tests {
         paint(&mut classes, 40, (4, 4, 8, 6), Class::Obstacle);
         paint(&mut classes, 40, (13, 9, 18, 14), Class::Robot);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 12], Class::Obstacle as u8);
@@ -1128,7 +1242,7 @@ mod tests {
         paint(&mut classes, 40, (3, 3, 5, 5), Class::Robot);
         paint(&mut classes, 40, (9, 7, 13, 10), Class::Robot);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[3 * 40 + 3], Class::Obstacle as u8);
@@ -1148,7 +1262,7 @@ mod tests {
             classes[(1 + k) * 40 + 6 + k] = Class::Goal as u8;
         }
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[4 * 40 + 9], Class::Obstacle as u8);
@@ -1169,7 +1283,7 @@ mod tests {
         }
         paint(&mut classes, 40, (0, 1, 20, 5), Class::Goal);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[3 * 40 + 10], Class::Obstacle as u8);
@@ -1186,7 +1300,7 @@ mod tests {
         paint(&mut classes, 40, (23, 3, 37, 17), Class::Robot);
         paint(&mut classes, 40, (1, 1, 19, 9), Class::Robot);
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             1
         );
         assert_eq!(classes[5 * 40 + 10], Class::Obstacle as u8);
@@ -1197,7 +1311,7 @@ mod tests {
         paint(&mut classes, 40, (23, 3, 37, 17), Class::Robot);
         paint(&mut classes, 40, (1, 1, 19, 15), Class::Robot);
         let before = classes.clone();
-        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2));
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue);
         assert_eq!(classes, before);
     }
 
@@ -1207,7 +1321,7 @@ mod tests {
         paint(&mut classes, 40, (0, 0, 10, 10), Class::Unsure);
         let before = classes.clone();
         assert_eq!(
-            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2)).turned,
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
             0
         );
         assert_eq!(classes, before);
