@@ -576,7 +576,7 @@ fn read(
     dull::settle(&mut classes, img, &classifier);
     let hue_of = |i: usize| {
         let p = img.get_pixel((i % width) as u32, (i / width) as u32).0;
-        colour::hue_saturation(classifier.balanced(p))
+        colour::hue_saturation(classifier.balanced(p)).0
     };
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);

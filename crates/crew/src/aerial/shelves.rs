@@ -403,7 +403,7 @@ pub fn absorb(
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     floor: (u32, u32),
-    hue_of: &dyn Fn(usize) -> (f64, f64),
+    hue_of: &dyn Fn(usize) -> f64,
 ) -> Absorbed {
     let height = classes.len() / width.max(1);
     let mut out = Absorbed::default();
@@ -595,15 +595,17 @@ pub fn absorb(
                     Keep::None
                 }
             },
-            &|piece| {
-                let goals = piece.len() as f64 / median.max(1) as f64;
-                let blob = || Blob::from_indices(piece, width);
-                GOAL_SIZED.contains(&goals)
-                    && blob().solidity() >= SOLID
-                    && blob().elongation() <= BUMP_LONG
-            },
-            (BUMP_CORE * (median.max(1) as f64).sqrt()).ceil() as u32,
-            hue_of,
+            Some(&Bumps {
+                like: &|piece| {
+                    let goals = piece.len() as f64 / median.max(1) as f64;
+                    let blob = || Blob::from_indices(piece, width);
+                    GOAL_SIZED.contains(&goals)
+                        && blob().solidity() >= SOLID
+                        && blob().elongation() <= BUMP_LONG
+                },
+                core: (BUMP_CORE * (median.max(1) as f64).sqrt()).ceil() as u32,
+                hue_of,
+            }),
         );
         let robots = marks_within(
             classes,
@@ -625,9 +627,7 @@ pub fn absorb(
                 };
                 robot_piece(robots, outside)
             },
-            &|_| false,
-            0,
-            hue_of,
+            None,
         );
         let robots = without_shelf_pieces(robots, width, height, robot_median);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
@@ -785,6 +785,18 @@ fn robot_piece(robots: f64, outside: f64) -> Keep {
     }
 }
 
+/// What marks a piece of a blob's mark-coloured pixels outside the cells it fills holds, for
+/// [`Keep::MarksOutside`].
+struct Bumps<'a> {
+    /// Whether pixels (8-connected) are like a mark.
+    like: &'a dyn Fn(&[usize]) -> bool,
+    /// The radius (pixels) of the opening that cuts a mark from a strip of the shelf's top
+    /// ([`BUMP_CORE`]).
+    core: u32,
+    /// A pixel's hue (degrees), for [`BUMP_HUE`].
+    hue_of: &'a dyn Fn(usize) -> f64,
+}
+
 /// The pixels of the marks of class `class` within a blob: its pixels of that class split
 /// into 8-connected pieces among themselves, each kept as `keep(area, share outside the
 /// cells the blob fills)` says. Goals are kept with at least [`GOAL_OUTSIDE`] of them
@@ -797,9 +809,7 @@ fn marks_within(
     class: Class,
     in_filled: &dyn Fn(usize) -> bool,
     keep: &dyn Fn(&[usize], f64) -> Keep,
-    mark_like: &dyn Fn(&[usize]) -> bool,
-    bump_core: u32,
-    hue_of: &dyn Fn(usize) -> (f64, f64),
+    bumps: Option<&Bumps>,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -813,7 +823,7 @@ fn marks_within(
     // cells it fills, by at least [`BUMP_HUE`] (medians; that of the filled pixels counted
     // once, when first asked).
     let filled_hue = std::cell::OnceCell::new();
-    let apart = |piece: &[usize]| {
+    let apart = |piece: &[usize], hue_of: &dyn Fn(usize) -> f64| {
         let filled = *filled_hue.get_or_init(|| {
             median_hue(
                 blob.iter()
@@ -842,20 +852,23 @@ fn marks_within(
                     piece.into_iter().filter(|&i| !in_filled(i)).collect();
                 outside.sort_unstable();
                 let height = classes.len() / width.max(1);
+                let Some(bumps) = bumps else {
+                    continue;
+                };
                 for sub in blobs::pieces(&outside, width, height) {
-                    if mark_like(&sub) {
+                    if (bumps.like)(&sub) {
                         kept.extend(sub);
-                    } else if bump_core > 0 {
+                    } else if bumps.core > 0 {
                         // A goal joined to the strip of the shelf's top that leans off the
                         // cells it fills: opened, the strip drops and the goal stays.
                         let subblob = Blob::from_indices(&sub, width);
-                        for core in blobs::opened(&subblob, bump_core) {
+                        for core in blobs::opened(&subblob, bumps.core) {
                             let core: Vec<usize> = core
                                 .pixels
                                 .iter()
                                 .map(|&(x, y)| y as usize * width + x as usize)
                                 .collect();
-                            if mark_like(&core) && apart(&core) {
+                            if (bumps.like)(&core) && apart(&core, bumps.hue_of) {
                                 kept.extend(core);
                             }
                         }
@@ -871,11 +884,8 @@ fn marks_within(
 
 /// The median hue (degrees) of some pixels; `None` for none. The hues of one paint lie within
 /// a few degrees, far from 0/360 for the goals' green (the median is taken on the line).
-fn median_hue(
-    pixels: impl Iterator<Item = usize>,
-    hue_of: &dyn Fn(usize) -> (f64, f64),
-) -> Option<f64> {
-    let mut h: Vec<f64> = pixels.map(|i| hue_of(i).0).collect();
+fn median_hue(pixels: impl Iterator<Item = usize>, hue_of: &dyn Fn(usize) -> f64) -> Option<f64> {
+    let mut h: Vec<f64> = pixels.map(hue_of).collect();
     if h.is_empty() {
         return None;
     }
@@ -910,9 +920,9 @@ mod tests {
     use super::*;
     use crate::aerial::tests::paint;
 
-    /// Every pixel's hue and saturation: one paint.
-    fn one_hue(_: usize) -> (f64, f64) {
-        (120.0, 0.5)
+    /// Every pixel's hue: one paint.
+    fn one_hue(_: usize) -> f64 {
+        120.0
     }
 
     /// A 4 × 2-cell floor, 10 px per cell, straight down: floor → image, image → floor.
@@ -1143,7 +1153,11 @@ mod tests {
         let hue_of = |i: usize| {
             let (x, y) = (i % 40, i / 40);
             let goal = (7..13).contains(&x) && (12..18).contains(&y);
-            (if goal { goal_hue } else { 150.0 }, 0.5)
+            if goal {
+                goal_hue
+            } else {
+                150.0
+            }
         };
         absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &hue_of);
         assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
