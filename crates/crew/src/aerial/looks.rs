@@ -368,7 +368,9 @@ pub fn look(
             let near = near_mark[y * width + x];
             if near == NEAR_EDGE || class == Class::Robot as u8 || class == Class::Goal as u8 {
                 bin.mark += 1;
-                bin.robot += u32::from(class == Class::Robot as u8);
+                // A speck of the robots' colour (on a shelf's edge, in noise) is no robot: only
+                // the pixels of a robot's blob count (issue #29's fifteenth round, U0017).
+                bin.robot += u32::from(class == Class::Robot as u8 && near == NEAR_EDGE);
                 continue;
             }
             let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);

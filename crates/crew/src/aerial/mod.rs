@@ -62,6 +62,7 @@ pub mod colour;
 pub mod cover;
 pub mod dull;
 pub mod enclosed;
+pub mod faint;
 pub mod homography;
 pub mod lines;
 pub mod looks;
@@ -580,6 +581,7 @@ fn read(
     };
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
+    faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image

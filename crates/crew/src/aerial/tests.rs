@@ -464,6 +464,30 @@ fn a_shadow_needs_a_caster() {
 }
 
 #[test]
+fn specks_of_the_robots_colour_cast_no_shadow() {
+    // The shadow of `a_shadow_needs_a_caster` with specks of the robots' red (2 px, under the
+    // smallest blob a robot makes) at its edge, as a shelf's rim or the camera's noise
+    // leaves them: no robot stands there to cast it, and the view is still refused (issue #29's
+    // fifteenth round: U0017, a cream shelf's shadow taken for a robot's).
+    let mut img = scene().straight(12);
+    for y in 37..47 {
+        for x in 55..65 {
+            let p = img.get_pixel(x, y).0;
+            img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
+        }
+    }
+    for (sx, sy) in [(55, 37), (60, 37), (64, 41), (55, 45)] {
+        for (dx, dy) in [(0, 0), (1, 0)] {
+            img.put_pixel(sx + dx, sy + dy, Rgb([200, 30, 25]));
+        }
+    }
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a shadow on free floor from cell (4, 3)"), "{e}");
+}
+
+#[test]
 fn malformed_and_hostile_images_are_refused() {
     let cfg = grid(8, 5);
     let e = read_aerial(b"GIF89a....", "x", &cfg)

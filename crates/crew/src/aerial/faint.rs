@@ -1,0 +1,317 @@
+//! Tops of nearly the floor's colour, read whole.
+//!
+//! A shelf whose colour after white balance is close to the floor's (pale grey on beige, lilac
+//! on slate) leans pale pixel by pixel ([`super::pale`]'s loose limits) without making the
+//! pale squares that read as an obstacle. Until issue #29's fifteenth round each of its cells
+//! was refused as a free cell unlike the floor ([`super::looks`]). It differs from the floor
+//! over its whole extent, though, which uneven light, texture and noise do not: here two or
+//! more cells side by side (4-connected) whose middles' floor pixels have leaned pale at
+//! least [`SHARE`] (the floor showing over at least [`SEEN`] of each middle) are such a top,
+//! and the 8-connected pixels that leaned pale from them, its top with its lean over the cells
+//! beside it, become an obstacle's, before the cells' cover is counted: the top is then read
+//! as any shelf's, its lean and its far cells judged as theirs.
+//!
+//! Only when those pixels lie within [`REACH`] cells of the group's cells (a top leans at most
+//! [`super::cover::MAX_LEAN`] cells off them): leaning pixels running on over the floor are
+//! its light or its texture, and the cells are refused as before. A single cell is left to
+//! that refusal too: on families A–F and K–Z no free cell leaned pale at 98 % or more, but
+//! isolated ones at 91 and 96 %.
+//!
+//! Cost: O(pixels) for the middles' counts when some pixel leaned pale, and O(leaning pixels)
+//! for the tops.
+
+use super::blobs::column_row;
+use super::colour::Class;
+use super::homography::Homography;
+use super::pixels::OUTSIDE;
+
+/// The least share of a cell's middle's floor pixels that leaned pale.
+pub const SHARE: f64 = 0.95;
+/// The least share of a cell's middle that must show floor (not a mark or an obstacle).
+pub const SEEN: f64 = 0.5;
+/// The middle of a cell, along each axis: away from painted lines and the blur of its edges.
+pub const MIDDLE: (f64, f64) = (0.2, 0.8);
+/// The fewest cells side by side that make a top.
+pub const CELLS: usize = 2;
+/// How far (in cells, along each axis) a top's leaning pixels may lie from its cells.
+pub const REACH: f64 = 2.0;
+/// The fewest floor pixels a cell's middle must show to be judged.
+pub const MIN_PIXELS: u32 = 12;
+
+/// Turns the tops of nearly the floor's colour into obstacle pixels (see the module's
+/// comment); `leaned` holds the pixels that leaned pale ([`super::pale::settle`]). Returns how
+/// many cells such tops stand on.
+pub fn settle(
+    classes: &mut [u8],
+    leaned: &[bool],
+    width: usize,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    (gw, gh): (u32, u32),
+) -> usize {
+    if width == 0 || !leaned.iter().any(|&l| l) {
+        return 0;
+    }
+    let (w, h) = (gw as usize, gh as usize);
+    let height = classes.len() / width;
+    let floor = Class::Floor as u8;
+    let at = |i: usize| -> Option<(usize, usize, f64, f64)> {
+        let (x, y) = column_row(i, width);
+        let (u, v) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5))?;
+        if !(u >= 0.0 && v >= 0.0 && u < f64::from(gw) && v < f64::from(gh)) {
+            return None;
+        }
+        let (cu, cv) = (u as usize, v as usize);
+        Some((cu, cv, u - cu as f64, v - cv as f64))
+    };
+    let inner = |f: f64| (MIDDLE.0..=MIDDLE.1).contains(&f);
+    // The leaning pixels in each cell's middle first: only a cell with enough of them is
+    // counted whole.
+    let mut leaning = vec![0u32; w * h];
+    for (i, _) in leaned.iter().enumerate().filter(|&(_, &l)| l) {
+        if classes[i] != floor {
+            continue;
+        }
+        if let Some((cu, cv, fu, fv)) = at(i) {
+            if inner(fu) && inner(fv) {
+                leaning[cv * w + cu] += 1;
+            }
+        }
+    }
+    let mut pale = vec![false; w * h];
+    for (c, &le) in leaning.iter().enumerate() {
+        if le < MIN_PIXELS {
+            continue;
+        }
+        let Some((x0, y0, x1, y1)) =
+            floor_to_image.cell_box(((c % w) as u32, (c / w) as u32), width, height)
+        else {
+            continue;
+        };
+        // The middle's pixels, and its floor pixels.
+        let (mut all, mut fl) = (0u32, 0u32);
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let i = y * width + x;
+                let cl = classes[i];
+                if cl == OUTSIDE {
+                    continue;
+                }
+                if let Some((cu, cv, fu, fv)) = at(i) {
+                    if cv * w + cu == c && inner(fu) && inner(fv) {
+                        all += 1;
+                        fl += u32::from(cl == floor);
+                    }
+                }
+            }
+        }
+        pale[c] = fl >= MIN_PIXELS
+            && f64::from(fl) >= SEEN * f64::from(all)
+            && f64::from(le) >= SHARE * f64::from(fl);
+    }
+    // Groups of pale cells side by side.
+    let mut group = vec![usize::MAX; w * h];
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for start in 0..w * h {
+        if !pale[start] || group[start] != usize::MAX {
+            continue;
+        }
+        let id = groups.len();
+        let mut members = vec![start];
+        group[start] = id;
+        let mut k = 0;
+        while k < members.len() {
+            let c = members[k];
+            k += 1;
+            let (x, y) = (c % w, c / w);
+            let mut near = Vec::with_capacity(4);
+            if x > 0 {
+                near.push(c - 1);
+            }
+            if x + 1 < w {
+                near.push(c + 1);
+            }
+            if y > 0 {
+                near.push(c - w);
+            }
+            if y + 1 < h {
+                near.push(c + w);
+            }
+            for n in near {
+                if pale[n] && group[n] == usize::MAX {
+                    group[n] = id;
+                    members.push(n);
+                }
+            }
+        }
+        groups.push(members);
+    }
+    let mut turned = 0;
+    for members in groups.iter().filter(|g| g.len() >= CELLS) {
+        // The cells' box on the floor, grown by REACH.
+        let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+        for &c in members {
+            let (x, y) = (c % w, c / w);
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x + 1), y1.max(y + 1));
+        }
+        let within = |i: usize| {
+            let (x, y) = column_row(i, width);
+            image_to_floor
+                .apply((x as f64 + 0.5, y as f64 + 0.5))
+                .is_some_and(|(u, v)| {
+                    u >= x0 as f64 - REACH
+                        && u <= x1 as f64 + REACH
+                        && v >= y0 as f64 - REACH
+                        && v <= y1 as f64 + REACH
+                })
+        };
+        // The leaning pixels 8-connected to those in the group's middles.
+        let mut seen = std::collections::HashSet::new();
+        let mut stack: Vec<usize> = Vec::new();
+        for &c in members {
+            let Some((x0, y0, x1, y1)) =
+                floor_to_image.cell_box(((c % w) as u32, (c / w) as u32), width, height)
+            else {
+                continue;
+            };
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let i = y * width + x;
+                    if !leaned[i] || classes[i] != floor {
+                        continue;
+                    }
+                    if let Some((cu, cv, fu, fv)) = at(i) {
+                        if cv * w + cu == c && inner(fu) && inner(fv) && seen.insert(i) {
+                            stack.push(i);
+                        }
+                    }
+                }
+            }
+        }
+        let mut top = Vec::new();
+        let mut confined = true;
+        while let Some(i) = stack.pop() {
+            if !within(i) {
+                confined = false;
+                break;
+            }
+            top.push(i);
+            let (x, y) = column_row(i, width);
+            for ny in y.saturating_sub(1)..(y + 2).min(height) {
+                for nx in x.saturating_sub(1)..(x + 2).min(width) {
+                    let j = ny * width + nx;
+                    if leaned[j] && classes[j] == floor && seen.insert(j) {
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        if !confined {
+            continue;
+        }
+        for i in top {
+            classes[i] = Class::Obstacle as u8;
+        }
+        turned += members.len();
+    }
+    turned
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 6 × 3-cell floor, 10 px per cell, straight down: floor → image, image → floor, and
+    /// its pixels' classes (all floor).
+    fn floor() -> (Homography, Homography, Vec<u8>) {
+        let to_image = Homography::floor_to_image(
+            6.0,
+            3.0,
+            [(0.0, 0.0), (60.0, 0.0), (60.0, 30.0), (0.0, 30.0)],
+        )
+        .unwrap();
+        (
+            to_image,
+            to_image.inverse().unwrap(),
+            vec![Class::Floor as u8; 60 * 30],
+        )
+    }
+
+    /// The pixels of the box `(x0, y0)`–`(x1, y1)` (ends excluded) marked in `leaned`.
+    fn lean(leaned: &mut [bool], (x0, y0, x1, y1): (usize, usize, usize, usize)) {
+        for y in y0..y1 {
+            for x in x0..x1 {
+                leaned[y * 60 + x] = true;
+            }
+        }
+    }
+
+    #[test]
+    fn two_cells_side_by_side_that_lean_pale_are_a_top() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        // Cells (1, 1) and (2, 1), and a strip 3 px deep of their top leaning below them.
+        lean(&mut leaned, (11, 11, 29, 22));
+        let turned = settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3));
+        assert_eq!(turned, 2);
+        assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
+        assert_eq!(classes[21 * 60 + 20], Class::Obstacle as u8, "its lean too");
+        assert_eq!(classes[5 * 60 + 5], Class::Floor as u8);
+    }
+
+    #[test]
+    fn a_single_cell_that_leans_pale_is_left_to_the_looks() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        lean(&mut leaned, (11, 11, 19, 19));
+        assert_eq!(
+            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            0
+        );
+        assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
+    }
+
+    #[test]
+    fn cells_that_lean_pale_in_part_are_no_top() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        // Two cells' middles (rows 12–17) leaning but for one row of each: 5 of 6 rows.
+        lean(&mut leaned, (11, 11, 29, 16));
+        lean(&mut leaned, (11, 17, 29, 19));
+        assert_eq!(
+            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            0
+        );
+    }
+
+    #[test]
+    fn leaning_pixels_running_on_over_the_floor_are_its_light() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        // Two cells leaning whole, joined by a band of leaning pixels to the floor's far end,
+        // more than REACH cells away: a pool of light, not a top.
+        lean(&mut leaned, (11, 11, 29, 19));
+        lean(&mut leaned, (29, 14, 60, 16));
+        assert_eq!(
+            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            0
+        );
+        assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
+    }
+
+    #[test]
+    fn marks_in_a_cell_leave_too_little_floor_to_judge() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        lean(&mut leaned, (11, 11, 29, 19));
+        // A goal over two thirds of cell (2, 1)'s middle (columns 22–25 of 22–27).
+        for y in 11..19 {
+            for x in 21..26 {
+                classes[y * 60 + x] = Class::Goal as u8;
+            }
+        }
+        assert_eq!(
+            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            0
+        );
+    }
+}
