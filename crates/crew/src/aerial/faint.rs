@@ -13,12 +13,15 @@
 //! the cells beside it, become an obstacle's before the cells' cover is counted. The top is
 //! then read as any shelf's, its lean and its far cells judged as theirs.
 //!
-//! Only when those pixels lie within [`REACH`] cells of the rectangle (a top leans at most
-//! [`super::cover::MAX_LEAN`] cells off its cells): leaning pixels running on over the floor are
-//! its light or its texture, and the cells are refused as before. A single cell is left to
-//! that refusal too.
+//! Outside the rectangle's cells a leaning pixel is followed only where the leaning is thick
+//! (at least [`THICK`] of the square [`LINE`] cells around it leaning, or an obstacle's), and
+//! not within twice that of the floor's edge: bright lines painted on the floor lean pale over
+//! the whole floor, and would join the top to them. Only when the pixels followed lie within
+//! [`REACH`] cells of the rectangle (a top leans at most [`super::cover::MAX_LEAN`] cells off
+//! its cells): leaning pixels running on over the floor are its light or its texture, and the
+//! cells are refused as before. A single cell is left to that refusal too.
 //!
-//! Measured on families A–Z and a (issue #29's fifteenth round): 538 cells turned, all
+//! Measured on families A–Z and a (issue #29's fifteenth round): 566 cells turned, all
 //! blocked in the truth. Two cells of free floor side by side lean pale at 0.9 and 1.0 amid
 //! clean floor (X0010, 0.905 and 0.962 in T0026: under a top's lean or its glare), so two
 //! cells must reach [`SHARE`]; the free rectangles of the Blender families' bright floors that
@@ -50,6 +53,11 @@ pub const REACH: f64 = 2.0;
 /// enough floor to be judged): a top differs from the floor around it, light and texture do
 /// not.
 pub const RING: f64 = 0.2;
+/// The half side (in cells) of the square around a leaning pixel outside a top's cells that
+/// [`THICK`] judges: painted lines are at most 0.1 cell wide.
+pub const LINE: f64 = 0.2;
+/// The least share of that square's pixels that must lean pale for the pixel to be the top's.
+pub const THICK: f64 = 0.5;
 /// The fewest floor pixels a cell's middle must show to be judged.
 pub const MIN_PIXELS: u32 = 12;
 
@@ -168,7 +176,7 @@ pub fn settle(
     let mut ring_seen: Vec<usize> = Vec::new();
     // The tops' pixels, turned once every group is judged on the classes as they were.
     let mut tops: Vec<usize> = Vec::new();
-    for members in groups.iter().filter(|g| {
+    for (id, members) in groups.iter().enumerate().filter(|(_, g)| {
         g.iter()
             .filter(|&&c| shares[c].is_some_and(|s| s >= SHARE))
             .count()
@@ -217,7 +225,42 @@ pub fn settle(
                         && v <= y1 as f64 + REACH
                 })
         };
-        // The leaning pixels 8-connected to those in the group's middles.
+        // Outside the top's cells a leaning pixel is followed where the leaning is thick: a
+        // top's lean over the cells beside it is, bright lines painted on the floor (leaning
+        // pale over the whole floor, which they would join to the top) are not.
+        let member = |cu: usize, cv: usize| group[cv * w + cu] == id;
+        let r = members
+            .first()
+            .and_then(|&c| floor_to_image.cell_box(((c % w) as u32, (c / w) as u32), width, height))
+            .map_or(1, |(x0, y0, x1, y1)| {
+                ((LINE * (x1 - x0).min(y1 - y0) as f64).round() as usize).max(1)
+            });
+        let thin = |j: usize| {
+            let Some((cu, cv, fu, fv)) = at(j) else {
+                return true;
+            };
+            if member(cu, cv) {
+                return false;
+            }
+            // The line along the floor's edge, twice as wide, is thick.
+            let (u, v) = (cu as f64 + fu, cv as f64 + fv);
+            if u.min(v).min(f64::from(gw) - u).min(f64::from(gh) - v) < 2.0 * LINE {
+                return true;
+            }
+            let (x, y) = column_row(j, width);
+            let (mut all, mut lean) = (0usize, 0usize);
+            for ny in y.saturating_sub(r)..(y + r + 1).min(height) {
+                for nx in x.saturating_sub(r)..(x + r + 1).min(width) {
+                    all += 1;
+                    let k = ny * width + nx;
+                    lean += usize::from(
+                        (leaned[k] && classes[k] == floor) || classes[k] == Class::Obstacle as u8,
+                    );
+                }
+            }
+            (lean as f64) < THICK * all as f64
+        };
+        // The leaning pixels 8-connected to those in the group's middles, but for thin ones.
         let mut seen = std::collections::HashSet::new();
         let mut stack: Vec<usize> = Vec::new();
         for &c in members {
@@ -252,7 +295,7 @@ pub fn settle(
             for ny in y.saturating_sub(1)..(y + 2).min(height) {
                 for nx in x.saturating_sub(1)..(x + 2).min(width) {
                     let j = ny * width + nx;
-                    if leaned[j] && classes[j] == floor && seen.insert(j) {
+                    if leaned[j] && classes[j] == floor && seen.insert(j) && !thin(j) {
                         stack.push(j);
                     }
                 }
@@ -313,6 +356,26 @@ mod tests {
     }
 
     #[test]
+    fn bright_lines_painted_on_the_floor_are_not_the_top_s() {
+        let (to_image, to_floor, mut classes) = floor();
+        let mut leaned = vec![false; classes.len()];
+        lean(&mut leaned, (11, 11, 29, 19));
+        // White lines 1 px wide along every cell border, leaning pale over the whole floor.
+        for k in 0..6 {
+            lean(&mut leaned, (10 * k, 0, 10 * k + 1, 30));
+        }
+        for k in 0..3 {
+            lean(&mut leaned, (0, 10 * k, 60, 10 * k + 1));
+        }
+        assert_eq!(
+            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            2
+        );
+        assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
+        assert_eq!(classes[10 * 60 + 45], Class::Floor as u8, "a line");
+    }
+
+    #[test]
     fn a_single_cell_that_leans_pale_is_left_to_the_looks() {
         let (to_image, to_floor, mut classes) = floor();
         let mut leaned = vec![false; classes.len()];
@@ -341,10 +404,11 @@ mod tests {
     fn leaning_pixels_running_on_over_the_floor_are_its_light() {
         let (to_image, to_floor, mut classes) = floor();
         let mut leaned = vec![false; classes.len()];
-        // Two cells leaning whole, joined by a band of leaning pixels to the floor's far end,
-        // more than REACH cells away: a pool of light, not a top.
+        // Two cells leaning whole, joined by a band of leaning pixels 0.4 cell wide (between
+        // the middles of the next row of cells) to the floor's far end, more than REACH cells
+        // away: a pool of light, not a top.
         lean(&mut leaned, (11, 11, 29, 19));
-        lean(&mut leaned, (29, 14, 60, 16));
+        lean(&mut leaned, (11, 19, 60, 23));
         assert_eq!(
             settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
             0
