@@ -273,6 +273,18 @@ FAMILIES = {
                              (0.85, 0.45, 0.12)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # b: held out from issue #29's fifteenth round, rendered during it and not looked at until
+    # scored once with its final reader. Cylinder, box and dome robots, cross, ring and disc
+    # goals, pale sand, mid slate and near-black floors tiled every quarter cell, pale grey-blue,
+    # cream, plum, forest green and rust shelves from 0.3 to 2.0 high inset 0.05 cell, a sun
+    # 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and a camera from 45 to 165
+    # cells per 24 high.
+    "b": dict(robot_shapes=("cylinder", "box", "dome"), goal_shapes=("cross", "ring", "disc"),
+              floors=((0.74, 0.68, 0.56), (0.38, 0.42, 0.46), (0.10, 0.10, 0.11)),
+              shelf_colours=((0.66, 0.72, 0.80), (0.86, 0.82, 0.66), (0.40, 0.16, 0.36), (0.14, 0.36, 0.18),
+                             (0.62, 0.26, 0.10)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
