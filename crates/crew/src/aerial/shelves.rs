@@ -629,7 +629,21 @@ pub fn absorb(
             },
             None,
         );
-        let robots = without_shelf_pieces(robots, width, height, robot_median);
+        // A robot joined to a shelf of the robots' colour, told by its paint (as goals above).
+        let shelf_hue = median_hue(
+            b.iter()
+                .copied()
+                .filter(|&i| classes[i] == Class::Robot as u8 && in_filled(i)),
+            hue_of,
+        );
+        let apart = |piece: &[usize]| match (median_hue(piece.iter().copied(), hue_of), shelf_hue) {
+            (Some(a), Some(b)) => {
+                let d = (a - b).abs() % 360.0;
+                d.min(360.0 - d) >= BUMP_HUE
+            }
+            _ => false,
+        };
+        let robots = without_shelf_pieces(robots, width, height, robot_median, &apart);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
         let (mut sum, mut n) = ((0.0, 0.0), 0usize);
         for &i in b {
@@ -898,12 +912,37 @@ fn median_hue(pixels: impl Iterator<Item = usize>, hue_of: &dyn Fn(usize) -> f64
 /// [`blobs::split`] does not separate into robots (no robot is that large: the shelf's top
 /// leaning off the cells it fills), and those at most [`THIN`] of a median robot's width
 /// thick (its rim, where the colours averaged over a square mix the shelf's with the floor's).
-fn without_shelf_pieces(kept: Vec<usize>, width: usize, height: usize, median: f64) -> Vec<usize> {
+fn without_shelf_pieces(
+    kept: Vec<usize>,
+    width: usize,
+    height: usize,
+    median: f64,
+    apart: &dyn Fn(&[usize]) -> bool,
+) -> Vec<usize> {
     let mut out = Vec::with_capacity(kept.len());
+    let core_r = (BUMP_CORE * median.max(1.0).sqrt()).ceil() as u32;
     for piece in blobs::pieces(&kept, width, height) {
         let blob = blobs::Blob::from_indices(&piece, width);
         let large = piece.len() as f64 >= LARGER * median;
         if large && blobs::split(&blob, median as usize).is_none() {
+            // Opened, a robot standing against the shelf's leaning top may stay, robot-sized,
+            // solid, round and painted apart from the shelf.
+            for core in blobs::opened(&blob, core_r) {
+                let robots = core.area() as f64 / median.max(1.0);
+                if GOAL_SIZED.contains(&robots)
+                    && core.solidity() >= SOLID
+                    && core.elongation() <= BUMP_LONG
+                {
+                    let core: Vec<usize> = core
+                        .pixels
+                        .iter()
+                        .map(|&(x, y)| y as usize * width + x as usize)
+                        .collect();
+                    if apart(&core) {
+                        out.extend(core);
+                    }
+                }
+            }
             continue;
         }
         if blobs::thickness(&blob) <= (THIN * median.sqrt()).max(1.0) {
@@ -1181,6 +1220,37 @@ mod tests {
     fn a_piece_of_a_leaning_top_of_the_top_s_own_hue_is_no_goal() {
         // The same shape in the shelf's hue: the end of its top (E0005, Q0003, Q0036).
         assert!(!goal_against_a_leaning_top(151.0));
+    }
+
+    /// Robots of 36 px in cells (3, 0) and (3, 1); a robot-coloured shelf over cells (0, 0)
+    /// to (2, 0), rows 1–9, its top leaning off them in a strip 3 px deep, and a robot of
+    /// 36 px against that strip, one piece of the robots' colour with it (three robots' worth
+    /// outside the shelf's cells, not splitting into robots), its hue `robot_hue` (the shelf's
+    /// 20 degrees): whether the robot's middle stays a robot.
+    fn robot_against_a_leaning_top(robot_hue: f64) -> bool {
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (33, 2, 39, 8), Class::Robot);
+        paint(&mut classes, 40, (33, 12, 39, 18), Class::Robot);
+        paint(&mut classes, 40, (1, 1, 29, 13), Class::Robot);
+        paint(&mut classes, 40, (12, 13, 18, 19), Class::Robot);
+        let hue_of = |i: usize| {
+            let (x, y) = (i % 40, i / 40);
+            if (12..18).contains(&x) && (13..19).contains(&y) {
+                robot_hue
+            } else {
+                20.0
+            }
+        };
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &hue_of);
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        classes[16 * 40 + 15] == Class::Robot as u8
+    }
+
+    #[test]
+    fn a_robot_against_a_robot_coloured_top_leaning_off_its_cells_stays_a_robot() {
+        // Issue #29's fifteenth round: R0013, R0033 (a red robot against a plum shelf).
+        assert!(robot_against_a_leaning_top(0.0));
+        assert!(!robot_against_a_leaning_top(21.0));
     }
 
     #[test]
