@@ -33,15 +33,20 @@
 //! shelf of the goals' colour (one piece of goal pixels with it): the pieces that piece makes
 //! outside the cells the blob fills that are a goal's size ([`GOAL_SIZED`]), solid
 //! ([`SOLID`]) and at most [`BUMP_LONG`] elongated (not the end of a top leaning off its
-//! cells).
+//! cells); since the fifteenth round also those pieces, when not like a goal, opened by
+//! [`BUMP_CORE`] of a goal's width: the goal-like pieces left whose hue is [`BUMP_HUE`] or
+//! more from that of the shelf's goal pixels in its cells (a goal against the strip of a top
+//! leaning off its cells, painted apart from the shelf).
 //! Its robot-coloured pieces become obstacle pixels when less than [`GOAL_OUTSIDE`] of one
 //! lies outside the cells it fills and they are far from a robot's size: under [`SLIVER`]
 //! of the median robot (a sliver of the shelf's edge), or at least [`LARGER`] times it (a
 //! shelf of the robots' colour; its pixels outside the filled cells stay robot pixels, and
 //! are refused or read as before, but for the pieces of them that are the shelf's own: at
 //! least [`LARGER`] robots large and not separated into robots by [`blobs::split`] (its top
-//! leaning off its cells), or at most [`THIN`] of a robot's width thick (its rim); since
-//! issue #29's eleventh round). Robot pixels turned so, from [`SWALLOWED`] pixels and a tenth
+//! leaning off its cells; since the fifteenth round, of such a piece opened as goals' are
+//! above, the robot-like pieces painted apart from the shelf stay robots: a robot against
+//! that top), or at most [`THIN`] of a robot's width thick (its rim); since issue #29's
+//! eleventh round). Robot pixels turned so, from [`SWALLOWED`] pixels and a tenth
 //! of a robot, are reported ([`Absorbed::swallowed`]): a robot against the shelf may be among
 //! them, so a view with more goals than robots is then refused, rather than read without that
 //! robot. A goal-coloured piece of a goal's size ([`GOAL_SIZED`]) and solid like a goal
