@@ -9,9 +9,10 @@
 //! of light winds) whose middles' floor pixels have leaned pale (at least [`LOWER`] of them in
 //! each cell, and at least [`SHARE`] in [`CELLS`] of its cells; the floor showing over at
 //! least [`SEEN`] of each middle), amid floor that does not lean so (the median share over the
-//! cells around it at most [`RING`]), is such a top: the 8-connected pixels that leaned pale from its middles, its top with its lean over
-//! the cells beside it, become an obstacle's before the cells' cover is counted. The top is
-//! then read as any shelf's, its lean and its far cells judged as theirs.
+//! cells around it at most [`RING`]), is such a top: the 8-connected pixels that leaned pale
+//! from its middles, its top with its lean over the cells beside it, become an obstacle's
+//! before the cells' cover is counted. The top is then read as any shelf's, its lean and its
+//! far cells judged as theirs.
 //!
 //! Outside the rectangle's cells a leaning pixel is followed only where the leaning is thick
 //! (at least [`THICK`] of the square [`LINE`] cells around it leaning, or an obstacle's), and
@@ -54,7 +55,9 @@ pub const REACH: f64 = 2.0;
 /// not.
 pub const RING: f64 = 0.2;
 /// The half side (in cells) of the square around a leaning pixel outside a top's cells that
-/// [`THICK`] judges: painted lines are at most 0.1 cell wide.
+/// [`THICK`] judges: a painted line, at most 0.1 cell wide (0.15 blurred), fills under half of
+/// it, two crossing ones about half of it at their crossing only, and the line along the
+/// floor's edge, twice as wide, is left out (within twice this of the edge).
 pub const LINE: f64 = 0.2;
 /// The least share of that square's pixels that must lean pale for the pixel to be the top's.
 pub const THICK: f64 = 0.5;
@@ -242,7 +245,7 @@ pub fn settle(
             if member(cu, cv) {
                 return false;
             }
-            // The line along the floor's edge, twice as wide, is thick.
+            // Not along the floor's edge: the line painted there, twice as wide, is thick.
             let (u, v) = (cu as f64 + fu, cv as f64 + fv);
             if u.min(v).min(f64::from(gw) - u).min(f64::from(gh) - v) < 2.0 * LINE {
                 return true;
