@@ -641,13 +641,8 @@ pub fn absorb(
                 .filter(|&i| classes[i] == Class::Robot as u8 && in_filled(i)),
             hue_of,
         );
-        let apart = |piece: &[usize]| match (median_hue(piece.iter().copied(), hue_of), shelf_hue) {
-            (Some(a), Some(b)) => {
-                let d = (a - b).abs() % 360.0;
-                d.min(360.0 - d) >= BUMP_HUE
-            }
-            _ => false,
-        };
+        let apart =
+            |piece: &[usize]| hues_apart(median_hue(piece.iter().copied(), hue_of), shelf_hue);
         let robots = without_shelf_pieces(robots, width, height, robot_median, &apart);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
         let (mut sum, mut n) = ((0.0, 0.0), 0usize);
@@ -851,14 +846,7 @@ fn marks_within(
                 hue_of,
             )
         });
-        let own = median_hue(piece.iter().copied(), hue_of);
-        match (own, filled) {
-            (Some(a), Some(b)) => {
-                let d = (a - b).abs() % 360.0;
-                d.min(360.0 - d) >= BUMP_HUE
-            }
-            _ => false,
-        }
+        hues_apart(median_hue(piece.iter().copied(), hue_of), filled)
     };
     for piece in blobs::pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
@@ -882,11 +870,7 @@ fn marks_within(
                         // cells it fills: opened, the strip drops and the goal stays.
                         let subblob = Blob::from_indices(&sub, width);
                         for core in blobs::opened(&subblob, bumps.core) {
-                            let core: Vec<usize> = core
-                                .pixels
-                                .iter()
-                                .map(|&(x, y)| y as usize * width + x as usize)
-                                .collect();
+                            let core = indices(&core, width);
                             if (bumps.like)(&core) && apart(&core, bumps.hue_of) {
                                 kept.extend(core);
                             }
@@ -910,6 +894,26 @@ fn median_hue(pixels: impl Iterator<Item = usize>, hue_of: &dyn Fn(usize) -> f64
     }
     let mid = h.len() / 2;
     Some(*h.select_nth_unstable_by(mid, f64::total_cmp).1)
+}
+
+/// Whether two median hues (degrees) are at least [`BUMP_HUE`] apart on the circle; not when
+/// either is missing.
+fn hues_apart(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            let d = (a - b).abs() % 360.0;
+            d.min(360.0 - d) >= BUMP_HUE
+        }
+        _ => false,
+    }
+}
+
+/// A blob's pixels as indices in an image `width` pixels wide.
+fn indices(blob: &Blob, width: usize) -> Vec<usize> {
+    blob.pixels
+        .iter()
+        .map(|&(x, y)| y as usize * width + x as usize)
+        .collect()
 }
 
 /// The robot pixels kept in a shelf's blob (sorted), less the pieces (8-connected among
@@ -938,11 +942,7 @@ fn without_shelf_pieces(
                     && core.solidity() >= SOLID
                     && core.elongation() <= BUMP_LONG
                 {
-                    let core: Vec<usize> = core
-                        .pixels
-                        .iter()
-                        .map(|&(x, y)| y as usize * width + x as usize)
-                        .collect();
+                    let core = indices(&core, width);
                     if apart(&core) {
                         out.extend(core);
                     }
