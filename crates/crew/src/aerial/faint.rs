@@ -176,7 +176,10 @@ pub fn settle(
         groups.push(members);
     }
     let mut turned = 0;
+    // The cells around a group already counted (a flag per cell, cleared after each group:
+    // linear in the ring, however large the group).
     let mut ring_seen: Vec<usize> = Vec::new();
+    let mut in_ring = vec![false; w * h];
     // The tops' pixels, turned once every group is judged on the classes as they were.
     let mut tops: Vec<usize> = Vec::new();
     for (id, members) in groups.iter().enumerate().filter(|(_, g)| {
@@ -202,14 +205,17 @@ pub fn settle(
             for ny in y.saturating_sub(1)..(y + 2).min(h) {
                 for nx in x.saturating_sub(1)..(x + 2).min(w) {
                     let n = ny * w + nx;
-                    if group[n] == usize::MAX && !ring_seen.contains(&n) {
+                    if group[n] == usize::MAX && !in_ring[n] {
+                        in_ring[n] = true;
                         ring_seen.push(n);
                         ring.extend(share(n));
                     }
                 }
             }
         }
-        ring_seen.clear();
+        for n in ring_seen.drain(..) {
+            in_ring[n] = false;
+        }
         if ring.is_empty() {
             continue;
         }
