@@ -137,12 +137,11 @@ pub fn settle(
                 .filter(|&s| s >= LOWER)
         })
         .collect();
-    let pale: Vec<bool> = shares.iter().map(Option::is_some).collect();
     // Groups of pale cells side by side.
     let mut group = vec![usize::MAX; w * h];
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for start in 0..w * h {
-        if !pale[start] || group[start] != usize::MAX {
+        if shares[start].is_none() || group[start] != usize::MAX {
             continue;
         }
         let id = groups.len();
@@ -167,7 +166,7 @@ pub fn settle(
                 near.push(c + w);
             }
             for n in near {
-                if pale[n] && group[n] == usize::MAX {
+                if shares[n].is_some() && group[n] == usize::MAX {
                     group[n] = id;
                     members.push(n);
                 }

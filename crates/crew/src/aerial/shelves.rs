@@ -600,17 +600,10 @@ pub fn absorb(
                     Keep::None
                 }
             },
-            Some(&Bumps {
-                like: &|piece| {
-                    let goals = piece.len() as f64 / median.max(1) as f64;
-                    let blob = || Blob::from_indices(piece, width);
-                    GOAL_SIZED.contains(&goals)
-                        && blob().solidity() >= SOLID
-                        && blob().elongation() <= BUMP_LONG
-                },
-                core: (BUMP_CORE * (median.max(1) as f64).sqrt()).ceil() as u32,
-                hue_of,
-            }),
+            Some((
+                median.max(1) as f64,
+                &ShelfPaint::new(b, Class::Goal, classes, &in_filled, hue_of),
+            )),
         );
         let robots = marks_within(
             classes,
@@ -635,15 +628,12 @@ pub fn absorb(
             None,
         );
         // A robot joined to a shelf of the robots' colour, told by its paint (as goals above).
-        let shelf_hue = median_hue(
-            b.iter()
-                .copied()
-                .filter(|&i| classes[i] == Class::Robot as u8 && in_filled(i)),
-            hue_of,
+        let robots = without_shelf_pieces(
+            robots,
+            (width, height),
+            robot_median,
+            &ShelfPaint::new(b, Class::Robot, classes, &in_filled, hue_of),
         );
-        let apart =
-            |piece: &[usize]| hues_apart(median_hue(piece.iter().copied(), hue_of), shelf_hue);
-        let robots = without_shelf_pieces(robots, width, height, robot_median, &apart);
         // The robot pixels turned, if a robot's worth: a robot may stand against the shelf.
         let (mut sum, mut n) = ((0.0, 0.0), 0usize);
         for &i in b {
@@ -799,16 +789,75 @@ fn robot_piece(robots: f64, outside: f64) -> Keep {
     }
 }
 
-/// What marks a piece of a blob's mark-coloured pixels outside the cells it fills holds, for
-/// [`Keep::MarksOutside`].
-struct Bumps<'a> {
-    /// Whether pixels (8-connected) are like a mark.
-    like: &'a dyn Fn(&[usize]) -> bool,
-    /// The radius (pixels) of the opening that cuts a mark from a strip of the shelf's top
-    /// ([`BUMP_CORE`]).
-    core: u32,
-    /// A pixel's hue (degrees), for [`BUMP_HUE`].
+/// A shelf's paint: the median hue of its blob's pixels of one class in the cells it fills,
+/// found when first asked ([`ShelfPaint::apart`]).
+struct ShelfPaint<'a> {
+    blob: &'a [usize],
+    class: Class,
+    classes: &'a [u8],
+    in_filled: &'a dyn Fn(usize) -> bool,
     hue_of: &'a dyn Fn(usize) -> f64,
+    hue: std::cell::OnceCell<Option<f64>>,
+}
+
+impl<'a> ShelfPaint<'a> {
+    fn new(
+        blob: &'a [usize],
+        class: Class,
+        classes: &'a [u8],
+        in_filled: &'a dyn Fn(usize) -> bool,
+        hue_of: &'a dyn Fn(usize) -> f64,
+    ) -> ShelfPaint<'a> {
+        ShelfPaint {
+            blob,
+            class,
+            classes,
+            in_filled,
+            hue_of,
+            hue: std::cell::OnceCell::new(),
+        }
+    }
+
+    /// Whether pixels are painted apart from the shelf: their median hue at least
+    /// [`BUMP_HUE`] from its paint's.
+    fn apart(&self, piece: &[usize]) -> bool {
+        let shelf = *self.hue.get_or_init(|| {
+            median_hue(
+                self.blob
+                    .iter()
+                    .copied()
+                    .filter(|&i| self.classes[i] == self.class as u8 && (self.in_filled)(i)),
+                self.hue_of,
+            )
+        });
+        hues_apart(median_hue(piece.iter().copied(), self.hue_of), shelf)
+    }
+}
+
+/// Whether a blob is like one mark of `median` pixels: its size ([`GOAL_SIZED`] medians),
+/// solid ([`SOLID`]) and at most [`BUMP_LONG`] elongated.
+fn like_a_mark(blob: &Blob, median: f64) -> bool {
+    GOAL_SIZED.contains(&(blob.area() as f64 / median))
+        && blob.solidity() >= SOLID
+        && blob.elongation() <= BUMP_LONG
+}
+
+/// The marks of `median` pixels within a blob of their colour joined to a shelf's top that
+/// leans off its cells: the blob opened by [`BUMP_CORE`] of a mark's width (the strip of the
+/// top drops), the pieces left like a mark ([`like_a_mark`]) and painted apart from the
+/// shelf; their pixels.
+fn opened_marks(blob: &Blob, median: f64, width: usize, paint: &ShelfPaint) -> Vec<usize> {
+    let r = (BUMP_CORE * median.sqrt()).ceil() as u32;
+    let mut out = Vec::new();
+    for core in blobs::opened(blob, r) {
+        if like_a_mark(&core, median) {
+            let core = indices(&core, width);
+            if paint.apart(&core) {
+                out.extend(core);
+            }
+        }
+    }
+    out
 }
 
 /// The pixels of the marks of class `class` within a blob: its pixels of that class split
@@ -823,7 +872,7 @@ fn marks_within(
     class: Class,
     in_filled: &dyn Fn(usize) -> bool,
     keep: &dyn Fn(&[usize], f64) -> Keep,
-    bumps: Option<&Bumps>,
+    bumps: Option<(f64, &ShelfPaint)>,
 ) -> Vec<usize> {
     // The blob's pixels of that class, sorted, split into 8-connected pieces among themselves.
     let mut marked: Vec<usize> = blob
@@ -833,21 +882,7 @@ fn marks_within(
         .collect();
     marked.sort_unstable();
     let mut kept = Vec::new();
-    // Whether a piece's hue is apart from that of the blob's pixels of that class in the
-    // cells it fills, by at least [`BUMP_HUE`] (medians; that of the filled pixels counted
-    // once, when first asked).
-    let filled_hue = std::cell::OnceCell::new();
-    let apart = |piece: &[usize], hue_of: &dyn Fn(usize) -> f64| {
-        let filled = *filled_hue.get_or_init(|| {
-            median_hue(
-                blob.iter()
-                    .copied()
-                    .filter(|&i| classes[i] == class as u8 && in_filled(i)),
-                hue_of,
-            )
-        });
-        hues_apart(median_hue(piece.iter().copied(), hue_of), filled)
-    };
+    let height = classes.len() / width.max(1);
     for piece in blobs::pieces(&marked, width, classes.len() / width.max(1)) {
         let outside = piece.iter().filter(|&&i| !in_filled(i)).count();
         let share = outside as f64 / piece.len() as f64;
@@ -855,26 +890,20 @@ fn marks_within(
             Keep::All => kept.extend(piece),
             Keep::Outside => kept.extend(piece.into_iter().filter(|&i| !in_filled(i))),
             Keep::MarksOutside => {
+                let Some((median, paint)) = bumps else {
+                    continue;
+                };
                 let mut outside: Vec<usize> =
                     piece.into_iter().filter(|&i| !in_filled(i)).collect();
                 outside.sort_unstable();
-                let height = classes.len() / width.max(1);
-                let Some(bumps) = bumps else {
-                    continue;
-                };
                 for sub in blobs::pieces(&outside, width, height) {
-                    if (bumps.like)(&sub) {
+                    let sub_blob = Blob::from_indices(&sub, width);
+                    if like_a_mark(&sub_blob, median) {
                         kept.extend(sub);
-                    } else if bumps.core > 0 {
+                    } else {
                         // A goal joined to the strip of the shelf's top that leans off the
-                        // cells it fills: opened, the strip drops and the goal stays.
-                        let subblob = Blob::from_indices(&sub, width);
-                        for core in blobs::opened(&subblob, bumps.core) {
-                            let core = indices(&core, width);
-                            if (bumps.like)(&core) && apart(&core, bumps.hue_of) {
-                                kept.extend(core);
-                            }
-                        }
+                        // cells it fills.
+                        kept.extend(opened_marks(&sub_blob, median, width, paint));
                     }
                 }
             }
@@ -923,31 +952,17 @@ fn indices(blob: &Blob, width: usize) -> Vec<usize> {
 /// thick (its rim, where the colours averaged over a square mix the shelf's with the floor's).
 fn without_shelf_pieces(
     kept: Vec<usize>,
-    width: usize,
-    height: usize,
+    (width, height): (usize, usize),
     median: f64,
-    apart: &dyn Fn(&[usize]) -> bool,
+    paint: &ShelfPaint,
 ) -> Vec<usize> {
     let mut out = Vec::with_capacity(kept.len());
-    let core_r = (BUMP_CORE * median.max(1.0).sqrt()).ceil() as u32;
     for piece in blobs::pieces(&kept, width, height) {
         let blob = blobs::Blob::from_indices(&piece, width);
         let large = piece.len() as f64 >= LARGER * median;
         if large && blobs::split(&blob, median as usize).is_none() {
-            // Opened, a robot standing against the shelf's leaning top may stay, robot-sized,
-            // solid, round and painted apart from the shelf.
-            for core in blobs::opened(&blob, core_r) {
-                let robots = core.area() as f64 / median.max(1.0);
-                if GOAL_SIZED.contains(&robots)
-                    && core.solidity() >= SOLID
-                    && core.elongation() <= BUMP_LONG
-                {
-                    let core = indices(&core, width);
-                    if apart(&core) {
-                        out.extend(core);
-                    }
-                }
-            }
+            // A robot standing against the shelf's leaning top, painted apart from it.
+            out.extend(opened_marks(&blob, median.max(1.0), width, paint));
             continue;
         }
         if blobs::thickness(&blob) <= (THIN * median.sqrt()).max(1.0) {
