@@ -29,12 +29,14 @@
 //! Limit: a free cell that a top covers whole (a lean of a cell or more) cannot be told from
 //! the silhouette alone from a blocked one; it reads as blocked, and [`lean_doubt`] refuses it
 //! at the far end of a run unless the cover past it runs on further than the run's top could
-//! lean (then its own top stands there). Where the side face facing the nadir ends and the top
-//! begins would tell more; this module does not look at shading.
+//! lean (then its own top stands there), or the run's face toward the nadir, told from its top
+//! by its shade, is too short for a top leaning over a free far cell ([`super::face`]).
 
 use super::colour::Class;
+use super::face;
 use super::homography::{Homography, Point};
 use super::pixels::OUTSIDE;
+use image::RgbImage;
 
 /// Bins per cell along each axis.
 pub const BINS: usize = 10;
@@ -311,9 +313,12 @@ pub enum Beyond {
 /// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
 /// blocked cells is returned (a step in cells). For [`Beyond::Free`], not when the cover runs on
 /// past the cell, over the free cells beyond, further than that top could reach ([`Past`]):
-/// the cell's own top is there (since issue #29's fourteenth round).
+/// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
+/// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
+/// sixteenth round).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
+    img: &RgbImage,
     classes: &[u8],
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
@@ -433,6 +438,29 @@ pub fn lean_doubt(
                 .is_some_and(|o| 1.0 + o >= PAST_MARGIN * reach)
             {
                 continue; // its own top shows past the reach of the run's
+            }
+            let mut cells = 1;
+            while is_blocked(xi - cells * dx, yi - cells * dy) {
+                cells += 1;
+            }
+            let run = face::Run {
+                along_u: dx != 0,
+                dir: (dx + dy) as f64,
+                far: i64::from(a),
+                across: i64::from(l),
+                cells,
+                nadir: na,
+            };
+            let centre = (x as f64 + 0.5, y as f64 + 0.5);
+            let px = match (
+                floor_to_image.apply(centre),
+                floor_to_image.apply((centre.0 + dx as f64, centre.1 + dy as f64)),
+            ) {
+                (Some(p), Some(q)) => (p.0 - q.0).hypot(p.1 - q.1),
+                _ => 0.0,
+            };
+            if face::base_shows(img, classes, maps, run, px) {
+                continue; // the face toward the nadir shows how little the top leans
             }
         }
         return Some((dx, dy));
@@ -638,6 +666,7 @@ mod tests {
         let doubt_at = |over: f64, nadir: Point, cell: (u32, u32)| {
             let (classes, f2i, i2f, blocked) = edge_floor(over);
             lean_doubt(
+                &RgbImage::new(40, (classes.len() / 40) as u32),
                 &classes,
                 40,
                 (&f2i, &i2f),
@@ -695,6 +724,7 @@ mod tests {
                 }
             }
             lean_doubt(
+                &RgbImage::new(40, (classes.len() / 40) as u32),
                 &classes,
                 40,
                 (&f2i, &i2f),

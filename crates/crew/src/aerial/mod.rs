@@ -62,6 +62,7 @@ pub mod colour;
 pub mod cover;
 pub mod dull;
 pub mod enclosed;
+pub mod face;
 pub mod faint;
 pub mod homography;
 pub mod lines;
@@ -744,9 +745,17 @@ fn read(
             } else {
                 cover::Beyond::Free
             };
-            if let Some(dir) =
-                cover::lean_doubt(&classes, width, maps, (gw, gh), &blocked, n, (x, y), beyond)
-            {
+            if let Some(dir) = cover::lean_doubt(
+                img,
+                &classes,
+                width,
+                maps,
+                (gw, gh),
+                &blocked,
+                n,
+                (x, y),
+                beyond,
+            ) {
                 far_cells.push((i, dir));
             }
         }
