@@ -21,7 +21,8 @@
 //! A pale shelf's top of nearly the floor's colour may pass these limits cell by cell (uneven
 //! light makes floor brighter than such a top), but it differs from the floor beside it over
 //! its whole extent: [`unlike_ring`] refuses three or more lit free cells side by side each
-//! brighter ([`RING`]) or more saturated ([`RING_TINT`]) than the lit free cells around them.
+//! brighter ([`RING`]) or more saturated ([`RING_TINT`]) than the lit free cells around them,
+//! or both at once by less ([`RING_BOTH`]).
 
 use super::blobs;
 use super::colour::{Class, Classifier};
@@ -71,6 +72,15 @@ pub const RING: f64 = 1.14;
 /// families A–G: such regions of free floor reach 0.06, the pale blue-grey shelves of G0024
 /// and G0033 (on blue-grey and light grey floors) 0.075 and 0.09.
 pub const RING_TINT: f64 = 0.075;
+/// Brighter and more saturated at once than the lit free floor around it, by at least this
+/// ratio and this saturation (as [`RING`] and [`RING_TINT`]), each cell of a region of
+/// [`RING_CELLS`] or more: the top of a shelf of a paler, bluer grey than the floor, lit by the
+/// same sun (V0004's graphite top on a grey floor, read as floor until issue #29's sixteenth
+/// round: 1.06–1.14 and 0.033–0.042). Free floor's regions pass one limit or the other, seldom
+/// both: on families A–F and K–Z, regions of free cells past both limits were found in two
+/// views, each refused for other reasons, and none in a view read exactly; at 1.07 or 0.025
+/// instead, in O0006, read exactly.
+pub const RING_BOTH: (f64, f64) = (1.08, 0.03);
 /// The fewest lit free neighbours (of the eight) a cell needs to be compared with them.
 pub const RING_MIN: usize = 3;
 /// The fewest cells side by side, each brighter than [`RING`] times its ring, that are refused.
@@ -197,25 +207,43 @@ pub fn ring_tints(
     against_ring(&lit, (gw, gh), |s, ring| s - ring)
 }
 
+/// How a region of free cells differs from the floor around it ([`unlike_ring`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unlike {
+    /// Brighter ([`RING`]).
+    Brighter,
+    /// More saturated ([`RING_TINT`]).
+    Tinted,
+    /// Both at once, by less ([`RING_BOTH`]).
+    Both,
+}
+
 /// A region of free cells that do not look like the floor around them: brighter than it
-/// ([`RING`], first) or more tinted ([`RING_TINT`]); `true` with it for brighter. `bright`
-/// and `saturation` hold each cell's [`Look`] (`None` for a blocked cell or one with too few
-/// floor pixels), row-major over a `gw` × `gh` grid.
+/// ([`RING`], first), more tinted ([`RING_TINT`]), or both by less ([`RING_BOTH`]). For
+/// [`Unlike::Both`] the region's `least` is the least of its cells' ratios. `bright` and
+/// `saturation` hold each cell's [`Look`] (`None` for a blocked cell or one with too few floor
+/// pixels), row-major over a `gw` × `gh` grid.
 pub fn unlike_ring(
     bright: &[Option<f64>],
     saturation: &[f64],
     (gw, gh): (u32, u32),
-) -> Option<(bool, Region)> {
-    odd_region(&ring_ratios(bright, (gw, gh)), (gw, gh), RING)
-        .map(|r| (true, r))
-        .or_else(|| {
-            odd_region(
-                &ring_tints(bright, saturation, (gw, gh)),
-                (gw, gh),
-                RING_TINT,
-            )
-            .map(|r| (false, r))
-        })
+) -> Option<(Unlike, Region)> {
+    let ratios = ring_ratios(bright, (gw, gh));
+    let tints = ring_tints(bright, saturation, (gw, gh));
+    if let Some(r) = odd_region(&ratios, (gw, gh), RING) {
+        return Some((Unlike::Brighter, r));
+    }
+    if let Some(r) = odd_region(&tints, (gw, gh), RING_TINT) {
+        return Some((Unlike::Tinted, r));
+    }
+    // Both: each cell's ratio where its tint passes too (`None` elsewhere).
+    let (ratio, tint) = RING_BOTH;
+    let both: Vec<Option<f64>> = ratios
+        .iter()
+        .zip(&tints)
+        .map(|(&r, &t)| r.filter(|_| t.is_some_and(|t| t >= tint)))
+        .collect();
+    odd_region(&both, (gw, gh), ratio).map(|r| (Unlike::Both, r))
 }
 
 /// How a free cell's middle looks after white balance.
@@ -610,8 +638,8 @@ mod tests {
             shelf[i] = Some(1.2);
         }
         shelf[7] = Some(1.25);
-        let (brighter, r) = unlike_ring(&shelf, &grey, (gw, gh)).unwrap();
-        assert!(brighter);
+        let (kind, r) = unlike_ring(&shelf, &grey, (gw, gh)).unwrap();
+        assert_eq!(kind, Unlike::Brighter);
         assert_eq!(r.cells, vec![6, 7, 8, 11, 12, 13]);
         assert!((r.least - 1.2).abs() < 1e-9);
         // Two bright cells side by side (noise, a stain, a mark's glow) are not enough.
@@ -653,8 +681,8 @@ mod tests {
         for i in [1, 6, 11] {
             sat[i] = 0.12;
         }
-        let (brighter, r) = unlike_ring(&lit, &sat, (gw, gh)).unwrap();
-        assert!(!brighter);
+        let (kind, r) = unlike_ring(&lit, &sat, (gw, gh)).unwrap();
+        assert_eq!(kind, Unlike::Tinted);
         assert_eq!(r.cells, vec![1, 6, 11]);
         // Not in a shadow (a shadow's tint depends on the light).
         let mut shade = lit.clone();
@@ -665,6 +693,33 @@ mod tests {
         // Not two cells alone.
         sat[11] = 0.02;
         assert_eq!(unlike_ring(&lit, &sat, (gw, gh)), None);
+    }
+
+    #[test]
+    fn cells_both_brighter_and_more_tinted_than_the_floor_around_them_are_found() {
+        // V0004's graphite top on grey floor: 1.06-1.14 as bright, 0.03-0.04 more saturated.
+        let (gw, gh) = (6u32, 3u32);
+        let mut bright = vec![Some(1.0); 18];
+        let mut sat = vec![0.01; 18];
+        for (i, (b, s)) in [(7, (1.10, 0.045)), (8, (1.09, 0.043)), (9, (1.12, 0.048))] {
+            bright[i] = Some(b);
+            sat[i] = s;
+        }
+        let (kind, r) = unlike_ring(&bright, &sat, (gw, gh)).unwrap();
+        assert_eq!(kind, Unlike::Both);
+        assert_eq!(r.cells, vec![7, 8, 9]);
+        // Either alone at that level is floor: brighter only, or tinted only.
+        let grey = vec![0.01; 18];
+        assert_eq!(unlike_ring(&bright, &grey, (gw, gh)), None);
+        let even = vec![Some(1.0); 18];
+        assert_eq!(unlike_ring(&even, &sat, (gw, gh)), None);
+        // One cell under either limit breaks the region (two cells are not enough).
+        let mut dim = bright.clone();
+        dim[8] = Some(1.06);
+        assert_eq!(unlike_ring(&dim, &sat, (gw, gh)), None);
+        let mut pale = sat.clone();
+        pale[8] = 0.035;
+        assert_eq!(unlike_ring(&bright, &pale, (gw, gh)), None);
     }
 
     #[test]

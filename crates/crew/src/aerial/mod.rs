@@ -826,23 +826,28 @@ fn read(
             .iter()
             .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
             .collect();
-        looks::unlike_ring(&bright, &saturation, (gw, gh)).map(|(brighter, r)| {
+        looks::unlike_ring(&bright, &saturation, (gw, gh)).map(|(kind, r)| {
             let first = r.cells.first().copied().unwrap_or(0);
             let (x, y) = ((first % gw as usize) as u32, (first / gw as usize) as u32);
-            let why = if brighter {
-                format!(
+            let why = match kind {
+                looks::Unlike::Brighter => format!(
                     "each at least {:.2} times as bright as the lit free floor around it (floor changes at most {:.2} times from cell to cell over {} cells side by side)",
                     r.least,
                     looks::RING,
                     looks::RING_CELLS
-                )
-            } else {
-                format!(
+                ),
+                looks::Unlike::Tinted => format!(
                     "each at least {:.3} more saturated after white balance than the lit free floor around it (floor at most {:.3} over {} cells side by side)",
                     r.least,
                     looks::RING_TINT,
                     looks::RING_CELLS
-                )
+                ),
+                looks::Unlike::Both => format!(
+                    "each at least {:.2} times as bright as the lit free floor around it and at least {:.3} more saturated after white balance (floor seldom both over {} cells side by side)",
+                    r.least,
+                    looks::RING_BOTH.1,
+                    looks::RING_CELLS
+                ),
             };
             at_pixel(
                 source,
