@@ -297,6 +297,17 @@ pub enum Beyond {
     Free,
 }
 
+/// A covered cell in doubt ([`lean_doubt`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Doubt {
+    /// The direction away from the nadir along which the cell lies beyond the blocked cells
+    /// (a step in cells).
+    pub dir: (i64, i64),
+    /// For the far cell of a run: no face toward the nadir shows, where a top leaning over a
+    /// free far cell would need one ([`face::Face::Hidden`]).
+    pub hidden_face: bool,
+}
+
 /// Whether the covered cell `(x, y)` may be free under the leaning top of the obstacle on the
 /// blocked cells behind it (toward the nadir), with `beyond` it, away from the nadir:
 /// - [`Beyond::Edge`], the floor's edge: nothing beyond shows where that top ends, so the
@@ -311,7 +322,7 @@ pub enum Beyond {
 /// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
 /// when a top with that k, ending at the cell's inner border, would cover all but
 /// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
-/// blocked cells is returned (a step in cells). For [`Beyond::Free`], not when the cover runs on
+/// blocked cells is returned (a step in cells), with what the run's face tells. For [`Beyond::Free`], not when the cover runs on
 /// past the cell, over the free cells beyond, further than that top could reach ([`Past`]):
 /// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
 /// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
@@ -327,7 +338,7 @@ pub fn lean_doubt(
     nadir: Point,
     (x, y): (u32, u32),
     beyond: Beyond,
-) -> Option<(i64, i64)> {
+) -> Option<Doubt> {
     let height = classes.len() / width.max(1);
     let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
     let is_blocked =
@@ -459,11 +470,21 @@ pub fn lean_doubt(
                 (Some(p), Some(q)) => (p.0 - q.0).hypot(p.1 - q.1),
                 _ => 0.0,
             };
-            if face::base_shows(img, classes, maps, run, px) {
-                continue; // the face toward the nadir shows how little the top leans
+            match face::judge(img, classes, maps, run, px) {
+                face::Face::Own => continue, // the face toward the nadir shows how little the top leans
+                face::Face::Hidden => {
+                    return Some(Doubt {
+                        dir: (dx, dy),
+                        hidden_face: true,
+                    })
+                }
+                face::Face::Unknown => {}
             }
         }
-        return Some((dx, dy));
+        return Some(Doubt {
+            dir: (dx, dy),
+            hidden_face: false,
+        });
     }
     None
 }
@@ -738,7 +759,7 @@ mod tests {
         let doubt = |past: f64| doubt_beside(past, false);
         // The cover ends 0.1 cell past the far cell: the run's top may end there, the far
         // cell free under it.
-        assert_eq!(doubt(0.1), Some((0, 1)));
+        assert_eq!(doubt(0.1).map(|d| d.dir), Some((0, 1)));
         // It runs on 0.8 cell: further than the run's top reaches (1.8 > 1.2 × 1.2 cells from
         // the far cell's inner border), so the far cell's own top.
         assert_eq!(doubt(0.8), None);
@@ -746,7 +767,7 @@ mod tests {
         assert_eq!(doubt(3.0), None);
         // A blocked cell beside the free cell past it, toward the nadir, may lean its top
         // over it: the cover there tells nothing.
-        assert_eq!(doubt_beside(0.8, true), Some((0, 1)));
+        assert_eq!(doubt_beside(0.8, true).map(|d| d.dir), Some((0, 1)));
     }
 
     /// Bins of a cell whose part with fu (along u) in `covered_u` shows an obstacle.

@@ -34,7 +34,12 @@
 //! - the face ends within [`MARGIN`] of the length `free` would need.
 //!
 //! A face of the top's own shade, or read as floor, or a top in another's shadow, decides
-//! nothing: the cell is refused as before.
+//! nothing by itself. But where no face shows at all (none longer than the blur) and a free
+//! far cell would need one at least [`HIDDEN_FREE`] long, the verdict is [`Face::Hidden`]:
+//! the reader then takes the far cell as the run's own when the sun, as the view's shadows
+//! give it, shines from behind the face ([`in_own_shadow`]). A face in its own shadow is lit
+//! by the sky alone, far darker than the top; that long, it would show, or, read as floor,
+//! move the cover's start past [`INSET`].
 
 use super::colour::Class;
 use super::homography::Homography;
@@ -85,15 +90,45 @@ pub struct Run {
 /// (all the slice's pixels, mean of the three channels); `None` without pixels.
 type Slice = Option<(f64, f64)>;
 
-/// Whether the face toward the nadir shows the run's far cell as its own (see the module's
-/// comment). `px` is the cell's size in pixels near the run.
-pub fn base_shows(
+/// What the face toward the nadir tells of a run's far cell ([`judge`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Face {
+    /// A face of another shade than the top, too short for a free far cell: the cell is the
+    /// run's own.
+    Own,
+    /// The cover and the top are as for [`Face::Own`] and a free far cell would need a face
+    /// at least [`HIDDEN_FREE`] long, but no face longer than the blur shows: the cell is the
+    /// run's own if the face could not have the top's shade, that is if the sun shines from
+    /// behind it (see `mod.rs`, where the sun's directions are known).
+    Hidden,
+    /// Nothing to tell.
+    Unknown,
+}
+
+/// The least length (cells) of the face a free far cell would need for [`Face::Hidden`]: a
+/// face in its own shadow that long shows, as obstacle darker than the top, or, read as
+/// floor, moves the cover's start past [`INSET`].
+pub const HIDDEN_FREE: f64 = 0.5;
+
+/// What the face toward the nadir tells of the run's far cell (see the module's comment).
+/// `px` is the cell's size in pixels near the run.
+pub fn judge(
     img: &RgbImage,
     classes: &[u8],
     maps: (&Homography, &Homography),
     run: Run,
     px: f64,
-) -> bool {
+) -> Face {
+    judged(img, classes, maps, run, px).unwrap_or(Face::Unknown)
+}
+
+fn judged(
+    img: &RgbImage,
+    classes: &[u8],
+    maps: (&Homography, &Homography),
+    run: Run,
+    px: f64,
+) -> Option<Face> {
     let Run {
         dir, far, cells, ..
     } = run;
@@ -109,9 +144,7 @@ pub fn base_shows(
     let slices = profile(img, classes, maps, run, from, n);
     let at = |s: usize| from + dir * s as f64 * SLICE;
     let covered = |s: &Slice| s.is_some_and(|(share, _)| share >= 0.5);
-    let Some(first) = slices.iter().position(covered) else {
-        return false;
-    };
+    let first = slices.iter().position(covered)?;
     // The covered stretch from `first`, slices without pixels passed over.
     let mut last = first;
     for (s, slice) in slices.iter().enumerate().skip(first + 1) {
@@ -123,13 +156,13 @@ pub fn base_shows(
     }
     let (c0, e) = (at(first), at(last + 1));
     if !(-0.1..=INSET).contains(&((c0 - near) * dir)) {
-        return false;
+        return None;
     }
     let (dn, de) = ((c0 - run.nadir).abs(), (e - run.nadir).abs());
     let free = (de / (inner - run.nadir).abs() - 1.0) * dn;
     let own = (de / (outer - run.nadir).abs() - 1.0) * dn;
     if own < -0.05 || free <= 0.0 {
-        return false;
+        return None;
     }
     let offset = |s: usize| (at(s) + dir * SLICE / 2.0 - c0) * dir;
     let length = (e - c0) * dir;
@@ -138,13 +171,13 @@ pub fn base_shows(
         .filter_map(|s| slices[s].map(|(_, b)| b))
         .collect();
     if top.len() < TOP_SLICES {
-        return false;
+        return None;
     }
     top.sort_by(f64::total_cmp);
     let level = top[top.len() / 2];
     let (lo, hi) = (top[top.len() / 10], top[top.len() - 1 - top.len() / 10]);
     if level <= 0.0 || hi - lo > STEADY * level {
-        return false;
+        return None;
     }
     // The face: up to the last slice off the top's level, short of where the top begins for
     // a free far cell.
@@ -153,8 +186,11 @@ pub fn base_shows(
         .filter(|&s| offset(s) < 1.1 * free && slices[s].is_some_and(|(_, b)| off(b)))
         .map(|s| offset(s) + SLICE / 2.0)
         .fold(0.0, f64::max);
-    if face * px < FACE_PX || face > MARGIN * free {
-        return false;
+    if face > MARGIN * free {
+        return None;
+    }
+    if face * px < FACE_PX {
+        return (free >= HIDDEN_FREE).then_some(Face::Hidden);
     }
     // Its shade past the blur at its base.
     let blur = 1.5 / px;
@@ -163,10 +199,25 @@ pub fn base_shows(
         .filter_map(|s| slices[s].map(|(_, b)| (b - level) / level))
         .collect();
     if shade.is_empty() {
-        return false;
+        return None;
     }
     shade.sort_by(f64::total_cmp);
-    shade[shade.len() / 2].abs() >= CONTRAST
+    (shade[shade.len() / 2].abs() >= CONTRAST).then_some(Face::Own)
+}
+
+/// How far behind a face the sun must be, as the dot product of the floor's direction toward
+/// the sun with the run's direction away from the nadir (the face looks the other way).
+pub const BEHIND: f64 = 0.3;
+
+/// Whether the face toward the nadir of a run pointing `dir` (a step in cells away from the
+/// nadir) is in its own shadow under every sun in `suns` (directions toward the sun on the
+/// floor, unit vectors, from [`super::shadows::Sunlit::suns`]): each at least [`BEHIND`] along
+/// `dir`. Not without a sun. Such a face is lit by the sky alone, far darker than a top in the
+/// sun (on issue #29's families the faces measured were 2–62 % darker than their tops, most of
+/// them lit by the sun).
+pub fn in_own_shadow(suns: &[(f64, f64)], dir: (i64, i64)) -> bool {
+    let (dx, dy) = (dir.0 as f64, dir.1 as f64);
+    !suns.is_empty() && suns.iter().all(|&(sx, sy)| sx * dx + sy * dy >= BEHIND)
 }
 
 /// The cover's profile along the run's middle (the middle half of its cells across), `n`
@@ -266,9 +317,13 @@ mod tests {
         nadir: -20.0,
     };
 
-    fn shows(face_end: f64, end: f64, face: u8) -> bool {
+    fn judged(face_end: f64, end: f64, face: u8, px: f64) -> Face {
         let (img, classes, f2i, i2f) = scene(face_end, end, face);
-        base_shows(&img, &classes, (&f2i, &i2f), RUN, 10.0)
+        judge(&img, &classes, (&f2i, &i2f), RUN, px)
+    }
+
+    fn shows(face_end: f64, end: f64, face: u8) -> bool {
+        judged(face_end, end, face, 10.0) == Face::Own
     }
 
     #[test]
@@ -282,24 +337,50 @@ mod tests {
     #[test]
     fn a_face_as_long_as_a_free_far_cell_needs_does_not() {
         // The same end from a base to u = 5: k = 1.061, a face 1.34 long.
-        assert!(!shows(3.34, 6.52, 80));
+        assert_eq!(judged(3.34, 6.52, 80, 10.0), Face::Unknown);
         // Past the margin, half of the 1.34 a free far cell needs (the pixels' centres read
         // the face 0.05 short).
-        assert!(!shows(2.8, 6.52, 80));
+        assert_eq!(judged(2.8, 6.52, 80, 10.0), Face::Unknown);
         assert!(shows(2.6, 6.52, 80));
     }
 
     #[test]
-    fn a_face_that_cannot_be_seen_decides_nothing() {
-        // Of the top's shade, or too near it.
-        assert!(!shows(2.44, 6.52, 160));
-        assert!(!shows(2.44, 6.52, 145));
+    fn a_face_that_cannot_be_seen_is_hidden() {
+        // Of the top's shade: no face shows (it is hidden, or short).
+        assert_eq!(judged(2.44, 6.52, 160, 10.0), Face::Hidden);
+        // Too near the top's shade to be a face, too far from it to be the top.
+        assert_eq!(judged(2.44, 6.52, 145, 10.0), Face::Unknown);
         // Too short to tell from blur (0.2 cell: 2 px).
-        assert!(!shows(2.2, 6.52, 80));
+        assert_eq!(judged(2.2, 6.52, 80, 10.0), Face::Hidden);
         // The same face in cells of 5 px: 2.2 px.
-        let (img, classes, f2i, i2f) = scene(2.44, 6.52, 80);
-        assert!(base_shows(&img, &classes, (&f2i, &i2f), RUN, 10.0));
-        assert!(!base_shows(&img, &classes, (&f2i, &i2f), RUN, 5.0));
+        assert_eq!(judged(2.44, 6.52, 80, 10.0), Face::Own);
+        assert_eq!(judged(2.44, 6.52, 80, 5.0), Face::Hidden);
+        // Only where a free far cell would need a face of at least half a cell: with the nadir
+        // a cell before the run and its top ending at 7.0 it would need 0.53; at 6.3, 0.34.
+        let near = |end: f64| {
+            let (img, classes, f2i, i2f) = scene(2.0, end, 80);
+            let run = Run { nadir: 1.0, ..RUN };
+            judge(&img, &classes, (&f2i, &i2f), run, 10.0)
+        };
+        assert_eq!(near(7.0), Face::Hidden);
+        assert_eq!(near(6.3), Face::Unknown);
+    }
+
+    #[test]
+    fn a_face_is_in_its_own_shadow_when_every_sun_is_behind_it() {
+        // A run pointing right: its face looks left; suns to the right, up-right, down-right.
+        assert!(in_own_shadow(
+            &[(1.0, 0.0), (0.8, -0.6), (0.8, 0.6)],
+            (1, 0)
+        ));
+        // One sun beside the face (its plane) or in front of it: it may be lit.
+        assert!(!in_own_shadow(&[(1.0, 0.0), (0.2, 0.98)], (1, 0)));
+        assert!(!in_own_shadow(&[(-1.0, 0.0)], (1, 0)));
+        // Along v: a run pointing up, suns above.
+        assert!(in_own_shadow(&[(0.0, -1.0)], (0, -1)));
+        assert!(!in_own_shadow(&[(0.0, 1.0)], (0, -1)));
+        // No sun known (no shadows): no face is known to be dark.
+        assert!(!in_own_shadow(&[], (1, 0)));
     }
 
     #[test]
@@ -307,19 +388,26 @@ mod tests {
         // The top ends before the far cell's outer border less an inset: no base to u = 6,
         // however short the face.
         assert!(shows(2.38, 6.52, 80));
-        assert!(!shows(2.38, 5.9, 80));
+        assert_eq!(judged(2.38, 5.9, 80, 10.0), Face::Unknown);
         // (With the top ending at 5.9, a free far cell would need a face of 0.79, twice this
         // one; a blocked one, a base ending short of its outer border.)
         // The cover starts 0.4 cell into the run: its face is not read from its base.
+        // (0.9 long from u = 2, too long for a blocked far cell; 0.45 from 2.45 would not be.)
         let (mut img, mut classes, f2i, i2f) = scene(2.9, 6.52, 80);
-        assert!(!base_shows(&img, &classes, (&f2i, &i2f), RUN, 10.0));
+        assert_eq!(
+            judge(&img, &classes, (&f2i, &i2f), RUN, 10.0),
+            Face::Unknown
+        );
         for y in 10..20u32 {
             for x in 20..24u32 {
                 img.put_pixel(x, y, Rgb([120; 3]));
                 classes[(y * 100 + x) as usize] = Class::Floor as u8;
             }
         }
-        assert!(!base_shows(&img, &classes, (&f2i, &i2f), RUN, 10.0));
+        assert_eq!(
+            judge(&img, &classes, (&f2i, &i2f), RUN, 10.0),
+            Face::Unknown
+        );
     }
 
     #[test]
@@ -331,6 +419,9 @@ mod tests {
                 img.put_pixel(x, y, Rgb([130; 3]));
             }
         }
-        assert!(!base_shows(&img, &classes, (&f2i, &i2f), RUN, 10.0));
+        assert_eq!(
+            judge(&img, &classes, (&f2i, &i2f), RUN, 10.0),
+            Face::Unknown
+        );
     }
 }

@@ -732,7 +732,7 @@ fn read(
     // The shadow beside such a cell may still show that the obstacle's base reaches it (see
     // `shadows::Sunlit::base_reaches`): these cells are judged once the free cells' shadows are
     // known, below.
-    let mut far_cells: Vec<(usize, (i64, i64))> = Vec::new();
+    let mut far_cells: Vec<(usize, cover::Doubt)> = Vec::new();
     if let (Some(n), Some(_)) = (nadir, config.corners) {
         for i in 0..cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
@@ -745,7 +745,7 @@ fn read(
             } else {
                 cover::Beyond::Free
             };
-            if let Some(dir) = cover::lean_doubt(
+            if let Some(far) = cover::lean_doubt(
                 img,
                 &classes,
                 width,
@@ -756,7 +756,7 @@ fn read(
                 (x, y),
                 beyond,
             ) {
-                far_cells.push((i, dir));
+                far_cells.push((i, far));
             }
         }
     }
@@ -873,12 +873,17 @@ fn read(
             .as_ref()
             .map(shadows::Sunlit::suns)
             .unwrap_or_default();
-        for (i, dir) in far_cells {
+        for (i, far) in far_cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
             if sunlit
                 .as_ref()
-                .is_some_and(|s| s.base_reaches(&suns, (x, y), dir))
+                .is_some_and(|s| s.base_reaches(&suns, (x, y), far.dir))
             {
+                continue;
+            }
+            // No face shows where a free far cell would need a long one, and the sun shines
+            // from behind that face: it would be in its own shadow, unlike the lit top.
+            if far.hidden_face && face::in_own_shadow(&suns, far.dir) {
                 continue;
             }
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
