@@ -285,6 +285,18 @@ FAMILIES = {
                              (0.62, 0.26, 0.10)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # c: held out from issue #29's sixteenth round, rendered during it and not looked at until
+    # scored once with its final reader. Puck, yawed-box and box-with-a-dome robots, square,
+    # ellipse and ring goals, mid green-grey, dark brown and warm off-white floors tiled every
+    # half cell, teal-blue, sand, dark grey-blue, salmon and moss shelves from 0.3 to 2.0 high
+    # inset 0.08 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and
+    # a camera from 45 to 165 cells per 24 high.
+    "c": dict(robot_shapes=("puck", "rotbox", "boxdome"), goal_shapes=("square", "ellipse", "ring"),
+              floors=((0.48, 0.52, 0.46), (0.28, 0.22, 0.18), (0.80, 0.78, 0.74)),
+              shelf_colours=((0.12, 0.40, 0.55), (0.78, 0.68, 0.45), (0.22, 0.25, 0.32), (0.85, 0.50, 0.42),
+                             (0.35, 0.45, 0.15)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.08, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

@@ -1372,15 +1372,17 @@ fn crew_audits_a_refused_aerial_view() {
     let dir = std::env::temp_dir().join(format!("mason-audit-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let map = dir.join("audited.map");
-    let image = data("aerial/A0037.jpg");
+    // Two runs' far cells refused (A0037, refused at two before the sixteenth round, is now
+    // refused at one: its run's face shows the other's base).
+    let image = data("aerial/A0016.jpg");
     let view = [
         "crew",
         "--image",
         &image,
         "--grid",
-        "28x10",
+        "32x14",
         "--corners",
-        "14.41,18.95 470.8,15.14 469.56,183.02 15.93,205.17",
+        "22.25,19.19 761.04,9.02 749.64,303.29 33.81,315.25",
     ];
     let refused = mason(&view);
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
@@ -1404,11 +1406,11 @@ fn crew_audits_a_refused_aerial_view() {
     );
     let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(v["doubts"].as_array().unwrap().len(), doubts.len());
-    assert_eq!(v["reading"]["grid"], serde_json::json!([28, 10]));
+    assert_eq!(v["reading"]["grid"], serde_json::json!([32, 14]));
     assert!(v.get("agents").is_none(), "nothing is planned");
     let text = std::fs::read_to_string(&map).unwrap();
     assert!(
-        text.starts_with("type octile\nheight 10\nwidth 28\nmap\n"),
+        text.starts_with("type octile\nheight 14\nwidth 32\nmap\n"),
         "{text}"
     );
     // The overlay marks each refusal where it points, its reason as a tooltip.

@@ -156,8 +156,8 @@ fn a_run_s_far_cell_a_top_could_cover_whole_is_refused() {
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still
-/// stops it). A0037 and B0027, refused at a run's far cell, are audited to their truth: the
-/// checks that refuse them guard a cell the reading, past them, gets right.
+/// stops it). A0016, A0037 and B0027, refused at runs' far cells, are audited to their truth:
+/// the checks that refuse them guard a cell the reading, past them, gets right.
 #[test]
 fn the_audit_lists_what_the_reading_refuses_and_reads_on() {
     use mason_crew::aerial::audit_aerial;
@@ -187,7 +187,7 @@ fn the_audit_lists_what_the_reading_refuses_and_reads_on() {
             (Err(e), Ok(audited)) => {
                 let first = audited.doubts.first().expect("a refusal listed");
                 assert_eq!(e.to_string(), first.to_string(), "{name}");
-                if name == "A0037" || name == "B0027" {
+                if ["A0016", "A0037", "B0027"].contains(&name.as_str()) {
                     assert_exact(name, &audited.reading, &truth);
                     audited_past += 1;
                 }
@@ -202,5 +202,5 @@ fn the_audit_lists_what_the_reading_refuses_and_reads_on() {
             (Ok(_), Err(a)) => panic!("{name}: read, but the audit stops: {a}"),
         }
     }
-    assert_eq!(audited_past, 2);
+    assert_eq!(audited_past, 3);
 }

@@ -213,8 +213,8 @@ pub const BEHIND: f64 = 0.3;
 /// nadir) is in its own shadow under every sun in `suns` (directions toward the sun on the
 /// floor, unit vectors, from [`super::shadows::Sunlit::suns`]): each at least [`BEHIND`] along
 /// `dir`. Not without a sun. Such a face is lit by the sky alone, far darker than a top in the
-/// sun (on issue #29's families the faces measured were 2–62 % darker than their tops, most of
-/// them lit by the sun).
+/// sun (on issue #29's families the faces measured, most of them lit by the sun, were from 3 %
+/// brighter to 62 % darker than their tops).
 pub fn in_own_shadow(suns: &[(f64, f64)], dir: (i64, i64)) -> bool {
     let (dx, dy) = (dir.0 as f64, dir.1 as f64);
     !suns.is_empty() && suns.iter().all(|&(sx, sy)| sx * dx + sy * dy >= BEHIND)
