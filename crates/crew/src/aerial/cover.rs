@@ -322,8 +322,9 @@ pub struct Doubt {
 /// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
 /// when a top with that k, ending at the cell's inner border, would cover all but
 /// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
-/// blocked cells is returned (a step in cells), with what the run's face tells. For [`Beyond::Free`], not when the cover runs on
-/// past the cell, over the free cells beyond, further than that top could reach ([`Past`]):
+/// blocked cells is returned (a step in cells), with what the run's face tells. For
+/// [`Beyond::Free`], not when the cover runs on past the cell, over the free cells beyond,
+/// further than that top could reach ([`Past`]):
 /// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
 /// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
 /// sixteenth round).

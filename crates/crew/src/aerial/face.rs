@@ -129,6 +129,9 @@ fn judged(
     run: Run,
     px: f64,
 ) -> Option<Face> {
+    if px.is_nan() || px < 1.0 {
+        return None; // no cell size in pixels: no blur to tell a face from
+    }
     let Run {
         dir, far, cells, ..
     } = run;
