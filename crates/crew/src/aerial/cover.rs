@@ -570,37 +570,59 @@ impl Past {
             nadir_l + self.k * (l1 - nadir_l),
         );
         let slices = (free as f64 / PAST_SLICE).round() as usize;
-        let p = profile(
-            classes,
-            width,
-            maps,
+        let strip = Strip {
             along_u,
-            outer,
+            from: outer,
             dir,
-            PAST_SLICE,
-            slices,
-            (t0.min(t1), t0.max(t1)),
-        );
+            step: PAST_SLICE,
+            n: slices,
+            across: (t0.min(t1), t0.max(t1)),
+        };
+        let p = profile(classes, width, maps, &strip);
         // A cover that never ends runs on at least over those free cells.
         Some(cover_end(&p).map_or(free as f64, |e| e as f64 * PAST_SLICE))
     }
 }
 
-/// The share of obstacle pixels per slice of `step` cells along one floor axis (`along_u`: the
-/// u axis), from `from` in the direction `dir` (±1), over `n` slices, counting the pixels whose
-/// floor points lie within `across` on the other axis; `NaN` for a slice without pixels.
-#[allow(clippy::too_many_arguments)]
-fn profile(
+/// A strip of the floor cut into slices: `n` slices of `step` cells along one floor axis
+/// (`along_u`: the u axis), from `from` in the direction `dir` (±1), over the pixels whose floor
+/// points lie within `across` on the other axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Strip {
+    pub along_u: bool,
+    pub from: f64,
+    pub dir: f64,
+    pub step: f64,
+    pub n: usize,
+    pub across: (f64, f64),
+}
+
+/// One slice of a [`Strip`]: its pixels on the floor, its obstacle pixels among them and, when
+/// the image is given, the sum of their brightness (the mean of the three channels, 0–255).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SliceSum {
+    pub pixels: u32,
+    pub obstacle: u32,
+    pub brightness: f64,
+}
+
+/// The slices of `strip` (all empty when the strip misses the image): the one walk over the
+/// pixels behind the cover's [`profile`] and the face's (`face::judge`).
+pub(crate) fn slices(
     classes: &[u8],
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
-    along_u: bool,
-    from: f64,
-    dir: f64,
-    step: f64,
-    n: usize,
-    across: (f64, f64),
-) -> Vec<f64> {
+    strip: &Strip,
+    img: Option<&RgbImage>,
+) -> Vec<SliceSum> {
+    let Strip {
+        along_u,
+        from,
+        dir,
+        step,
+        n,
+        across,
+    } = *strip;
     let height = classes.len() / width.max(1);
     let to = from + dir * step * n as f64;
     let (a0, a1) = (from.min(to), from.max(to));
@@ -609,12 +631,11 @@ fn profile(
     } else {
         (across.0, a0, across.1, a1)
     };
+    let mut sums = vec![SliceSum::default(); n];
     let Some((x0, y0, x1, y1)) = floor_to_image.floor_box((u0, v0), (u1, v1), (width, height))
     else {
-        return Vec::new();
+        return sums;
     };
-    let mut all = vec![0u32; n];
-    let mut covered = vec![0u32; n];
     for py in y0..y1 {
         for px in x0..x1 {
             let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)) else {
@@ -629,17 +650,32 @@ fn profile(
             if c == OUTSIDE {
                 continue;
             }
-            all[t as usize] += 1;
-            covered[t as usize] += u32::from(c == Class::Obstacle as u8);
+            let s = &mut sums[t as usize];
+            s.pixels += 1;
+            s.obstacle += u32::from(c == Class::Obstacle as u8);
+            if let Some(img) = img {
+                let p = img.get_pixel(px as u32, py as u32).0;
+                s.brightness += (f64::from(p[0]) + f64::from(p[1]) + f64::from(p[2])) / 3.0;
+            }
         }
     }
-    all.iter()
-        .zip(&covered)
-        .map(|(&a, &c)| {
-            if a == 0 {
+    sums
+}
+
+/// The share of obstacle pixels per slice of `strip`; `NaN` for a slice without pixels.
+fn profile(
+    classes: &[u8],
+    width: usize,
+    maps: (&Homography, &Homography),
+    strip: &Strip,
+) -> Vec<f64> {
+    slices(classes, width, maps, strip, None)
+        .iter()
+        .map(|s| {
+            if s.pixels == 0 {
                 f64::NAN
             } else {
-                f64::from(c) / f64::from(a)
+                f64::from(s.obstacle) / f64::from(s.pixels)
             }
         })
         .collect()

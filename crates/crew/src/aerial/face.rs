@@ -41,9 +41,8 @@
 //! by the sky alone, far darker than the top; that long, it would show, or, read as floor,
 //! move the cover's start past [`INSET`].
 
-use super::colour::Class;
+use super::cover::{slices, Strip};
 use super::homography::Homography;
-use super::pixels::OUTSIDE;
 use image::RgbImage;
 
 /// Slices along the run (cells).
@@ -228,51 +227,26 @@ pub fn in_own_shadow(suns: &[(f64, f64)], dir: (i64, i64)) -> bool {
 fn profile(
     img: &RgbImage,
     classes: &[u8],
-    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    maps: (&Homography, &Homography),
     run: Run,
     from: f64,
     n: usize,
 ) -> Vec<Slice> {
-    let width = img.width() as usize;
-    let height = classes.len() / width.max(1);
-    let to = from + run.dir * SLICE * n as f64;
-    let (a0, a1) = (from.min(to), from.max(to));
-    let (l0, l1) = (run.across as f64 + 0.25, run.across as f64 + 0.75);
-    let (p0, p1) = if run.along_u {
-        ((a0, l0), (a1, l1))
-    } else {
-        ((l0, a0), (l1, a1))
+    let strip = Strip {
+        along_u: run.along_u,
+        from,
+        dir: run.dir,
+        step: SLICE,
+        n,
+        across: (run.across as f64 + 0.25, run.across as f64 + 0.75),
     };
-    let mut sums = vec![(0u32, 0u32, 0.0f64); n];
-    if let Some((x0, y0, x1, y1)) = floor_to_image.floor_box(p0, p1, (width, height)) {
-        for py in y0..y1 {
-            for px in x0..x1 {
-                let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)) else {
-                    continue;
-                };
-                let (a, l) = if run.along_u { (u, v) } else { (v, u) };
-                let t = (a - from) * run.dir / SLICE;
-                if l < l0 || l >= l1 || t < 0.0 || t >= n as f64 {
-                    continue;
-                }
-                let c = classes[py * width + px];
-                if c == OUTSIDE {
-                    continue;
-                }
-                let p = img.get_pixel(px as u32, py as u32).0;
-                let s = &mut sums[t as usize];
-                s.0 += 1;
-                s.1 += u32::from(c == Class::Obstacle as u8);
-                s.2 += (f64::from(p[0]) + f64::from(p[1]) + f64::from(p[2])) / 3.0;
-            }
-        }
-    }
-    sums.into_iter()
-        .map(|(all, obstacle, bright)| {
-            (all > 0).then(|| {
+    slices(classes, img.width() as usize, maps, &strip, Some(img))
+        .into_iter()
+        .map(|s| {
+            (s.pixels > 0).then(|| {
                 (
-                    f64::from(obstacle) / f64::from(all),
-                    bright / f64::from(all),
+                    f64::from(s.obstacle) / f64::from(s.pixels),
+                    s.brightness / f64::from(s.pixels),
                 )
             })
         })
@@ -282,6 +256,7 @@ fn profile(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::aerial::colour::Class;
     use image::Rgb;
 
     /// A floor of 10 × 4 cells of 10 px seen straight down; along row 1, the cover of a run
