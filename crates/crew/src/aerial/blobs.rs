@@ -331,6 +331,58 @@ pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
     out
 }
 
+/// Like [`find`], only the blobs that hold one of `seeds` (pixel indices in increasing
+/// order), each grown from its first seed: the blobs are in row-major order of their first
+/// pixel, as [`find`] gives them, but each blob's pixels are in another order. For a class
+/// whose blobs are mostly of no interest (the obstacles' shelves), found without walking them.
+pub fn find_from(classes: &mut [u8], width: usize, class: u8, seeds: &[usize]) -> Vec<Blob> {
+    const SEEN: u8 = 0x80;
+    let height = classes.len() / width.max(1);
+    let mut out: Vec<(usize, Blob)> = Vec::new();
+    let mut stack = Vec::new();
+    for &start in seeds {
+        if classes.get(start) != Some(&class) {
+            continue; // another class, or a blob already found
+        }
+        classes[start] |= SEEN;
+        stack.push(start);
+        let mut first = start;
+        let mut blob = Blob {
+            pixels: Vec::new(),
+            bbox: (u32::MAX, u32::MAX, 0, 0),
+        };
+        while let Some(i) = stack.pop() {
+            first = first.min(i);
+            let (x, y) = column_row(i, width);
+            let (px, py) = (x as u32, y as u32);
+            blob.pixels.push((px, py));
+            blob.bbox = (
+                blob.bbox.0.min(px),
+                blob.bbox.1.min(py),
+                blob.bbox.2.max(px),
+                blob.bbox.3.max(py),
+            );
+            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                    let j = ny * width + nx;
+                    if classes[j] == class {
+                        classes[j] |= SEEN;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        out.push((first, blob));
+    }
+    for (_, b) in &out {
+        for &(x, y) in &b.pixels {
+            classes[y as usize * width + x as usize] &= !SEEN;
+        }
+    }
+    out.sort_unstable_by_key(|(first, _)| *first);
+    out.into_iter().map(|(_, b)| b).collect()
+}
+
 /// The column and row of pixel `i` of an image `width` pixels wide (in 32 bits when they
 /// fit: a faster division).
 #[inline]
@@ -1441,5 +1493,37 @@ mod tests {
         assert_eq!(blobs.len(), 3);
         assert_eq!(blobs[0].area(), 2);
         assert_eq!(classes[0], 1, "marks are cleared");
+    }
+
+    #[test]
+    fn blobs_from_seeds_are_those_of_find_that_hold_a_seed_in_the_same_order() {
+        // Blobs of class 1: a U (first pixel 0), a bar (first pixel 7) and a dot (28).
+        #[rustfmt::skip]
+        let mut classes = vec![
+            1, 0, 1, 0, 0, 0, 0, 1,
+            1, 0, 1, 0, 0, 0, 0, 1,
+            1, 1, 1, 0, 2, 0, 0, 1,
+            1, 0, 0, 0, 1, 0, 0, 0,
+        ];
+        let all = find(&mut classes, 8, 1);
+        assert_eq!(all.len(), 3);
+        let set = |b: &Blob| {
+            let mut p = b.pixels.clone();
+            p.sort_unstable();
+            (p, b.bbox)
+        };
+        // Seeds away from the blobs' first pixels (the bar's 23 before the U's 17 and 24), one
+        // on another class (20): the U and the bar, in row-major order of their first pixels,
+        // whole.
+        let from = find_from(&mut classes, 8, 1, &[20, 23, 24]);
+        assert_eq!(from.len(), 2);
+        assert_eq!(set(&from[0]), set(&all[0]));
+        let from = find_from(&mut classes, 8, 1, &[17, 20, 23, 24]);
+        assert_eq!(from.len(), 2);
+        assert_eq!(set(&from[0]), set(&all[0]));
+        assert_eq!(set(&from[1]), set(&all[1]));
+        assert!(classes.iter().all(|&c| c < 0x80), "marks are cleared");
+        // No seed, no blob.
+        assert!(find_from(&mut classes, 8, 1, &[]).is_empty());
     }
 }

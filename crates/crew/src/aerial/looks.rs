@@ -370,7 +370,8 @@ pub fn look(
         return out;
     };
     // Floor pixels: (brightness, colour) after white balance.
-    let mut seen: Vec<(f64, [f64; 3])> = Vec::new();
+    type Seen = (f64, u32, [f64; 3]);
+    let mut seen: Vec<Seen> = Vec::with_capacity((x1 - x0) * (y1 - y0));
     let side = shadows::SIDE as f64;
     let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
     for y in y0..y1 {
@@ -401,9 +402,15 @@ pub fn look(
                 bin.robot += u32::from(class == Class::Robot as u8 && near == NEAR_EDGE);
                 continue;
             }
-            let rgb = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
+            let floor = class == Class::Floor as u8;
+            // Only the floor's pixels are seen in colour.
+            let rgb = if floor {
+                classifier.balanced(img.get_pixel(x as u32, y as u32).0)
+            } else {
+                [0.0; 3]
+            };
             let on_line = du.min(1.0 - du).min(dv).min(1.0 - dv) < shadows::LINE;
-            if class == Class::Floor as u8 {
+            if floor {
                 if on_line {
                     // Painted lines and their blur: neither shadow nor lit floor.
                 } else {
@@ -427,11 +434,11 @@ pub fn look(
             match class {
                 c if c == Class::Unsure as u8 => out.unsure.0 += 1,
                 c if c == Class::Floor as u8 => {
-                    seen.push((rgb[0].max(rgb[1]).max(rgb[2]), rgb));
+                    seen.push((rgb[0].max(rgb[1]).max(rgb[2]), seen.len() as u32, rgb));
                     out.leaning.1 += 1;
                     // Leaning pale in a mark's hue within a cell of a mark: its glow.
-                    let glowing = near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
-                    if leaned.get(y * width + x) == Some(&true) && !glowing {
+                    let glowing = || near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
+                    if leaned.get(y * width + x) == Some(&true) && !glowing() {
                         out.leaning.0 += 1;
                     }
                 }
@@ -442,12 +449,18 @@ pub fn look(
     if seen.len() < MIN_PIXELS {
         return out;
     }
-    seen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // By brightness, ties in the order seen: the median, and the middle half (selected, not
+    // sorted: a cell's hundreds of pixels, for every free cell of the floor).
+    let order = |a: &Seen, b: &Seen| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
     let n = seen.len();
-    out.bright = Some(seen[n / 2].0);
-    let middle = &seen[n / 4..3 * n / 4];
+    let (lo, hi) = (n / 4, 3 * n / 4);
+    seen.select_nth_unstable_by(lo, order);
+    seen[lo + 1..].select_nth_unstable_by(hi - lo - 1, order);
+    let middle = &mut seen[lo..hi];
+    middle.select_nth_unstable_by(n / 2 - lo, order);
+    out.bright = Some(middle[n / 2 - lo].0);
     let mut mean = [0.0; 3];
-    for (_, rgb) in middle {
+    for (_, _, rgb) in middle.iter() {
         for c in 0..3 {
             mean[c] += rgb[c] / middle.len() as f64;
         }

@@ -126,8 +126,9 @@ pub const THIN: f64 = 0.25;
 pub const HOLE: f64 = 0.15;
 
 /// The 8-connected blobs of goal, unsure, robot and obstacle pixels that hold some goal,
-/// unsure or robot pixels, as lists of pixel indices, in row-major order of their first
-/// pixel.
+/// unsure or robot pixels, as lists of pixel indices (in the order walked), in row-major order
+/// of their first pixel. Each is grown from its first pixel of a goal, unsure or robot class, so that the
+/// shelves of an obstacle's colour alone (most of a warehouse's) are never walked.
 fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
     let height = classes.len() / width.max(1);
     let part = |c: u8| {
@@ -136,34 +137,35 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
             || c == Class::Obstacle as u8
             || c == Class::Robot as u8
     };
+    let seed = |c: u8| part(c) && c != Class::Obstacle as u8;
     let mut seen = vec![false; classes.len()];
-    let mut out = Vec::new();
+    let mut out: Vec<(usize, Vec<usize>)> = Vec::new();
     let mut stack = Vec::new();
     const BLOCK: usize = 64;
     let mut next = 0;
     while next < classes.len() {
         let start = next;
-        // Past a block of pixels none of which takes part (one test without branches).
+        // Past a block of pixels none of which seeds a blob (one test without branches).
         if start % BLOCK == 0
             && start + BLOCK <= classes.len()
             && !classes[start..start + BLOCK]
                 .iter()
-                .fold(false, |any, &c| any | part(c))
+                .fold(false, |any, &c| any | seed(c))
         {
             next += BLOCK;
             continue;
         }
         next += 1;
-        if seen[start] || !part(classes[start]) {
+        if seen[start] || !seed(classes[start]) {
             continue;
         }
         seen[start] = true;
         stack.push(start);
         let mut pixels = Vec::new();
-        let mut mixed = false;
+        let mut first = start;
         while let Some(i) = stack.pop() {
             pixels.push(i);
-            mixed |= classes[i] != Class::Obstacle as u8;
+            first = first.min(i);
             let (x, y) = column_row(i, width);
             for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
@@ -175,11 +177,10 @@ fn mixed_blobs(classes: &[u8], width: usize) -> Vec<Vec<usize>> {
                 }
             }
         }
-        if mixed {
-            out.push(pixels);
-        }
+        out.push((first, pixels));
     }
-    out
+    out.sort_unstable_by_key(|(first, _)| *first);
+    out.into_iter().map(|(_, pixels)| pixels).collect()
 }
 
 /// The cell (index) under pixel `i` of the grid shifted by `shift` (in cells), if any.

@@ -13,14 +13,15 @@
 //! colour before white balance, and which fills no cell (fewer than
 //! [`shelves::FILLED`](super::shelves::FILLED) of the pixels of any cell's middle), becomes
 //! that mark's blob. An obstacle fills its cells; a shelf of a colour near a mark's before
-//! white balance (dark green) stays an obstacle. Cost: O(obstacle pixels), plus one pass
-//! over the pixels when some blob is a mark's colour.
+//! white balance (dark green) stays an obstacle. Cost: one pass over the obstacle pixels' colours
+//! (on all cores), then only the blobs holding a pixel of a mark's colour are walked.
 
 use super::blobs;
 use super::colour::{Class, Classifier};
 use super::homography::Homography;
 use super::shelves::{inner_cell, middle, FILLED};
 use image::RgbImage;
+use rayon::prelude::*;
 
 /// The least share of a blob's pixels of one mark's colour before white balance.
 pub const MOSTLY: f64 = 0.5;
@@ -45,9 +46,24 @@ pub fn recover(
     let mut known = std::collections::BTreeMap::new();
     let maps = (floor_to_image, image_to_floor);
     let mut turned = 0;
-    let found: Vec<blobs::Blob> = [Class::Obstacle, Class::Unsure]
-        .into_iter()
-        .flat_map(|c| blobs::find(classes, width, c as u8))
+    // Only a blob with a pixel of a mark's colour before white balance can turn: the blobs
+    // grown from those pixels (found on all cores), not every shelf.
+    let seeds = |class: Class| -> Vec<usize> {
+        classes
+            .par_chunks(width.max(1))
+            .enumerate()
+            .flat_map_iter(|(y, row)| {
+                row.iter().enumerate().filter_map(move |(x, &c)| {
+                    (c == class as u8 && classifier.raw_mark(colour(x as u32, y as u32)).is_some())
+                        .then_some(y * width + x)
+                })
+            })
+            .collect()
+    };
+    let seeded = [Class::Obstacle, Class::Unsure].map(|c| (c, seeds(c)));
+    let found: Vec<blobs::Blob> = seeded
+        .iter()
+        .flat_map(|(c, seeds)| blobs::find_from(classes, width, *c as u8, seeds))
         .collect();
     for blob in found {
         let (mut robot, mut goal) = (0usize, 0usize);
