@@ -297,6 +297,18 @@ FAMILIES = {
                              (0.35, 0.45, 0.15)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.08, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # d: held out from issue #29's seventeenth round, rendered during it and not looked at until
+    # scored once with its final reader. Dome, puck and box robots, diamond, cross and disc
+    # goals, light warm grey, dark blue-grey and ochre floors tiled every third of a cell,
+    # brick-brown, pale lilac, dark teal, mustard and slate shelves from 0.3 to 2.2 high inset
+    # 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler light, and a
+    # camera from 45 to 165 cells per 24 high.
+    "d": dict(robot_shapes=("dome", "puck", "box"), goal_shapes=("diamond", "cross", "disc"),
+              floors=((0.68, 0.66, 0.62), (0.25, 0.28, 0.33), (0.70, 0.60, 0.42)),
+              shelf_colours=((0.50, 0.22, 0.14), (0.72, 0.70, 0.82), (0.08, 0.30, 0.30), (0.75, 0.60, 0.15),
+                             (0.40, 0.44, 0.50)),
+              shelf_height=(0.3, 2.2), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

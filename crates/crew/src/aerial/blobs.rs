@@ -277,6 +277,91 @@ pub fn behind_obstacle(
         .collect()
 }
 
+/// A mark cut by an obstacle's edge (a piece of it shows beside the top leaning over the rest)
+/// is a disc of the median's area (radius r) that holds every pixel of the piece within
+/// [`CUT_OUT`] r of its centre (a square's corners lie 1.25 r out) ...
+pub const CUT_OUT: f64 = 1.35;
+/// ... and whose pixels within [`CUT_IN`] r of its centre, but for the piece's, are at least
+/// [`CUT_HIDDEN`] obstacle pixels (the top hides them).
+pub const CUT_IN: f64 = 0.75;
+/// See [`CUT_IN`].
+pub const CUT_HIDDEN: f64 = 0.8;
+/// The candidate centres are this many to r apart (at least a pixel).
+pub const CUT_STEP: f64 = 0.2;
+
+/// The whole marks a piece could be the visible part of, when an obstacle hides the rest (see
+/// [`CUT_OUT`]): discs of `median` pixels, whose centres lie on a lattice [`CUT_STEP`] r apart
+/// around the piece, each as a blob of the pixels within r of its centre. None when any disc
+/// would leave the image. The caller reads the piece as a mark only when every such disc puts
+/// the mark on the same cell.
+pub fn cut_discs(piece: &Blob, median: usize, (classes, width): (&[u8], usize)) -> Vec<Blob> {
+    const OBSTACLE: u8 = super::colour::Class::Obstacle as u8;
+    let height = classes.len() / width.max(1);
+    let r = (median.max(1) as f64 / std::f64::consts::PI).sqrt();
+    if piece.pixels.is_empty() || height == 0 {
+        return Vec::new();
+    }
+    let step = (CUT_STEP * r).max(1.0);
+    let reach = CUT_OUT * r;
+    let (bx0, by0, bx1, by1) = piece.bbox;
+    let in_piece = |x: i64, y: i64| {
+        x >= i64::from(bx0)
+            && y >= i64::from(by0)
+            && x <= i64::from(bx1)
+            && y <= i64::from(by1)
+            && piece.pixels.contains(&(x as u32, y as u32))
+    };
+    let (x0, y0) = (f64::from(bx0) + 0.5 - reach, f64::from(by0) + 0.5 - reach);
+    let (x1, y1) = (f64::from(bx1) + 0.5 + reach, f64::from(by1) + 0.5 + reach);
+    let mut out = Vec::new();
+    let mut cy = y0;
+    while cy <= y1 {
+        let mut cx = x0;
+        while cx <= x1 {
+            let holds = piece
+                .pixels
+                .iter()
+                .all(|&(x, y)| (f64::from(x) + 0.5 - cx).hypot(f64::from(y) + 0.5 - cy) <= reach);
+            if holds {
+                // The disc's pixels, and its inner pixels outside the piece hidden.
+                let (px0, py0) = ((cx - r).floor() as i64, (cy - r).floor() as i64);
+                let (px1, py1) = ((cx + r).ceil() as i64, (cy + r).ceil() as i64);
+                if px0 < 0 || py0 < 0 || px1 >= width as i64 || py1 >= height as i64 {
+                    return Vec::new(); // a mark the image's edge may cut
+                }
+                let (mut pixels, mut inner, mut hidden) = (Vec::new(), 0u32, 0u32);
+                for y in py0..=py1 {
+                    for x in px0..=px1 {
+                        let d = (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy);
+                        if d > r {
+                            continue;
+                        }
+                        pixels.push((x as u32, y as u32));
+                        if d <= CUT_IN * r && !in_piece(x, y) {
+                            inner += 1;
+                            hidden += u32::from(
+                                classes[y as usize * width + x as usize] & 0x7f == OBSTACLE,
+                            );
+                        }
+                    }
+                }
+                if f64::from(hidden) >= CUT_HIDDEN * f64::from(inner) {
+                    let bbox = pixels.iter().fold(
+                        (u32::MAX, u32::MAX, 0, 0),
+                        |b: (u32, u32, u32, u32), &(x, y)| {
+                            (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
+                        },
+                    );
+                    out.push(Blob { pixels, bbox });
+                }
+            }
+            cx += step;
+        }
+        cy += step;
+    }
+    out
+}
+
 /// The 8-connected blobs of pixels whose class is `class`, in row-major order of their first
 /// pixel. Visited pixels get their high bit set in `classes` (cleared again at the end).
 pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {

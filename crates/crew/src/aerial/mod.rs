@@ -1233,8 +1233,33 @@ fn marks(
         .zip(&behind)
         .find(|(_, &b)| b)
         .map(|(b, _)| doubt(b));
-    if let Some(b) = sorted.doubtful.iter().zip(&behind).find(|(_, &b)| !b) {
-        return Err(doubt(b.0));
+    // The others may be marks cut by an obstacle's edge, read whole where every way to
+    // complete them puts them on one cell (see `cut_mark`); a few at most.
+    let cut_pieces: Vec<&blobs::Blob> = sorted
+        .doubtful
+        .iter()
+        .zip(&behind)
+        .filter(|(_, &b)| !b)
+        .map(|(b, _)| b)
+        .collect();
+    let mut cut = Vec::new();
+    for piece in &cut_pieces {
+        let whole = (cut_pieces.len() <= CUT_PIECES)
+            .then(|| {
+                cut_mark(
+                    piece,
+                    sorted.median_area,
+                    grid,
+                    (image_to_floor, nadir),
+                    px_on_floor,
+                    (classes, width),
+                )
+            })
+            .flatten();
+        match whole {
+            Some(mark) => cut.push(mark),
+            None => return Err(doubt(piece)),
+        }
     }
     // A blob well under the median is a partly hidden one, or a single one among pairs
     // touching that made the median: then a blob of the median's size splits in two.
@@ -1310,10 +1335,78 @@ fn marks(
             confidence,
         });
     }
+    out.extend(cut);
     Ok(ReadMarks {
         marks: out,
         set_aside,
         on_shelf: largest_on_shelf,
+    })
+}
+
+/// At most this many pieces of a kind, too small for a mark and against no obstacle that
+/// would set them aside, are tried as marks cut by an obstacle's edge ([`cut_mark`]); with
+/// more, the first is refused as before.
+pub const CUT_PIECES: usize = 4;
+
+/// A piece of a mark cut by an obstacle's edge (a robot or a goal half under a top leaning
+/// over it), read whole: every disc of the median's area it could be the visible part of
+/// (`blobs::cut_discs`) must stand on the same free cell, at least [`BORDER_MARGIN`] from its
+/// borders, its centre taken as for a whole mark (standing, for a robot). The mark is then the
+/// disc's nearest the discs' mean centre, its area and confidence the piece's (its size as a
+/// share of the median's). `None`: no such disc, or discs on two cells.
+fn cut_mark(
+    piece: &blobs::Blob,
+    median: usize,
+    grid: &Grid,
+    (image_to_floor, nadir): (&Homography, Option<Point>),
+    px_on_floor: f64,
+    (classes, width): (&[u8], usize),
+) -> Option<Mark> {
+    let discs = blobs::cut_discs(piece, median, (classes, width));
+    let mut cell = None;
+    let mut margin = f64::INFINITY;
+    let mut centres = Vec::with_capacity(discs.len());
+    for disc in &discs {
+        let (u, v) =
+            blobs::standing_centre(&blobs::on_floor(disc, image_to_floor), nadir, px_on_floor);
+        if !(u >= 0.0 && v >= 0.0) {
+            return None;
+        }
+        let c = grid.cell(u.floor() as i64, v.floor() as i64)?;
+        if !grid.is_free(c) || cell.is_some_and(|k| k != c) {
+            return None;
+        }
+        cell = Some(c);
+        margin = [
+            u.fract(),
+            1.0 - u.fract(),
+            v.fract(),
+            1.0 - v.fract(),
+            margin,
+        ]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+        centres.push((u, v));
+    }
+    let cell = cell?;
+    if margin < BORDER_MARGIN {
+        return None;
+    }
+    let n = centres.len() as f64;
+    let mean = centres
+        .iter()
+        .fold((0.0, 0.0), |(a, b), c| (a + c.0 / n, b + c.1 / n));
+    let floor = centres.iter().copied().min_by(|a, b| {
+        let d = |c: &Point| (c.0 - mean.0).hypot(c.1 - mean.1);
+        d(a).total_cmp(&d(b))
+    })?;
+    let share = piece.area() as f64 / median.max(1) as f64;
+    Some(Mark {
+        cell,
+        floor,
+        pixel: piece.centroid(),
+        area: piece.area(),
+        confidence: (margin / 0.25).min(1.0) * share.min(1.0),
     })
 }
 

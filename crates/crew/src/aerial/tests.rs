@@ -642,3 +642,74 @@ fn a_pale_top_decides_a_half_covered_cell_whatever_its_neighbours() {
     assert!(own_top_decides(true, || false, || true));
     assert!(!own_top_decides(false, || false, || false));
 }
+
+#[test]
+fn a_mark_cut_by_a_top_is_read_whole_when_every_way_to_complete_it_is_on_one_cell() {
+    // A 6 × 4 floor of 20 px cells, straight down; the cells (3, 0)–(3, 3) blocked, their top
+    // leaning left over the floor to x = 52 (rows 0–80). A goal of radius 8 px (201 px, the
+    // median) centred at (50, 30), on cell (2, 1): its pixels left of x = 52 show.
+    let f2i = Homography::floor_to_image(
+        6.0,
+        4.0,
+        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
+    )
+    .unwrap();
+    let i2f = f2i.inverse().unwrap();
+    let mut blocked = vec![false; 24];
+    for y in 0..4 {
+        blocked[y * 6 + 3] = true;
+    }
+    let g = Grid::new(6, 4, blocked);
+    let disc = |cx: f64, cy: f64, r: f64| -> Vec<usize> {
+        (0..80usize)
+            .flat_map(|y| (0..120usize).map(move |x| (x, y)))
+            .filter(|&(x, y)| (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) <= r)
+            .map(|(x, y)| y * 120 + x)
+            .collect()
+    };
+    let median = disc(50.0, 30.0, 8.0).len();
+    // The classes with the top from x = `top_from`, and the piece of the goal at `centre`
+    // left of it.
+    let view = |top_from: usize, centre: (f64, f64)| {
+        let mut classes = vec![Class::Floor as u8; 120 * 80];
+        paint(&mut classes, 120, (top_from, 0, 80, 80), Class::Obstacle);
+        let piece: Vec<usize> = disc(centre.0, centre.1, 8.0)
+            .into_iter()
+            .filter(|&i| i % 120 < top_from)
+            .collect();
+        for &i in &piece {
+            classes[i] = Class::Goal as u8;
+        }
+        (classes, blobs::Blob::from_indices(&piece, 120))
+    };
+    let cut = |(classes, piece): &(Vec<u8>, blobs::Blob)| {
+        cut_mark(piece, median, &g, (&i2f, None), 0.05, (classes, 120))
+    };
+    let whole = view(52, (50.0, 30.0));
+    let mark = cut(&whole).expect("read whole");
+    assert_eq!(g.xy(mark.cell), (2, 1));
+    assert!(mark.area < median && mark.confidence < 1.0, "{mark:?}");
+    // Its centre under the top, 0.05 cell from the blocked cell: completed on (3, 1) too.
+    assert!(cut(&view(52, (59.0, 30.0))).is_none());
+    // On the border of the free cells (1, 1) and (2, 1), the top over (2, 1): both.
+    assert!(cut(&view(41, (40.5, 30.0))).is_none());
+    // No top beside it: nothing hides the rest of a mark, so it is no cut mark.
+    let (mut bare, piece) = view(52, (50.0, 30.0));
+    paint(&mut bare, 120, (52, 0, 80, 80), Class::Floor);
+    assert!(cut(&(bare, piece)).is_none());
+    // A mark the image's edge may cut is not completed: all but the piece an obstacle's, a
+    // disc four times wider (reaching past the image's top) is not, one of the median is.
+    let dark: Vec<u8> = whole
+        .0
+        .iter()
+        .map(|&c| {
+            if c == Class::Floor as u8 {
+                Class::Obstacle as u8
+            } else {
+                c
+            }
+        })
+        .collect();
+    assert!(!blobs::cut_discs(&whole.1, median, (&dark, 120)).is_empty());
+    assert!(blobs::cut_discs(&whole.1, 16 * median, (&dark, 120)).is_empty());
+}
