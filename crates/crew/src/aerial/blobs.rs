@@ -366,39 +366,12 @@ pub fn cut_discs(piece: &Blob, median: usize, (classes, width): (&[u8], usize)) 
 /// pixel. Visited pixels get their high bit set in `classes` (cleared again at the end).
 pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
     const SEEN: u8 = 0x80;
-    let height = classes.len() / width.max(1);
     let mut out = Vec::new();
     let mut stack = Vec::new();
     let mut next = 0;
     while let Some(start) = next_of(classes, next, class) {
         next = start + 1;
-        classes[start] |= SEEN;
-        stack.push(start);
-        let mut blob = Blob {
-            pixels: Vec::new(),
-            bbox: (u32::MAX, u32::MAX, 0, 0),
-        };
-        while let Some(i) = stack.pop() {
-            let (x, y) = column_row(i, width);
-            let (px, py) = (x as u32, y as u32);
-            blob.pixels.push((px, py));
-            blob.bbox = (
-                blob.bbox.0.min(px),
-                blob.bbox.1.min(py),
-                blob.bbox.2.max(px),
-                blob.bbox.3.max(py),
-            );
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    let j = ny * width + nx;
-                    if classes[j] == class {
-                        classes[j] |= SEEN;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
-        out.push(blob);
+        out.push(grow(classes, width, class, start, &mut stack).0);
     }
     // Clear the marks: pixel by pixel when the blobs are few, else in one pass.
     let marked: usize = out.iter().map(Blob::area).sum();
@@ -422,41 +395,13 @@ pub fn find(classes: &mut [u8], width: usize, class: u8) -> Vec<Blob> {
 /// whose blobs are mostly of no interest (the obstacles' shelves), found without walking them.
 pub fn find_from(classes: &mut [u8], width: usize, class: u8, seeds: &[usize]) -> Vec<Blob> {
     const SEEN: u8 = 0x80;
-    let height = classes.len() / width.max(1);
     let mut out: Vec<(usize, Blob)> = Vec::new();
     let mut stack = Vec::new();
     for &start in seeds {
         if classes.get(start) != Some(&class) {
             continue; // another class, or a blob already found
         }
-        classes[start] |= SEEN;
-        stack.push(start);
-        let mut first = start;
-        let mut blob = Blob {
-            pixels: Vec::new(),
-            bbox: (u32::MAX, u32::MAX, 0, 0),
-        };
-        while let Some(i) = stack.pop() {
-            first = first.min(i);
-            let (x, y) = column_row(i, width);
-            let (px, py) = (x as u32, y as u32);
-            blob.pixels.push((px, py));
-            blob.bbox = (
-                blob.bbox.0.min(px),
-                blob.bbox.1.min(py),
-                blob.bbox.2.max(px),
-                blob.bbox.3.max(py),
-            );
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    let j = ny * width + nx;
-                    if classes[j] == class {
-                        classes[j] |= SEEN;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
+        let (blob, first) = grow(classes, width, class, start, &mut stack);
         out.push((first, blob));
     }
     for (_, b) in &out {
@@ -466,6 +411,49 @@ pub fn find_from(classes: &mut [u8], width: usize, class: u8, seeds: &[usize]) -
     }
     out.sort_unstable_by_key(|(first, _)| *first);
     out.into_iter().map(|(_, b)| b).collect()
+}
+
+/// The 8-connected blob of pixels of `class` grown from pixel `start` (of that class), its
+/// pixels in the order walked (depth first), and its least pixel index. Its pixels get the
+/// high bit set in `classes` (the caller clears them); `stack` is scratch space.
+fn grow(
+    classes: &mut [u8],
+    width: usize,
+    class: u8,
+    start: usize,
+    stack: &mut Vec<usize>,
+) -> (Blob, usize) {
+    const SEEN: u8 = 0x80;
+    let height = classes.len() / width.max(1);
+    classes[start] |= SEEN;
+    stack.push(start);
+    let mut first = start;
+    let mut blob = Blob {
+        pixels: Vec::new(),
+        bbox: (u32::MAX, u32::MAX, 0, 0),
+    };
+    while let Some(i) = stack.pop() {
+        first = first.min(i);
+        let (x, y) = column_row(i, width);
+        let (px, py) = (x as u32, y as u32);
+        blob.pixels.push((px, py));
+        blob.bbox = (
+            blob.bbox.0.min(px),
+            blob.bbox.1.min(py),
+            blob.bbox.2.max(px),
+            blob.bbox.3.max(py),
+        );
+        for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
+            for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
+                let j = ny * width + nx;
+                if classes[j] == class {
+                    classes[j] |= SEEN;
+                    stack.push(j);
+                }
+            }
+        }
+    }
+    (blob, first)
 }
 
 /// The column and row of pixel `i` of an image `width` pixels wide (in 32 bits when they
