@@ -85,13 +85,19 @@ impl Blob {
 
     /// The blob of pixels given by index (row-major, `width` pixels a row).
     pub fn from_indices(indices: &[usize], width: usize) -> Blob {
-        let pixels: Vec<(u32, u32)> = indices
-            .iter()
-            .map(|&i| {
-                let (x, y) = column_row(i, width);
-                (x as u32, y as u32)
-            })
-            .collect();
+        Blob::from_pixels(
+            indices
+                .iter()
+                .map(|&i| {
+                    let (x, y) = column_row(i, width);
+                    (x as u32, y as u32)
+                })
+                .collect(),
+        )
+    }
+
+    /// The blob of these pixels (x, y), its bounding box found.
+    pub fn from_pixels(pixels: Vec<(u32, u32)>) -> Blob {
         let bbox = pixels
             .iter()
             .fold((u32::MAX, u32::MAX, 0, 0), |b, &(x, y)| {
@@ -304,12 +310,18 @@ pub fn cut_discs(piece: &Blob, median: usize, (classes, width): (&[u8], usize)) 
     let step = (CUT_STEP * r).max(1.0);
     let reach = CUT_OUT * r;
     let (bx0, by0, bx1, by1) = piece.bbox;
+    // The piece's pixels, one flag each over its bounding box.
+    let bw = (bx1 - bx0 + 1) as usize;
+    let mut mask = vec![false; bw * (by1 - by0 + 1) as usize];
+    for &(x, y) in &piece.pixels {
+        mask[(y - by0) as usize * bw + (x - bx0) as usize] = true;
+    }
     let in_piece = |x: i64, y: i64| {
         x >= i64::from(bx0)
             && y >= i64::from(by0)
             && x <= i64::from(bx1)
             && y <= i64::from(by1)
-            && piece.pixels.contains(&(x as u32, y as u32))
+            && mask[(y - i64::from(by0)) as usize * bw + (x - i64::from(bx0)) as usize]
     };
     let (x0, y0) = (f64::from(bx0) + 0.5 - reach, f64::from(by0) + 0.5 - reach);
     let (x1, y1) = (f64::from(bx1) + 0.5 + reach, f64::from(by1) + 0.5 + reach);
@@ -346,13 +358,7 @@ pub fn cut_discs(piece: &Blob, median: usize, (classes, width): (&[u8], usize)) 
                     }
                 }
                 if f64::from(hidden) >= CUT_HIDDEN * f64::from(inner) {
-                    let bbox = pixels.iter().fold(
-                        (u32::MAX, u32::MAX, 0, 0),
-                        |b: (u32, u32, u32, u32), &(x, y)| {
-                            (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y))
-                        },
-                    );
-                    out.push(Blob { pixels, bbox });
+                    out.push(Blob::from_pixels(pixels));
                 }
             }
             cx += step;
