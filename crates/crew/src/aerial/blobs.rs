@@ -422,6 +422,49 @@ pub fn find_from(classes: &mut [u8], width: usize, class: u8, seeds: &[usize]) -
 /// The 8-connected blob of pixels of `class` grown from pixel `start` (of that class), its
 /// pixels in the order walked (depth first), and its least pixel index. Its pixels get the
 /// high bit set in `classes` (the caller clears them); `stack` is scratch space.
+/// The blob grown from `piece` over the 8-connected pixels `faint` accepts (indices into an
+/// image `width` wide and `height` high; the caller bounds them).
+pub fn grow_faint(
+    piece: &Blob,
+    (width, height): (usize, usize),
+    faint: impl Fn(usize) -> bool,
+) -> Blob {
+    let mut seen: std::collections::HashSet<usize> = piece
+        .pixels
+        .iter()
+        .map(|&(x, y)| y as usize * width + x as usize)
+        .collect();
+    let mut stack: Vec<usize> = seen.iter().copied().collect();
+    stack.sort_unstable();
+    let mut pixels = piece.pixels.clone();
+    while let Some(i) = stack.pop() {
+        let (x, y) = (i % width, i / width);
+        for (dx, dy) in [
+            (-1i64, -1i64),
+            (0, -1),
+            (1, -1),
+            (-1, 0),
+            (1, 0),
+            (-1, 1),
+            (0, 1),
+            (1, 1),
+        ] {
+            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+            if nx < 0 || ny < 0 || nx >= width as i64 || ny >= height as i64 {
+                continue;
+            }
+            let j = ny as usize * width + nx as usize;
+            if seen.contains(&j) || !faint(j) {
+                continue;
+            }
+            seen.insert(j);
+            pixels.push((nx as u32, ny as u32));
+            stack.push(j);
+        }
+    }
+    Blob::from_pixels(pixels)
+}
+
 fn grow(
     classes: &mut [u8],
     width: usize,

@@ -154,6 +154,9 @@ pub struct Classifier {
 /// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
 /// small marks are blurred and their colour washed out by JPEG.
 const MARK_COLOUR: (f64, f64) = (0.25, 0.05);
+/// Saturation and chroma of a faint mark's pixel, its colour averaged over a few pixels around
+/// it ([`Classifier::faint_mark`]): half a mark's.
+pub const FAINT_MARK: (f64, f64) = (0.12, 0.025);
 /// Saturation and chroma of an obstacle's pixel: higher, since shadows under a blue sky are
 /// bluish after white balance on the sunlit floor.
 const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
@@ -229,6 +232,26 @@ impl Classifier {
             .map(|c| (rgb[c] / sum - self.floor_chromaticity[c]).abs())
             .fold(0.0, f64::max);
         if apart < RAW_APART {
+            return None;
+        }
+        let (hue, _) = hue_saturation(rgb);
+        let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
+        if dr <= HUE_BAND.0 && dr < dg {
+            Some(Class::Robot)
+        } else if dg <= HUE_BAND.1 {
+            Some(Class::Goal)
+        } else {
+            None
+        }
+    }
+
+    /// The mark whose hue band a colour (before white balance) falls in, with half the colour
+    /// a mark's pixel needs ([`FAINT_MARK`]): the washed-out rim and arms of a small mark in a
+    /// noisy view, around its clear pixels (see `super::grow_faint`).
+    pub fn faint_mark(&self, p: [u8; 3]) -> Option<Class> {
+        let (rgb, max, min) = self.balanced_extremes(p);
+        let chroma = max - min;
+        if max <= 0.0 || chroma < FAINT_MARK.1 || chroma < FAINT_MARK.0 * max {
             return None;
         }
         let (hue, _) = hue_saturation(rgb);

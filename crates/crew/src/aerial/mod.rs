@@ -964,6 +964,7 @@ fn read(
         1.0 / px,
         source,
         (&classes, width),
+        (img, &classifier, Class::Robot),
     )?;
     let ReadMarks {
         marks: goals,
@@ -977,6 +978,7 @@ fn read(
         1.0 / px,
         source,
         (&classes, width),
+        (img, &classifier, Class::Goal),
     )?;
     // A blob of a colour between the robots' (or goals') and another's, as large as a robot,
     // on the floor (on blocked cells it is the obstacle's, as a mark-coloured one is: see
@@ -1151,6 +1153,7 @@ fn cell_size_px(floor_to_image: &Homography, (w, h): (f64, f64)) -> f64 {
 }
 
 /// Robots (with the nadir: standing) or goals (flat) from their blobs.
+#[allow(clippy::too_many_arguments)]
 fn marks(
     found: Vec<blobs::Blob>,
     kind: &str,
@@ -1159,6 +1162,7 @@ fn marks(
     px_on_floor: f64,
     source: &str,
     (classes, width): (&[u8], usize),
+    faint: (&RgbImage, &Classifier, Class),
 ) -> Result<ReadMarks, CrewError> {
     // A blob whose pixels lie on blocked cells is part of the obstacle there: marks stand on
     // the floor (see `on_shelf`). The largest such blob not too small for a mark (noise, see
@@ -1256,6 +1260,21 @@ fn marks(
                 )
             })
             .flatten();
+        let whole = whole.or_else(|| {
+            (cut_pieces.len() <= CUT_PIECES)
+                .then(|| {
+                    faint_mark(
+                        piece,
+                        sorted.median_area,
+                        grid,
+                        (image_to_floor, nadir),
+                        px_on_floor,
+                        (classes, width),
+                        faint,
+                    )
+                })
+                .flatten()
+        });
         match whole {
             Some(mark) => cut.push(mark),
             None => return Err(doubt(piece)),
@@ -1406,6 +1425,96 @@ fn cut_mark(
         floor,
         pixel: piece.centroid(),
         area: piece.area(),
+        confidence: (margin / 0.25).min(1.0) * share.min(1.0),
+    })
+}
+
+/// A faint mark's pixels lie within this many times the median mark's radius of its clear
+/// piece's centre (see [`faint_mark`]) ...
+const FAINT_REACH: f64 = 2.0;
+/// ... it is whole from this share of the median mark's area within that reach ...
+const FAINT_WHOLE: f64 = 0.6;
+/// ... and at most this share of those pixels again lie past the reach, within [`FAINT_RING`]
+/// times it (a tinted stretch of floor runs on).
+const FAINT_BOUND: f64 = 0.25;
+/// The ring past the reach where a faint mark's pixels are counted, as a multiple of it.
+const FAINT_RING: f64 = 1.5;
+
+/// A mark read from a piece too small for one, grown over the pixels around it of its hue with
+/// half a mark's colour ([`Classifier::faint_mark`], each pixel's colour the mean of the square
+/// [`pixels::denoise_radius`] around it, at least 3 × 3): a small goal or robot washed out
+/// by blur, noise and JPEG whose clear pixels are its middle alone. Read where the grown
+/// pixels within [`FAINT_REACH`] median radii of the piece's centre are [`FAINT_WHOLE`] of the
+/// median mark or more, at most [`FAINT_BOUND`] of that many lie further out (within
+/// [`FAINT_RING`] times the reach), and their centre lies on a free cell, at least [`BORDER_MARGIN`] from its
+/// borders; its confidence is the piece's share of the median.
+fn faint_mark(
+    piece: &blobs::Blob,
+    median: usize,
+    grid: &Grid,
+    (image_to_floor, nadir): (&Homography, Option<Point>),
+    px_on_floor: f64,
+    (classes, width): (&[u8], usize),
+    (img, classifier, class): (&RgbImage, &Classifier, Class),
+) -> Option<Mark> {
+    let height = classes.len() / width.max(1);
+    let r = pixels::denoise_radius(1.0 / px_on_floor).max(1) as i64;
+    let reach = FAINT_REACH * (median as f64 / std::f64::consts::PI).sqrt();
+    let centre = piece.centroid();
+    let from_centre = |x: f64, y: f64| (x + 0.5 - centre.0).hypot(y + 0.5 - centre.1);
+    let faint = |i: usize| {
+        let c = classes[i];
+        if c != Class::Floor as u8 && c != Class::Unsure as u8 && c != class as u8 {
+            return false;
+        }
+        let (x, y) = ((i % width) as i64, (i / width) as i64);
+        if from_centre(x as f64, y as f64) > FAINT_RING * reach {
+            return false;
+        }
+        let (mut sum, mut n) = ([0u32; 3], 0u32);
+        for qy in (y - r).max(0)..=(y + r).min(height as i64 - 1) {
+            for qx in (x - r).max(0)..=(x + r).min(width as i64 - 1) {
+                let p = img.get_pixel(qx as u32, qy as u32).0;
+                (0..3).for_each(|k| sum[k] += u32::from(p[k]));
+                n += 1;
+            }
+        }
+        let mean = sum.map(|v| ((v + n / 2) / n.max(1)) as u8);
+        classifier.faint_mark(mean) == Some(class)
+    };
+    let grown = blobs::grow_faint(piece, (width, height), faint);
+    let (inner, outer): (Vec<_>, Vec<_>) = grown
+        .pixels
+        .iter()
+        .partition(|&&(x, y)| from_centre(f64::from(x), f64::from(y)) <= reach);
+    if (inner.len() as f64) < FAINT_WHOLE * median as f64
+        || outer.len() as f64 > FAINT_BOUND * inner.len() as f64
+    {
+        return None;
+    }
+    let grown = blobs::Blob::from_pixels(inner);
+    let floor =
+        blobs::standing_centre(&blobs::on_floor(&grown, image_to_floor), nadir, px_on_floor);
+    let (u, v) = floor;
+    if !(u >= 0.0 && v >= 0.0) {
+        return None;
+    }
+    let cell = grid.cell(u.floor() as i64, v.floor() as i64)?;
+    if !grid.is_free(cell) {
+        return None;
+    }
+    let margin = [u.fract(), 1.0 - u.fract(), v.fract(), 1.0 - v.fract()]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    if margin < BORDER_MARGIN {
+        return None;
+    }
+    let share = piece.area() as f64 / median.max(1) as f64;
+    Some(Mark {
+        cell,
+        floor,
+        pixel: grown.centroid(),
+        area: grown.area(),
         confidence: (margin / 0.25).min(1.0) * share.min(1.0),
     })
 }

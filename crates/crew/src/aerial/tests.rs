@@ -713,3 +713,86 @@ fn a_mark_cut_by_a_top_is_read_whole_when_every_way_to_complete_it_is_on_one_cel
     assert!(!blobs::cut_discs(&whole.1, median, (&dark, 120)).is_empty());
     assert!(blobs::cut_discs(&whole.1, 16 * median, (&dark, 120)).is_empty());
 }
+
+#[test]
+fn a_faint_mark_grows_from_its_clear_middle() {
+    // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. A goal of radius
+    // 5 px whose middle (radius 2 px) is a goal's clear green and the rest a washed-out green
+    // of half the colour: the piece is the middle alone, the median goal a whole one.
+    let f2i = Homography::floor_to_image(
+        6.0,
+        4.0,
+        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
+    )
+    .unwrap();
+    let i2f = f2i.inverse().unwrap();
+    let mut blocked = vec![false; 24];
+    blocked[6 + 3] = true;
+    let g = Grid::new(6, 4, blocked);
+    let classifier = Classifier::new([128.0; 3], Hue::RED, Hue::GREEN);
+    let disc = |cx: f64, cy: f64, r: f64| -> Vec<usize> {
+        (0..80usize)
+            .flat_map(|y| (0..120usize).map(move |x| (x, y)))
+            .filter(|&(x, y)| (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) <= r)
+            .map(|(x, y)| y * 120 + x)
+            .collect()
+    };
+    let median = disc(50.0, 30.0, 5.0).len();
+    let clear = Rgb([60u8, 170, 60]);
+    let faint = Rgb([112u8, 142, 112]);
+    assert_eq!(classifier.classify(faint.0), Class::Floor);
+    assert_eq!(classifier.faint_mark(faint.0), Some(Class::Goal));
+    // The view with the goal at `centre` (its washed-out part to radius `r`) and a band of
+    // the washed-out green over the rows `band`.
+    let view = |centre: (f64, f64), r: f64, band: std::ops::Range<u32>| {
+        let mut img = RgbImage::from_pixel(120, 80, Rgb([128, 128, 128]));
+        for y in band {
+            for x in 0..120 {
+                img.put_pixel(x, y, faint);
+            }
+        }
+        for i in disc(centre.0, centre.1, r) {
+            img.put_pixel((i % 120) as u32, (i / 120) as u32, faint);
+        }
+        let mut classes = vec![Class::Floor as u8; 120 * 80];
+        let piece = disc(centre.0, centre.1, 2.0);
+        for &i in &piece {
+            img.put_pixel((i % 120) as u32, (i / 120) as u32, clear);
+            classes[i] = Class::Goal as u8;
+        }
+        (img, classes, blobs::Blob::from_indices(&piece, 120))
+    };
+    let read = |(img, classes, piece): &(RgbImage, Vec<u8>, blobs::Blob)| {
+        faint_mark(
+            piece,
+            median,
+            &g,
+            (&i2f, None),
+            0.05,
+            (classes, 120),
+            (img, &classifier, Class::Goal),
+        )
+    };
+    let mark = read(&view((50.0, 30.0), 5.0, 0..0)).expect("read whole");
+    assert_eq!(g.xy(mark.cell), (2, 1));
+    assert!(mark.confidence < 1.0, "{mark:?}");
+    // Its clear middle alone is too small.
+    assert!(read(&view((50.0, 30.0), 2.0, 0..0)).is_none());
+    // A stretch of floor of the washed-out green runs on past it: no mark.
+    assert!(read(&view((50.0, 30.0), 5.0, 26..35)).is_none());
+    // Not as a robot.
+    let (img, classes, piece) = view((50.0, 30.0), 5.0, 0..0);
+    assert!(faint_mark(
+        &piece,
+        median,
+        &g,
+        (&i2f, None),
+        0.05,
+        (&classes, 120),
+        (&img, &classifier, Class::Robot),
+    )
+    .is_none());
+    // On the blocked cell, and on the border of two free cells.
+    assert!(read(&view((70.0, 30.0), 5.0, 0..0)).is_none());
+    assert!(read(&view((40.5, 30.0), 5.0, 0..0)).is_none());
+}
