@@ -309,6 +309,18 @@ FAMILIES = {
                              (0.40, 0.44, 0.50)),
               shelf_height=(0.3, 2.2), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # e: held out from issue #29's eighteenth round, rendered after its final reader and not
+    # looked at until scored once. Cylinder, dome and yawed-box robots, ellipse, square and ring
+    # goals, mid beige-grey, dark charcoal-green and pale blue-grey floors tiled every quarter
+    # cell, pale sage green, burgundy, light steel, dark olive and tan shelves from 0.3 to 2.0
+    # high inset 0.06 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "e": dict(robot_shapes=("cylinder", "dome", "rotbox"), goal_shapes=("ellipse", "square", "ring"),
+              floors=((0.58, 0.55, 0.50), (0.16, 0.19, 0.17), (0.66, 0.70, 0.76)),
+              shelf_colours=((0.62, 0.72, 0.58), (0.42, 0.10, 0.16), (0.70, 0.74, 0.80), (0.30, 0.32, 0.14),
+                             (0.72, 0.60, 0.42)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

@@ -155,8 +155,9 @@ pub struct Classifier {
 /// small marks are blurred and their colour washed out by JPEG.
 const MARK_COLOUR: (f64, f64) = (0.25, 0.05);
 /// Saturation and chroma of a faint mark's pixel, its colour averaged over a few pixels around
-/// it ([`Classifier::faint_mark`]): half a mark's.
-pub const FAINT_MARK: (f64, f64) = (0.12, 0.025);
+/// it ([`Classifier::faint_mark`]): half a mark's; and its least brightness (its brightest
+/// channel, relative to the lit floor): lit, since a shadow's tint is the light's.
+pub const FAINT_MARK: (f64, f64, f64) = (0.12, 0.025, 0.85);
 /// Saturation and chroma of an obstacle's pixel: higher, since shadows under a blue sky are
 /// bluish after white balance on the sunlit floor.
 const OBSTACLE_COLOUR: (f64, f64) = (0.3, 0.1);
@@ -246,12 +247,12 @@ impl Classifier {
     }
 
     /// The mark whose hue band a colour (before white balance) falls in, with half the colour
-    /// a mark's pixel needs ([`FAINT_MARK`]): the washed-out rim and arms of a small mark in a
-    /// noisy view, around its clear pixels (see `super::grow_faint`).
+    /// a mark's pixel needs, lit ([`FAINT_MARK`]): the washed-out rim and arms of a small mark
+    /// in a noisy view, around its clear pixels, or a small goal's paint washed out whole.
     pub fn faint_mark(&self, p: [u8; 3]) -> Option<Class> {
         let (rgb, max, min) = self.balanced_extremes(p);
         let chroma = max - min;
-        if max <= 0.0 || chroma < FAINT_MARK.1 || chroma < FAINT_MARK.0 * max {
+        if max < FAINT_MARK.2 || chroma < FAINT_MARK.1 || chroma < FAINT_MARK.0 * max {
             return None;
         }
         let (hue, _) = hue_saturation(rgb);
@@ -263,6 +264,18 @@ impl Classifier {
         } else {
             None
         }
+    }
+
+    /// Whether a colour (before white balance) has a hue within `degrees` of the mark
+    /// `class`'s (robot or goal) after white balance.
+    pub fn near_hue_of(&self, p: [u8; 3], class: Class, degrees: f64) -> bool {
+        let (hue, s) = hue_saturation(self.balanced(p));
+        let mark = if class == Class::Robot {
+            self.robot
+        } else {
+            self.goal
+        };
+        s > 0.0 && mark.distance(hue) <= degrees
     }
 
     /// Whether a colour after white balance has a mark's hue (within a robot's or a goal's hue

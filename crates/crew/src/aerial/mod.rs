@@ -1063,6 +1063,35 @@ fn read(
             ),
         ));
     }
+    // Marks that do not show clearly (small goals washed out by blur, noise and JPEG): read
+    // from the faint blobs of their colour when exactly as many as are missing show (see
+    // `missing_faint`).
+    let (mut robots, mut goals) = (robots, goals);
+    let short = if goals.len() < robots.len() {
+        Some((Class::Goal, robots.len() - goals.len()))
+    } else if goals.len() > robots.len() && !config.spare_goals {
+        Some((Class::Robot, goals.len() - robots.len()))
+    } else {
+        None
+    };
+    if let Some((class, missing)) = short {
+        let (list, others, stand) = if class == Class::Goal {
+            (&mut goals, &robots, None)
+        } else {
+            (&mut robots, &goals, nadir)
+        };
+        if let Ok(more) = missing_faint(
+            (list, others),
+            missing,
+            &grid,
+            (&image_to_floor, stand),
+            1.0 / px,
+            &classes,
+            (img, &classifier, class),
+        ) {
+            list.extend(more);
+        }
+    }
     if goals.len() > robots.len() && !config.spare_goals {
         return Err(whole(
             source,
@@ -1248,7 +1277,8 @@ fn marks(
         .collect();
     let mut cut = Vec::new();
     for piece in &cut_pieces {
-        let whole = (cut_pieces.len() <= CUT_PIECES)
+        let tried = cut_pieces.len() <= CUT_PIECES;
+        let whole = tried
             .then(|| {
                 cut_mark(
                     piece,
@@ -1258,11 +1288,7 @@ fn marks(
                     px_on_floor,
                     (classes, width),
                 )
-            })
-            .flatten();
-        let whole = whole.or_else(|| {
-            (cut_pieces.len() <= CUT_PIECES)
-                .then(|| {
+                .or_else(|| {
                     faint_mark(
                         piece,
                         sorted.median_area,
@@ -1273,8 +1299,8 @@ fn marks(
                         faint,
                     )
                 })
-                .flatten()
-        });
+            })
+            .flatten();
         match whole {
             Some(mark) => cut.push(mark),
             None => return Err(doubt(piece)),
@@ -1443,11 +1469,9 @@ const FAINT_RING: f64 = 1.5;
 /// A mark read from a piece too small for one, grown over the pixels around it of its hue with
 /// half a mark's colour ([`Classifier::faint_mark`], each pixel's colour the mean of the square
 /// [`pixels::denoise_radius`] around it, at least 3 × 3): a small goal or robot washed out
-/// by blur, noise and JPEG whose clear pixels are its middle alone. Read where the grown
-/// pixels within [`FAINT_REACH`] median radii of the piece's centre are [`FAINT_WHOLE`] of the
-/// median mark or more, at most [`FAINT_BOUND`] of that many lie further out (within
-/// [`FAINT_RING`] times the reach), and their centre lies on a free cell, at least [`BORDER_MARGIN`] from its
-/// borders; its confidence is the piece's share of the median.
+/// by blur, noise and JPEG whose clear pixels are its middle alone. Read as by
+/// [`faint_whole`] with the pixels grown within [`FAINT_RING`] times [`FAINT_REACH`] median
+/// radii of the piece's centre; its confidence is the piece's share of the median.
 fn faint_mark(
     piece: &blobs::Blob,
     median: usize,
@@ -1458,35 +1482,82 @@ fn faint_mark(
     (img, classifier, class): (&RgbImage, &Classifier, Class),
 ) -> Option<Mark> {
     let height = classes.len() / width.max(1);
-    let r = pixels::denoise_radius(1.0 / px_on_floor).max(1) as i64;
+    let r = faint_radius(px_on_floor);
     let reach = FAINT_REACH * (median as f64 / std::f64::consts::PI).sqrt();
     let centre = piece.centroid();
     let from_centre = |x: f64, y: f64| (x + 0.5 - centre.0).hypot(y + 0.5 - centre.1);
     let faint = |i: usize| {
-        let c = classes[i];
-        if c != Class::Floor as u8 && c != Class::Unsure as u8 && c != class as u8 {
-            return false;
-        }
-        let (x, y) = ((i % width) as i64, (i / width) as i64);
-        if from_centre(x as f64, y as f64) > FAINT_RING * reach {
-            return false;
-        }
-        let (mut sum, mut n) = ([0u32; 3], 0u32);
-        for qy in (y - r).max(0)..=(y + r).min(height as i64 - 1) {
-            for qx in (x - r).max(0)..=(x + r).min(width as i64 - 1) {
-                let p = img.get_pixel(qx as u32, qy as u32).0;
-                (0..3).for_each(|k| sum[k] += u32::from(p[k]));
-                n += 1;
-            }
-        }
-        let mean = sum.map(|v| ((v + n / 2) / n.max(1)) as u8);
-        classifier.faint_mark(mean) == Some(class)
+        let (x, y) = ((i % width) as f64, (i / width) as f64);
+        from_centre(x, y) <= FAINT_RING * reach && faint_at(img, classifier, classes, r, class, i)
     };
     let grown = blobs::grow_faint(piece, (width, height), faint);
+    let (mut mark, margin) = faint_whole(
+        &grown,
+        (centre, reach),
+        median,
+        grid,
+        (image_to_floor, nadir),
+        px_on_floor,
+    )?;
+    let share = piece.area() as f64 / median.max(1) as f64;
+    mark.confidence = margin * share.min(1.0);
+    Some(mark)
+}
+
+/// The half-width of the square over which a pixel's colour is averaged for
+/// [`faint_at`]: the denoising square's, at least 1 (3 × 3).
+fn faint_radius(px_on_floor: f64) -> i64 {
+    pixels::denoise_radius(1.0 / px_on_floor).max(1) as i64
+}
+
+/// Whether pixel `i` may be a faint mark's of `class`: floor, a colour that cannot be told or
+/// the mark's own class, and its colour averaged over the square of half-width `r` around it
+/// of the mark's hue with half a mark's colour ([`Classifier::faint_mark`]).
+fn faint_at(
+    img: &RgbImage,
+    classifier: &Classifier,
+    classes: &[u8],
+    r: i64,
+    class: Class,
+    i: usize,
+) -> bool {
+    let c = classes[i];
+    if c != Class::Floor as u8 && c != Class::Unsure as u8 && c != class as u8 {
+        return false;
+    }
+    let (width, height) = (i64::from(img.width()), i64::from(img.height()));
+    let (x, y) = (i as i64 % width, i as i64 / width);
+    let (mut sum, mut n) = ([0u32; 3], 0u32);
+    for qy in (y - r).max(0)..=(y + r).min(height - 1) {
+        for qx in (x - r).max(0)..=(x + r).min(width - 1) {
+            let p = img.get_pixel(qx as u32, qy as u32).0;
+            (0..3).for_each(|k| sum[k] += u32::from(p[k]));
+            n += 1;
+        }
+    }
+    let mean = sum.map(|v| ((v + n / 2) / n.max(1)) as u8);
+    classifier.faint_mark(mean) == Some(class)
+}
+
+/// Where a faint mark is read whole: its pixels within `reach` of `centre` (the rest, in
+/// `outer`) at least [`FAINT_WHOLE`] of the `median` mark's area, at most [`FAINT_BOUND`] of
+/// that many further out, and the centre of those within reach (standing, for a robot) on a
+/// free cell at least [`BORDER_MARGIN`] from its borders. The mark, with the confidence
+/// factor of that margin (1 from a quarter cell).
+fn faint_whole(
+    grown: &blobs::Blob,
+    (centre, reach): (Point, f64),
+    median: usize,
+    grid: &Grid,
+    (image_to_floor, nadir): (&Homography, Option<Point>),
+    px_on_floor: f64,
+) -> Option<(Mark, f64)> {
+    let from_centre =
+        |x: u32, y: u32| (f64::from(x) + 0.5 - centre.0).hypot(f64::from(y) + 0.5 - centre.1);
     let (inner, outer): (Vec<_>, Vec<_>) = grown
         .pixels
         .iter()
-        .partition(|&&(x, y)| from_centre(f64::from(x), f64::from(y)) <= reach);
+        .partition(|&&(x, y)| from_centre(x, y) <= reach);
     if (inner.len() as f64) < FAINT_WHOLE * median as f64
         || outer.len() as f64 > FAINT_BOUND * inner.len() as f64
     {
@@ -1509,15 +1580,180 @@ fn faint_mark(
     if margin < BORDER_MARGIN {
         return None;
     }
-    let share = piece.area() as f64 / median.max(1) as f64;
-    Some(Mark {
-        cell,
-        floor,
-        pixel: grown.centroid(),
-        area: grown.area(),
-        confidence: (margin / 0.25).min(1.0) * share.min(1.0),
-    })
+    Some((
+        Mark {
+            cell,
+            floor,
+            pixel: grown.centroid(),
+            area: grown.area(),
+            confidence: 0.0,
+        },
+        (margin / 0.25).min(1.0),
+    ))
 }
+
+/// Marks of `class` that do not show clearly, when the view lacks `missing` of them beside
+/// the `found` ones (of which there is at least one): the faint blobs of the floor
+/// ([`faint_at`]; one pass over the image, on all cores, only then) away from every mark read,
+/// of either kind (over twice [`FAINT_REACH`] median radii of its kind from its centre: its
+/// glow, and the fringe of the other colour that blur and JPEG leave around a small mark),
+/// read as by [`faint_whole`] around their centroids; each with half the confidence of its
+/// margin. Read only when exactly `missing` are found; else their count.
+#[allow(clippy::too_many_arguments)]
+fn missing_faint(
+    (found, others): (&[Mark], &[Mark]),
+    missing: usize,
+    grid: &Grid,
+    (image_to_floor, nadir): (&Homography, Option<Point>),
+    px_on_floor: f64,
+    classes: &[u8],
+    (img, classifier, class): (&RgbImage, &Classifier, Class),
+) -> Result<Vec<Mark>, usize> {
+    use rayon::prelude::*;
+    let median_of = |marks: &[Mark]| {
+        let mut areas: Vec<usize> = marks.iter().map(|m| m.area).collect();
+        areas.sort_unstable();
+        areas.get(areas.len() / 2).copied()
+    };
+    let Some(median) = median_of(found) else {
+        return Err(0);
+    };
+    let width = img.width() as usize;
+    // A mark read beside an obstacle of nearly its hue may be that obstacle's fringe, and the
+    // count it makes up not to be trusted: nothing is read then.
+    if found
+        .iter()
+        .any(|m| beside_own_hue(m, classes, (img, classifier, class)))
+    {
+        return Err(0);
+    }
+    let r = faint_radius(px_on_floor);
+    let reach_of = |median: usize| FAINT_REACH * (median as f64 / std::f64::consts::PI).sqrt();
+    let reach = reach_of(median);
+    let other_glow = 2.0 * reach_of(median_of(others).unwrap_or(0));
+    let glows: Vec<(Point, f64)> = found
+        .iter()
+        .map(|m| (m.pixel, 2.0 * reach))
+        .chain(others.iter().map(|m| (m.pixel, other_glow)))
+        .collect();
+    let mut mask: Vec<u8> = vec![0; classes.len()];
+    mask.par_chunks_mut(width.max(1))
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, m) in row.iter_mut().enumerate() {
+                *m = u8::from(faint_at(img, classifier, classes, r, class, y * width + x));
+            }
+        });
+    let mut read: Vec<Mark> = Vec::new();
+    for blob in blobs::find(&mut mask, width, 1) {
+        let centre = blob.centroid();
+        let glow = glows
+            .iter()
+            .any(|&(at, within)| (at.0 - centre.0).hypot(at.1 - centre.1) <= within);
+        if glow
+            || (blob.area() as f64) < FAINT_WHOLE * median as f64
+            || against_obstacle(&blob, classes, (img, classifier, class)) > FAINT_APART
+        {
+            continue;
+        }
+        let Some((mut mark, margin)) = faint_whole(
+            &blob,
+            (centre, reach),
+            median,
+            grid,
+            (image_to_floor, nadir),
+            px_on_floor,
+        ) else {
+            continue;
+        };
+        if found.iter().chain(&read).any(|m| m.cell == mark.cell) {
+            continue;
+        }
+        mark.confidence = FAINT_CONFIDENCE * margin;
+        read.push(mark);
+    }
+    if read.len() == missing {
+        Ok(read)
+    } else {
+        Err(read.len())
+    }
+}
+
+/// The largest share of the pixels around a faint blob (8-connected to it) that may be an
+/// obstacle's of a hue near the mark's (within [`FAINT_HUE`]) for it to be read as a mark
+/// ([`missing_faint`]): a pale top of a mark's hue leaves faint pieces along its edges (a
+/// goal half under a top of another colour shows its faint half against it).
+const FAINT_APART: f64 = 0.1;
+/// Degrees from the mark's hue within which an obstacle's pixel counts for [`FAINT_APART`].
+const FAINT_HUE: f64 = 40.0;
+
+/// The share of the pixels 8-connected to `blob` (not in it, inside the image) that are of an
+/// obstacle's colour with a hue within [`FAINT_HUE`] of the mark `class`'s.
+fn against_obstacle(
+    blob: &blobs::Blob,
+    classes: &[u8],
+    (img, classifier, class): (&RgbImage, &Classifier, Class),
+) -> f64 {
+    let width = img.width() as usize;
+    let height = classes.len() / width.max(1);
+    let inside: std::collections::HashSet<(u32, u32)> = blob.pixels.iter().copied().collect();
+    let mut around = std::collections::HashSet::new();
+    for &(x, y) in &blob.pixels {
+        for dy in -1i64..=1 {
+            for dx in -1i64..=1 {
+                let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
+                if nx < 0 || ny < 0 || nx >= width as i64 || ny >= height as i64 {
+                    continue;
+                }
+                let q = (nx as u32, ny as u32);
+                if !inside.contains(&q) {
+                    around.insert(q);
+                }
+            }
+        }
+    }
+    let obstacle = around
+        .iter()
+        .filter(|&&(x, y)| {
+            classes[y as usize * width + x as usize] == Class::Obstacle as u8
+                && classifier.near_hue_of(img.get_pixel(x, y).0, class, FAINT_HUE)
+        })
+        .count();
+    obstacle as f64 / around.len().max(1) as f64
+}
+
+/// Whether more than [`FAINT_APART`] of the pixels within twice the radius of mark `m`'s
+/// area around its centre are an obstacle's of a hue within [`FAINT_HUE`] of its kind's.
+fn beside_own_hue(
+    m: &Mark,
+    classes: &[u8],
+    (img, classifier, class): (&RgbImage, &Classifier, Class),
+) -> bool {
+    let (width, height) = (i64::from(img.width()), i64::from(img.height()));
+    let within = 2.0 * (m.area as f64 / std::f64::consts::PI).sqrt() + 1.0;
+    let (cx, cy) = m.pixel;
+    let (mut all, mut near) = (0usize, 0usize);
+    for y in ((cy - within).floor() as i64).max(0)..=((cy + within).ceil() as i64).min(height - 1) {
+        for x in
+            ((cx - within).floor() as i64).max(0)..=((cx + within).ceil() as i64).min(width - 1)
+        {
+            if (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) > within {
+                continue;
+            }
+            all += 1;
+            let i = (y * width + x) as usize;
+            if classes[i] == Class::Obstacle as u8
+                && classifier.near_hue_of(img.get_pixel(x as u32, y as u32).0, class, FAINT_HUE)
+            {
+                near += 1;
+            }
+        }
+    }
+    near as f64 > FAINT_APART * all as f64
+}
+
+/// The confidence of a mark read whole from faint pixels alone, at a margin of a quarter cell.
+const FAINT_CONFIDENCE: f64 = 0.5;
 
 /// The marks of one kind read by [`marks`], with what it left out that may have been one.
 struct ReadMarks {

@@ -796,3 +796,120 @@ fn a_faint_mark_grows_from_its_clear_middle() {
     assert!(read(&view((70.0, 30.0), 5.0, 0..0)).is_none());
     assert!(read(&view((40.5, 30.0), 5.0, 0..0)).is_none());
 }
+
+#[test]
+fn missing_goals_are_read_from_faint_blobs_only_when_as_many_show() {
+    // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. One goal read
+    // clearly at (10, 10) on cell (0, 0), of the median's 79 px; a goal of the washed-out green
+    // alone, radius 5 px, at `at`.
+    let f2i = Homography::floor_to_image(
+        6.0,
+        4.0,
+        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
+    )
+    .unwrap();
+    let i2f = f2i.inverse().unwrap();
+    let mut blocked = vec![false; 24];
+    blocked[6 + 3] = true;
+    let g = Grid::new(6, 4, blocked);
+    let classifier = Classifier::new([128.0; 3], Hue::RED, Hue::GREEN);
+    let faint = Rgb([112u8, 142, 112]);
+    let found = [Mark {
+        cell: g.cell(0, 0).unwrap(),
+        floor: (0.5, 0.5),
+        pixel: (10.0, 10.0),
+        area: 79,
+        confidence: 1.0,
+    }];
+    // The image with faint discs of radius 5 px at `at` and `colour` painted over the pixels
+    // `rect` (x0, y0, x1, y1), of its class (an obstacle's: a shelf, as the shelves' pass
+    // takes a pale green top).
+    let view = |at: &[(f64, f64)], rect: (u32, u32, u32, u32), colour: Rgb<u8>| {
+        let mut img = RgbImage::from_pixel(120, 80, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 120 * 80];
+        for y in rect.1..rect.3 {
+            for x in rect.0..rect.2 {
+                img.put_pixel(x, y, colour);
+                classes[y as usize * 120 + x as usize] = match classifier.classify(colour.0) {
+                    Class::Goal => Class::Obstacle as u8,
+                    c => c as u8,
+                };
+            }
+        }
+        for &(cx, cy) in at {
+            for y in 0..80u32 {
+                for x in 0..120u32 {
+                    if (f64::from(x) + 0.5 - cx).hypot(f64::from(y) + 0.5 - cy) <= 5.0 {
+                        img.put_pixel(x, y, faint);
+                    }
+                }
+            }
+        }
+        (img, classes)
+    };
+    let robot = |x: f64, y: f64| Mark {
+        cell: g.cell((x / 20.0) as i64, (y / 20.0) as i64).unwrap(),
+        floor: (x / 20.0, y / 20.0),
+        pixel: (x, y),
+        area: 79,
+        confidence: 1.0,
+    };
+    let robots = [robot(110.0, 70.0)];
+    let read_beside = |(img, classes): &(RgbImage, Vec<u8>), missing: usize, robots: &[Mark]| {
+        missing_faint(
+            (&found, robots),
+            missing,
+            &g,
+            (&i2f, None),
+            0.05,
+            classes,
+            (img, &classifier, Class::Goal),
+        )
+    };
+    let read = |(img, classes): &(RgbImage, Vec<u8>), missing: usize| {
+        missing_faint(
+            (&found, &robots),
+            missing,
+            &g,
+            (&i2f, None),
+            0.05,
+            classes,
+            (img, &classifier, Class::Goal),
+        )
+    };
+    let none = (0, 0, 0, 0);
+    let grey = Rgb([128u8, 128, 128]);
+    let one = view(&[(50.0, 30.0)], none, grey);
+    let marks = read(&one, 1).expect("read");
+    assert_eq!(marks.len(), 1);
+    assert_eq!(g.xy(marks[0].cell), (2, 1));
+    assert!(marks[0].confidence <= 0.5, "{:?}", marks[0]);
+    // As many as are missing, or nothing read.
+    assert_eq!(read(&one, 2).unwrap_err(), 1);
+    assert_eq!(
+        read(&view(&[(50.0, 30.0), (90.0, 50.0)], none, grey), 1).unwrap_err(),
+        2
+    );
+    // Not a stretch of floor of that green, nor one in a shadow.
+    assert!(read(&view(&[], (30, 25, 110, 35), faint), 1).is_err());
+    let dark = Rgb([56u8, 71, 56]);
+    assert_eq!(classifier.faint_mark(dark.0), None);
+    assert!(read(&view(&[], (45, 25, 56, 36), dark), 1).is_err());
+    // Not against a green shelf (a pale top's faint edge), but against a lilac one.
+    let green = Rgb([40u8, 150, 40]);
+    assert_eq!(classifier.classify(green.0), Class::Goal);
+    let shelf = Rgb([150u8, 60, 160]);
+    assert_eq!(classifier.classify(shelf.0), Class::Obstacle);
+    assert!(read(&view(&[(50.0, 30.0)], (55, 20, 58, 40), green), 1).is_err());
+    assert!(read(&view(&[(50.0, 30.0)], (55, 20, 58, 40), shelf), 1).is_ok());
+    // On the blocked cell, next to the goal read (its glow), or to a robot (its fringe).
+    assert!(read(&view(&[(70.0, 30.0)], none, grey), 1).is_err());
+    assert!(read(&view(&[(20.0, 10.0)], none, grey), 1).is_err());
+    assert!(read_beside(&one, 1, &[robot(50.0, 45.0)]).is_err());
+    assert!(read_beside(&one, 1, &[robot(50.0, 70.0)]).is_ok());
+    // Nothing read when the goal read lies against a green shelf (may be its fringe).
+    assert_eq!(
+        read(&view(&[(50.0, 30.0)], (14, 0, 20, 20), green), 1).unwrap_err(),
+        0
+    );
+}
