@@ -36,7 +36,8 @@
 //! floor, seen from the sun), a painted line that does
 //! not show between free cells, more goals than robots (unless the floor has goals to spare:
 //! [`AerialConfig::spare_goals`]), a grid that does not fit the image. Cost: one pass over the pixels (O(pixels), on all cores) plus O(cells), O(pixels of
-//! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks.
+//! the covered cells), O(blob pixels) and O(pixels) for the free cells' looks, and one more
+//! O(pixels) pass (on all cores) only when goals or robots are missing (`missing_faint`).
 //!
 //! ```
 //! use mason_crew::aerial::{read_aerial, AerialConfig};
@@ -1267,7 +1268,8 @@ fn marks(
         .find(|(_, &b)| b)
         .map(|(b, _)| doubt(b));
     // The others may be marks cut by an obstacle's edge, read whole where every way to
-    // complete them puts them on one cell (see `cut_mark`); a few at most.
+    // complete them puts them on one cell (see `cut_mark`), or faint marks whose clear pixels
+    // are their middle alone (see `faint_mark`); a few at most.
     let cut_pieces: Vec<&blobs::Blob> = sorted
         .doubtful
         .iter()
@@ -1277,8 +1279,7 @@ fn marks(
         .collect();
     let mut cut = Vec::new();
     for piece in &cut_pieces {
-        let tried = cut_pieces.len() <= CUT_PIECES;
-        let whole = tried
+        let whole = (cut_pieces.len() <= CUT_PIECES)
             .then(|| {
                 cut_mark(
                     piece,
