@@ -235,7 +235,12 @@ impl Classifier {
         if apart < RAW_APART {
             return None;
         }
-        let (hue, _) = hue_saturation(rgb);
+        self.mark_of_hue(hue_saturation(rgb).0)
+    }
+
+    /// The mark (robot or goal) whose hue band `hue` falls in, the robots' first where the
+    /// bands meet nearer to their hue.
+    fn mark_of_hue(&self, hue: f64) -> Option<Class> {
         let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
         if dr <= HUE_BAND.0 && dr < dg {
             Some(Class::Robot)
@@ -255,15 +260,7 @@ impl Classifier {
         if max < FAINT_MARK.2 || chroma < FAINT_MARK.1 || chroma < FAINT_MARK.0 * max {
             return None;
         }
-        let (hue, _) = hue_saturation(rgb);
-        let (dr, dg) = (self.robot.distance(hue), self.goal.distance(hue));
-        if dr <= HUE_BAND.0 && dr < dg {
-            Some(Class::Robot)
-        } else if dg <= HUE_BAND.1 {
-            Some(Class::Goal)
-        } else {
-            None
-        }
+        self.mark_of_hue(hue_saturation(rgb).0)
     }
 
     /// Whether a colour (before white balance) has a hue within `degrees` of the mark

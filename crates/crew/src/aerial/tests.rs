@@ -648,32 +648,20 @@ fn a_mark_cut_by_a_top_is_read_whole_when_every_way_to_complete_it_is_on_one_cel
     // A 6 × 4 floor of 20 px cells, straight down; the cells (3, 0)–(3, 3) blocked, their top
     // leaning left over the floor to x = 52 (rows 0–80). A goal of radius 8 px (201 px, the
     // median) centred at (50, 30), on cell (2, 1): its pixels left of x = 52 show.
-    let f2i = Homography::floor_to_image(
-        6.0,
-        4.0,
-        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
-    )
-    .unwrap();
-    let i2f = f2i.inverse().unwrap();
+    let i2f = six_by_four();
     let mut blocked = vec![false; 24];
     for y in 0..4 {
         blocked[y * 6 + 3] = true;
     }
     let g = Grid::new(6, 4, blocked);
-    let disc = |cx: f64, cy: f64, r: f64| -> Vec<usize> {
-        (0..80usize)
-            .flat_map(|y| (0..120usize).map(move |x| (x, y)))
-            .filter(|&(x, y)| (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) <= r)
-            .map(|(x, y)| y * 120 + x)
-            .collect()
-    };
-    let median = disc(50.0, 30.0, 8.0).len();
+
+    let median = disc_px(50.0, 30.0, 8.0).len();
     // The classes with the top from x = `top_from`, and the piece of the goal at `centre`
     // left of it.
     let view = |top_from: usize, centre: (f64, f64)| {
         let mut classes = vec![Class::Floor as u8; 120 * 80];
         paint(&mut classes, 120, (top_from, 0, 80, 80), Class::Obstacle);
-        let piece: Vec<usize> = disc(centre.0, centre.1, 8.0)
+        let piece: Vec<usize> = disc_px(centre.0, centre.1, 8.0)
             .into_iter()
             .filter(|&i| i % 120 < top_from)
             .collect();
@@ -719,25 +707,13 @@ fn a_faint_mark_grows_from_its_clear_middle() {
     // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. A goal of radius
     // 5 px whose middle (radius 2 px) is a goal's clear green and the rest a washed-out green
     // of half the colour: the piece is the middle alone, the median goal a whole one.
-    let f2i = Homography::floor_to_image(
-        6.0,
-        4.0,
-        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
-    )
-    .unwrap();
-    let i2f = f2i.inverse().unwrap();
+    let i2f = six_by_four();
     let mut blocked = vec![false; 24];
     blocked[6 + 3] = true;
     let g = Grid::new(6, 4, blocked);
     let classifier = Classifier::new([128.0; 3], Hue::RED, Hue::GREEN);
-    let disc = |cx: f64, cy: f64, r: f64| -> Vec<usize> {
-        (0..80usize)
-            .flat_map(|y| (0..120usize).map(move |x| (x, y)))
-            .filter(|&(x, y)| (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) <= r)
-            .map(|(x, y)| y * 120 + x)
-            .collect()
-    };
-    let median = disc(50.0, 30.0, 5.0).len();
+
+    let median = disc_px(50.0, 30.0, 5.0).len();
     let clear = Rgb([60u8, 170, 60]);
     let faint = Rgb([112u8, 142, 112]);
     assert_eq!(classifier.classify(faint.0), Class::Floor);
@@ -751,11 +727,11 @@ fn a_faint_mark_grows_from_its_clear_middle() {
                 img.put_pixel(x, y, faint);
             }
         }
-        for i in disc(centre.0, centre.1, r) {
+        for i in disc_px(centre.0, centre.1, r) {
             img.put_pixel((i % 120) as u32, (i / 120) as u32, faint);
         }
         let mut classes = vec![Class::Floor as u8; 120 * 80];
-        let piece = disc(centre.0, centre.1, 2.0);
+        let piece = disc_px(centre.0, centre.1, 2.0);
         for &i in &piece {
             img.put_pixel((i % 120) as u32, (i / 120) as u32, clear);
             classes[i] = Class::Goal as u8;
@@ -802,13 +778,7 @@ fn missing_goals_are_read_from_faint_blobs_only_when_as_many_show() {
     // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. One goal read
     // clearly at (10, 10) on cell (0, 0), of the median's 79 px; a goal of the washed-out green
     // alone, radius 5 px, at `at`.
-    let f2i = Homography::floor_to_image(
-        6.0,
-        4.0,
-        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
-    )
-    .unwrap();
-    let i2f = f2i.inverse().unwrap();
+    let i2f = six_by_four();
     let mut blocked = vec![false; 24];
     blocked[6 + 3] = true;
     let g = Grid::new(6, 4, blocked);
@@ -912,4 +882,24 @@ fn missing_goals_are_read_from_faint_blobs_only_when_as_many_show() {
         read(&view(&[(50.0, 30.0)], (14, 0, 20, 20), green), 1).unwrap_err(),
         0
     );
+}
+
+/// The image-to-floor map of a 6 × 4 floor of 20 px cells seen straight down (120 × 80 px).
+fn six_by_four() -> Homography {
+    Homography::floor_to_image(
+        6.0,
+        4.0,
+        [(0.0, 0.0), (120.0, 0.0), (120.0, 80.0), (0.0, 80.0)],
+    )
+    .and_then(|f2i| f2i.inverse())
+    .unwrap()
+}
+
+/// The pixels (indices into a 120 × 80 image) whose centres lie within `r` of `(cx, cy)`.
+fn disc_px(cx: f64, cy: f64, r: f64) -> Vec<usize> {
+    (0..80usize)
+        .flat_map(|y| (0..120usize).map(move |x| (x, y)))
+        .filter(|&(x, y)| (x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) <= r)
+        .map(|(x, y)| y * 120 + x)
+        .collect()
 }
