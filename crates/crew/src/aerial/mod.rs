@@ -1394,6 +1394,19 @@ fn marks(
 /// more, the first is refused as before.
 pub const CUT_PIECES: usize = 4;
 
+/// The free cell under the floor point `(u, v)` (in cells) and the point's distance from that
+/// cell's nearest border; `None` off the floor or on a blocked cell.
+fn free_cell_under(grid: &Grid, (u, v): Point) -> Option<(Cell, f64)> {
+    if !(u >= 0.0 && v >= 0.0) {
+        return None;
+    }
+    let cell = grid.cell(u.floor() as i64, v.floor() as i64)?;
+    let margin = [u.fract(), 1.0 - u.fract(), v.fract(), 1.0 - v.fract()]
+        .into_iter()
+        .fold(f64::INFINITY, f64::min);
+    grid.is_free(cell).then_some((cell, margin))
+}
+
 /// A piece of a mark cut by an obstacle's edge (a robot or a goal half under a top leaning
 /// over it), read whole: every disc of the median's area it could be the visible part of
 /// (`blobs::cut_discs`) must stand on the same free cell, at least [`BORDER_MARGIN`] from its
@@ -1415,23 +1428,12 @@ fn cut_mark(
     for disc in &discs {
         let (u, v) =
             blobs::standing_centre(&blobs::on_floor(disc, image_to_floor), nadir, px_on_floor);
-        if !(u >= 0.0 && v >= 0.0) {
-            return None;
-        }
-        let c = grid.cell(u.floor() as i64, v.floor() as i64)?;
-        if !grid.is_free(c) || cell.is_some_and(|k| k != c) {
+        let (c, m) = free_cell_under(grid, (u, v))?;
+        if cell.is_some_and(|k| k != c) {
             return None;
         }
         cell = Some(c);
-        margin = [
-            u.fract(),
-            1.0 - u.fract(),
-            v.fract(),
-            1.0 - v.fract(),
-            margin,
-        ]
-        .into_iter()
-        .fold(f64::INFINITY, f64::min);
+        margin = margin.min(m);
         centres.push((u, v));
     }
     let cell = cell?;
@@ -1567,17 +1569,7 @@ fn faint_whole(
     let grown = blobs::Blob::from_pixels(inner);
     let floor =
         blobs::standing_centre(&blobs::on_floor(&grown, image_to_floor), nadir, px_on_floor);
-    let (u, v) = floor;
-    if !(u >= 0.0 && v >= 0.0) {
-        return None;
-    }
-    let cell = grid.cell(u.floor() as i64, v.floor() as i64)?;
-    if !grid.is_free(cell) {
-        return None;
-    }
-    let margin = [u.fract(), 1.0 - u.fract(), v.fract(), 1.0 - v.fract()]
-        .into_iter()
-        .fold(f64::INFINITY, f64::min);
+    let (cell, margin) = free_cell_under(grid, floor)?;
     if margin < BORDER_MARGIN {
         return None;
     }

@@ -707,12 +707,8 @@ fn a_faint_mark_grows_from_its_clear_middle() {
     // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. A goal of radius
     // 5 px whose middle (radius 2 px) is a goal's clear green and the rest a washed-out green
     // of half the colour: the piece is the middle alone, the median goal a whole one.
-    let i2f = six_by_four();
-    let mut blocked = vec![false; 24];
-    blocked[6 + 3] = true;
-    let g = Grid::new(6, 4, blocked);
+    let (i2f, g) = (six_by_four(), six_by_four_grid());
     let classifier = Classifier::new([128.0; 3], Hue::RED, Hue::GREEN);
-
     let median = disc_px(50.0, 30.0, 5.0).len();
     let clear = Rgb([60u8, 170, 60]);
     let faint = Rgb([112u8, 142, 112]);
@@ -778,10 +774,7 @@ fn missing_goals_are_read_from_faint_blobs_only_when_as_many_show() {
     // A 6 × 4 floor of 20 px cells, straight down, grey; cell (3, 1) blocked. One goal read
     // clearly at (10, 10) on cell (0, 0), of the median's 79 px; a goal of the washed-out green
     // alone, radius 5 px, at `at`.
-    let i2f = six_by_four();
-    let mut blocked = vec![false; 24];
-    blocked[6 + 3] = true;
-    let g = Grid::new(6, 4, blocked);
+    let (i2f, g) = (six_by_four(), six_by_four_grid());
     let classifier = Classifier::new([128.0; 3], Hue::RED, Hue::GREEN);
     let faint = Rgb([112u8, 142, 112]);
     let found = [Mark {
@@ -893,6 +886,13 @@ fn six_by_four() -> Homography {
     )
     .and_then(|f2i| f2i.inverse())
     .unwrap()
+}
+
+/// The 6 × 4 grid of [`six_by_four`] with cell (3, 1) blocked.
+fn six_by_four_grid() -> Grid {
+    let mut blocked = vec![false; 24];
+    blocked[6 + 3] = true;
+    Grid::new(6, 4, blocked)
 }
 
 /// The pixels (indices into a 120 × 80 image) whose centres lie within `r` of `(cx, cy)`.
