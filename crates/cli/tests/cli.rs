@@ -1274,6 +1274,75 @@ fn crew_reads_an_aerial_view_and_writes_what_it_read() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The operator settles the cells a refusal names: A0016 (a rendered view) is refused at a
+/// run's far cell; with that cell settled, at another's; with both, it is planned and the JSON
+/// lists them. Malformed cells, and the flags without --image, are refused with exit 2.
+#[test]
+fn crew_plans_a_photograph_once_the_operator_settles_the_cells_it_refuses() {
+    let image = data("aerial/A0016.jpg");
+    let corners = "22.25,19.19 761.04,9.02 749.64,303.29 33.81,315.25";
+    let read = |extra: &[&str]| {
+        let mut args = vec![
+            "crew",
+            "--image",
+            &image,
+            "--grid",
+            "32x14",
+            "--corners",
+            corners,
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        mason(&args)
+    };
+    let o = read(&[]);
+    assert_input_error(
+        &o,
+        &[
+            "cell (14, 8) is covered",
+            "cannot tell whether it is blocked",
+        ],
+    );
+    let o = read(&["--blocked-cells", "14,8"]);
+    assert_input_error(&o, &["cell (3, 10) is covered"]);
+    let o = read(&["--blocked-cells", "14,8 3,10"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(
+        v["reading"]["settled"]["blocked"],
+        serde_json::json!([[14, 8], [3, 10]])
+    );
+    assert_eq!(v["reading"]["settled"]["free"], serde_json::json!([]));
+    assert_eq!(v["status"], "feasible");
+    for (flag, cells, needle) in [
+        (
+            "--blocked-cells",
+            "14,8 3;10",
+            "--blocked-cells 14,8 3;10: give cells as column,row",
+        ),
+        ("--free-cells", "", "--free-cells : give cells"),
+        ("--free-cells", "-1,2", "give cells as column,row"),
+        (
+            "--free-cells",
+            "32,0",
+            "cell (32, 0), settled as free, lies outside the 32×14 grid",
+        ),
+    ] {
+        assert_input_error(&read(&[flag, cells]), &[needle]);
+    }
+    let o = read(&["--blocked-cells", "14,8", "--free-cells", "14,8"]);
+    assert_input_error(&o, &["settled both as blocked and as free"]);
+    let o = mason(&[
+        "crew",
+        &data("crew-room.map"),
+        "--scen",
+        &data("crew-room.scen"),
+        "--free-cells",
+        "1,1",
+    ]);
+    assert_input_error(&o, &["--free-cells", "apply to --image"]);
+}
+
 /// A photograph with a goal more than its robots is refused unless `--spare-goals` says the
 /// floor has goals to spare: a goal without a robot may be a robot the reading lost.
 #[test]

@@ -218,3 +218,95 @@ fn a_robot_cut_by_a_leaning_top_is_read_whole() {
     assert_eq!(cut.len(), 1, "{:?}", r.robots);
     assert_eq!(r.grid.xy(cut[0].cell), (2, 2));
 }
+
+/// The cells a refusal names: each "(x, y)" of its reason (the pixel is in its location).
+fn named_cells(reason: &str) -> Vec<(u32, u32)> {
+    reason
+        .split('(')
+        .skip(1)
+        .filter_map(|s| {
+            let (x, rest) = s.split_once(", ")?;
+            let (y, _) = rest.split_once(')')?;
+            Some((x.parse().ok()?, y.parse().ok()?))
+        })
+        .collect()
+}
+
+/// An operator in the loop: A0016, A0037 and B0027 are refused at runs' far cells. Each cell a
+/// refusal names is settled as the ground truth has it (`blocked_cells`, `free_cells`) and the
+/// view read again; each then reads exactly, with those cells and no other listed as settled.
+/// A cell settled against what the view shows is read as settled (the operator decides), or the
+/// view refused for another cell.
+#[test]
+fn the_operator_settles_the_cells_a_refusal_names() {
+    for name in ["A0016", "A0037", "B0027"] {
+        let (image, truth) = scene(name);
+        let blocked = cells(&truth["blocked"]);
+        let mut cfg = config(&truth, true);
+        let mut rounds = 0;
+        let r = loop {
+            match read_aerial(&image, name, &cfg) {
+                Ok(r) => break r,
+                Err(e) => {
+                    let named = named_cells(&e.reason);
+                    assert!(
+                        !named.is_empty() && e.reason.contains("cell ("),
+                        "{name}: {e}"
+                    );
+                    for c in named {
+                        assert!(
+                            !cfg.blocked_cells.contains(&c) && !cfg.free_cells.contains(&c),
+                            "{name}: {c:?} settled, yet refused: {e}"
+                        );
+                        if blocked.binary_search(&c).is_ok() {
+                            cfg.blocked_cells.push(c);
+                        } else {
+                            cfg.free_cells.push(c);
+                        }
+                    }
+                }
+            }
+            rounds += 1;
+            assert!(rounds < 10, "{name}: still refused");
+        };
+        assert!(rounds >= 1, "{name}: read without settling");
+        assert_exact(name, &r, &truth);
+        let mut settled: Vec<((u32, u32), bool)> =
+            r.settled.iter().map(|&(c, b)| (r.grid.xy(c), b)).collect();
+        settled.sort_unstable();
+        let mut given: Vec<((u32, u32), bool)> = (cfg.blocked_cells.iter().map(|&c| (c, true)))
+            .chain(cfg.free_cells.iter().map(|&c| (c, false)))
+            .collect();
+        given.sort_unstable();
+        assert_eq!(settled, given, "{name}");
+        // Settled the other way, the cell is read as the operator says.
+        let (c, b) = given[0];
+        let flipped = if b {
+            AerialConfig {
+                blocked_cells: cfg
+                    .blocked_cells
+                    .iter()
+                    .copied()
+                    .filter(|&d| d != c)
+                    .collect(),
+                free_cells: [cfg.free_cells.clone(), vec![c]].concat(),
+                ..cfg.clone()
+            }
+        } else {
+            AerialConfig {
+                free_cells: cfg.free_cells.iter().copied().filter(|&d| d != c).collect(),
+                blocked_cells: [cfg.blocked_cells.clone(), vec![c]].concat(),
+                ..cfg.clone()
+            }
+        };
+        // (Or refused for another cell: a run's far cell settled free makes the cell before it
+        // the run's far cell, A0037.)
+        match read_aerial(&image, name, &flipped) {
+            Ok(r) => {
+                let cell = r.grid.cell(i64::from(c.0), i64::from(c.1)).unwrap();
+                assert_eq!(r.grid.is_free(cell), b, "{name}: {c:?}");
+            }
+            Err(e) => assert!(!named_cells(&e.reason).contains(&c), "{name}: {e}"),
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! What Mason read from an aerial view, drawn over the view itself: the floor grid, the
 //! blocked cells, each robot (circle, numbered) and goal (square) where it was read, and the
-//! planned paths, all mapped into the image through the floor's homography; for an audit,
-//! the refusals too, where they point.
+//! planned paths, all mapped into the image through the floor's homography; the cells the
+//! operator settled (dashed orange); for an audit, the refusals too, where they point.
 
 use crate::crew_svg::MAX_PATHS;
 use crate::svg::{escape, robot_colour};
@@ -117,6 +117,27 @@ pub fn aerial_audit_svg(
         let _ = write!(s, r#"<polygon points="{}"/>"#, pts.join(" "));
     }
     s.push_str("</g>");
+    // Cells the operator settled: a dashed orange outline inside the cell.
+    for &(c, blocked) in &reading.settled {
+        let (x, y) = grid.xy(c);
+        let (x, y) = (f64::from(x), f64::from(y));
+        let (a, b) = (0.08, 0.92);
+        let pts: Vec<String> = [(a, a), (b, a), (b, b), (a, b)]
+            .iter()
+            .map(|&(du, dv)| {
+                let p = to_image(x + du, y + dv);
+                format!("{:.1},{:.1}", p.0, p.1)
+            })
+            .collect();
+        let _ = write!(
+            s,
+            r##"<polygon points="{}" fill="none" stroke="#ff9100" stroke-width="{:.2}" stroke-dasharray="{:.1}"><title>cell ({x}, {y}) settled {} by the operator</title></polygon>"##,
+            pts.join(" "),
+            stroke,
+            2.0 * stroke,
+            if blocked { "blocked" } else { "free" }
+        );
+    }
     // Paths (every k-th beyond MAX_PATHS).
     let every = paths.len().div_ceil(MAX_PATHS).max(1);
     for (i, path) in paths.iter().enumerate().step_by(every) {

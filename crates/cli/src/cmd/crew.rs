@@ -47,6 +47,14 @@ pub struct CrewArgs {
     /// without a robot may be a robot the reading lost)
     #[arg(long)]
     pub spare_goals: bool,
+    /// --image: cells you settle as blocked, "x,y x,y …" (column, row): read as blocked and
+    /// never refused. For the cells a refusal names, once you have looked at them (--audit
+    /// --overlay shows every one)
+    #[arg(long, value_name = "CELLS", allow_hyphen_values = true)]
+    pub blocked_cells: Option<String>,
+    /// --image: cells you settle as free, "x,y x,y …", likewise
+    #[arg(long, value_name = "CELLS", allow_hyphen_values = true)]
+    pub free_cells: Option<String>,
     /// --image: draw the image with the grid, blocked cells, robots, goals and paths as read
     #[arg(long, value_name = "FILE.svg")]
     pub overlay: Option<PathBuf>,
@@ -249,11 +257,12 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
             })
             .collect();
         let title = format!(
-            "{name} — audited {}×{} cells, {blocked} blocked, {} robots, {} goals; {} (magenta)",
+            "{name} — audited {}×{} cells, {blocked} blocked, {} robots, {} goals{}; {} (magenta)",
             r.grid.width(),
             r.grid.height(),
             r.robots.len(),
             r.goals.len(),
+            settled_note(r),
             refusals(audited.doubts.len())
         );
         let svg = mason_report::aerial_audit_svg(
@@ -308,6 +317,15 @@ fn refusals(n: usize) -> String {
     }
 }
 
+/// ", 2 cells settled (dashed orange)" for a title, when the operator settled any.
+fn settled_note(r: &mason_crew::aerial::AerialReading) -> String {
+    match r.settled.len() {
+        0 => String::new(),
+        1 => ", 1 cell settled (dashed orange)".to_string(),
+        n => format!(", {n} cells settled (dashed orange)"),
+    }
+}
+
 /// The aerial reader's settings, when any of its flags is given.
 fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialConfig>> {
     use mason_crew::aerial::{colour::Hue, AerialConfig};
@@ -316,11 +334,13 @@ fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialCon
         || a.corners.is_some()
         || a.robot_colour != "red"
         || a.goal_colour != "green"
-        || a.spare_goals;
+        || a.spare_goals
+        || a.blocked_cells.is_some()
+        || a.free_cells.is_some();
     if a.image.is_none() {
         if given || a.overlay.is_some() || a.save_map.is_some() || a.save_scen.is_some() {
             return Err(input_error(
-                "--grid, --cell-px, --corners, --robot-colour, --goal-colour, --spare-goals, --overlay, --save-map and --save-scen apply to --image",
+                "--grid, --cell-px, --corners, --robot-colour, --goal-colour, --spare-goals, --blocked-cells, --free-cells, --overlay, --save-map and --save-scen apply to --image",
             ));
         }
         return Ok(None);
@@ -348,7 +368,29 @@ fn aerial_config(a: &CrewArgs) -> CliResult<Option<mason_crew::aerial::AerialCon
         robot_colour: colour("robot-colour", &a.robot_colour)?,
         goal_colour: colour("goal-colour", &a.goal_colour)?,
         spare_goals: a.spare_goals,
+        blocked_cells: parse_cells("blocked-cells", a.blocked_cells.as_deref())?,
+        free_cells: parse_cells("free-cells", a.free_cells.as_deref())?,
     }))
+}
+
+/// `"x,y x,y …"`: cells by column and row (none when the flag is not given).
+fn parse_cells(flag: &str, text: Option<&str>) -> CliResult<Vec<(u32, u32)>> {
+    let Some(text) = text else {
+        return Ok(Vec::new());
+    };
+    let cells: Option<Vec<(u32, u32)>> = text
+        .split_whitespace()
+        .map(|c| {
+            let (x, y) = c.split_once(',')?;
+            Some((x.trim().parse().ok()?, y.trim().parse().ok()?))
+        })
+        .collect();
+    match cells {
+        Some(cells) if !cells.is_empty() => Ok(cells),
+        _ => Err(input_error(format!(
+            "--{flag} {text}: give cells as column,row pairs separated by spaces, e.g. \"3,4 7,0\""
+        ))),
+    }
 }
 
 /// `"x1,y1 x2,y2 x3,y3 x4,y4"`.
@@ -383,12 +425,13 @@ fn view_files(
             input_error("--overlay draws a photograph's reading; this image is a one-pixel-per-cell map (use --svg)")
         })?;
         let title = format!(
-            "{} — read {}×{} cells, {} robots, {} goals; {}",
+            "{} — read {}×{} cells, {} robots, {} goals{}; {}",
             view.name,
             inst.grid.width(),
             inst.grid.height(),
             reading.robots.len(),
             reading.goals.len(),
+            settled_note(reading),
             result.outcome.status
         );
         let paths = result.outcome.paths.clone().unwrap_or_default();
@@ -439,6 +482,13 @@ pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
             "confidence": m.confidence,
         })
     };
+    let settled = |blocked: bool| -> Vec<[u32; 2]> {
+        r.settled
+            .iter()
+            .filter(|s| s.1 == blocked)
+            .map(|s| xy(&r.grid, s.0))
+            .collect()
+    };
     json!({
         "grid": [r.grid.width(), r.grid.height()],
         "grid_from": r.grid_source,
@@ -452,6 +502,10 @@ pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
         },
         "robots": r.robots.iter().map(mark).collect::<Vec<_>>(),
         "goals": r.goals.iter().map(mark).collect::<Vec<_>>(),
+        "settled": {
+            "blocked": settled(true),
+            "free": settled(false),
+        },
     })
 }
 

@@ -222,14 +222,24 @@ pub enum Unlike {
 /// ([`RING`], first), more tinted ([`RING_TINT`]), or both by less ([`RING_BOTH`]). For
 /// [`Unlike::Both`] the region's `least` is the least of its cells' ratios. `bright` and
 /// `saturation` hold each cell's [`Look`] (`None` for a blocked cell or one with too few floor
-/// pixels), row-major over a `gw` × `gh` grid.
+/// pixels), row-major over a `gw` × `gh` grid. A cell the operator settled (`settled[i]`;
+/// shorter, or empty, where nothing is settled) stays in its neighbours' rings but is never
+/// part of a region.
 pub fn unlike_ring(
     bright: &[Option<f64>],
     saturation: &[f64],
     (gw, gh): (u32, u32),
+    settled: &[bool],
 ) -> Option<(Unlike, Region)> {
-    let ratios = ring_ratios(bright, (gw, gh));
-    let tints = ring_tints(bright, saturation, (gw, gh));
+    let unsettled = |values: Vec<Option<f64>>| -> Vec<Option<f64>> {
+        values
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| v.filter(|_| settled.get(i) != Some(&true)))
+            .collect()
+    };
+    let ratios = unsettled(ring_ratios(bright, (gw, gh)));
+    let tints = unsettled(ring_tints(bright, saturation, (gw, gh)));
     if let Some(r) = odd_region(&ratios, (gw, gh), RING) {
         return Some((Unlike::Brighter, r));
     }
@@ -644,43 +654,53 @@ mod tests {
         let grey = [0.02; 20];
         let gradient: Vec<Option<f64>> =
             (0..20).map(|i| Some(1.0 + 0.03 * (i % 5) as f64)).collect();
-        assert_eq!(unlike_ring(&gradient, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&gradient, &grey, (gw, gh), &[]), None);
         // A pale top over a 3 x 2 block, 1.2 times the floor, is found whole.
         let mut shelf = vec![Some(1.0); 20];
         for i in [6, 7, 8, 11, 12, 13] {
             shelf[i] = Some(1.2);
         }
         shelf[7] = Some(1.25);
-        let (kind, r) = unlike_ring(&shelf, &grey, (gw, gh)).unwrap();
+        let (kind, r) = unlike_ring(&shelf, &grey, (gw, gh), &[]).unwrap();
         assert_eq!(kind, Unlike::Brighter);
         assert_eq!(r.cells, vec![6, 7, 8, 11, 12, 13]);
         assert!((r.least - 1.2).abs() < 1e-9);
+        // Cells the operator settled are never part of it: three settled leave three, all but
+        // two leave too few.
+        let mut settled = vec![false; 20];
+        for i in [6, 7, 8] {
+            settled[i] = true;
+        }
+        let (_, r) = unlike_ring(&shelf, &grey, (gw, gh), &settled).unwrap();
+        assert_eq!(r.cells, vec![11, 12, 13]);
+        settled[11] = true;
+        assert_eq!(unlike_ring(&shelf, &grey, (gw, gh), &settled), None);
         // Two bright cells side by side (noise, a stain, a mark's glow) are not enough.
         let mut two = vec![Some(1.0); 20];
         two[6] = Some(1.3);
         two[7] = Some(1.3);
-        assert_eq!(unlike_ring(&two, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&two, &grey, (gw, gh), &[]), None);
         // Three on a diagonal are not side by side.
         two[7] = Some(1.0);
         two[12] = Some(1.3);
         two[18] = Some(1.3);
-        assert_eq!(unlike_ring(&two, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&two, &grey, (gw, gh), &[]), None);
         // Shadows and blocked cells around them are not their ring.
         let mut lone = vec![Some(0.5); 20];
         for i in [6, 7, 8] {
             lone[i] = Some(1.2);
         }
         lone[0] = None;
-        assert_eq!(unlike_ring(&lone, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&lone, &grey, (gw, gh), &[]), None);
         // Lit floor beside a penumbra (0.86) is compared with the lit floor, not the penumbra.
         let mut dim = vec![Some(0.86); 20];
         for i in [6, 7, 8] {
             dim[i] = Some(1.0);
         }
-        assert_eq!(unlike_ring(&dim, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&dim, &grey, (gw, gh), &[]), None);
         // No panic on an empty or a short list.
-        assert_eq!(unlike_ring(&[], &[], (gw, gh)), None);
-        assert_eq!(unlike_ring(&[Some(2.0); 3], &[0.5; 2], (gw, gh)), None);
+        assert_eq!(unlike_ring(&[], &[], (gw, gh), &[]), None);
+        assert_eq!(unlike_ring(&[Some(2.0); 3], &[0.5; 2], (gw, gh), &[]), None);
     }
 
     #[test]
@@ -688,13 +708,13 @@ mod tests {
         let (gw, gh) = (5u32, 4u32);
         let lit = vec![Some(1.05); 20];
         // A floor tinted all over (a coloured floor after white balance on its median) passes.
-        assert_eq!(unlike_ring(&lit, &[0.12; 20], (gw, gh)), None);
+        assert_eq!(unlike_ring(&lit, &[0.12; 20], (gw, gh), &[]), None);
         // A bluish top over three cells, 0.1 above the floor's saturation, is found.
         let mut sat = vec![0.02; 20];
         for i in [1, 6, 11] {
             sat[i] = 0.12;
         }
-        let (kind, r) = unlike_ring(&lit, &sat, (gw, gh)).unwrap();
+        let (kind, r) = unlike_ring(&lit, &sat, (gw, gh), &[]).unwrap();
         assert_eq!(kind, Unlike::Tinted);
         assert_eq!(r.cells, vec![1, 6, 11]);
         // Not in a shadow (a shadow's tint depends on the light).
@@ -702,10 +722,10 @@ mod tests {
         for i in [1, 6, 11] {
             shade[i] = Some(0.6);
         }
-        assert_eq!(unlike_ring(&shade, &sat, (gw, gh)), None);
+        assert_eq!(unlike_ring(&shade, &sat, (gw, gh), &[]), None);
         // Not two cells alone.
         sat[11] = 0.02;
-        assert_eq!(unlike_ring(&lit, &sat, (gw, gh)), None);
+        assert_eq!(unlike_ring(&lit, &sat, (gw, gh), &[]), None);
     }
 
     #[test]
@@ -718,21 +738,21 @@ mod tests {
             bright[i] = Some(b);
             sat[i] = s;
         }
-        let (kind, r) = unlike_ring(&bright, &sat, (gw, gh)).unwrap();
+        let (kind, r) = unlike_ring(&bright, &sat, (gw, gh), &[]).unwrap();
         assert_eq!(kind, Unlike::Both);
         assert_eq!(r.cells, vec![7, 8, 9]);
         // Either alone at that level is floor: brighter only, or tinted only.
         let grey = vec![0.01; 18];
-        assert_eq!(unlike_ring(&bright, &grey, (gw, gh)), None);
+        assert_eq!(unlike_ring(&bright, &grey, (gw, gh), &[]), None);
         let even = vec![Some(1.0); 18];
-        assert_eq!(unlike_ring(&even, &sat, (gw, gh)), None);
+        assert_eq!(unlike_ring(&even, &sat, (gw, gh), &[]), None);
         // One cell under either limit breaks the region (two cells are not enough).
         let mut dim = bright.clone();
         dim[8] = Some(1.06);
-        assert_eq!(unlike_ring(&dim, &sat, (gw, gh)), None);
+        assert_eq!(unlike_ring(&dim, &sat, (gw, gh), &[]), None);
         let mut pale = sat.clone();
         pale[8] = 0.035;
-        assert_eq!(unlike_ring(&bright, &pale, (gw, gh)), None);
+        assert_eq!(unlike_ring(&bright, &pale, (gw, gh), &[]), None);
     }
 
     #[test]

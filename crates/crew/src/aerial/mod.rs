@@ -114,6 +114,12 @@ pub struct AerialConfig {
     /// shelf of its colour), so such a view is refused unless the floor is known to have
     /// goals to spare.
     pub spare_goals: bool,
+    /// Cells the operator settles as blocked, (column, row): each is read as blocked, and no
+    /// refusal names it. For a cell the reader refuses (half covered, a top may cover it,
+    /// unlike the floor) that the operator has looked at (`--audit --overlay` shows them).
+    pub blocked_cells: Vec<(u32, u32)>,
+    /// Cells the operator settles as free, likewise.
+    pub free_cells: Vec<(u32, u32)>,
 }
 
 impl Default for AerialConfig {
@@ -125,6 +131,8 @@ impl Default for AerialConfig {
             robot_colour: Hue::RED,
             goal_colour: Hue::GREEN,
             spare_goals: false,
+            blocked_cells: Vec::new(),
+            free_cells: Vec::new(),
         }
     }
 }
@@ -177,6 +185,9 @@ pub struct AerialReading {
     pub floor_to_image: Homography,
     /// The image's size in pixels.
     pub image_size: (u32, u32),
+    /// The cells the operator settled ([`AerialConfig::blocked_cells`] and
+    /// [`AerialConfig::free_cells`]), each with whether it is blocked, row-major.
+    pub settled: Vec<(Cell, bool)>,
 }
 
 impl AerialReading {
@@ -189,6 +200,39 @@ impl AerialReading {
     pub fn goal_cells(&self) -> Vec<Cell> {
         self.goals.iter().map(|m| m.cell).collect()
     }
+}
+
+/// Each cell's state as the operator settles it ([`AerialConfig::blocked_cells`],
+/// [`AerialConfig::free_cells`]), row-major; `None` where the reader decides. A cell outside
+/// the grid, or given both blocked and free, is refused.
+fn settled_cells(
+    config: &AerialConfig,
+    (gw, gh): (u32, u32),
+    source: &str,
+) -> Result<Vec<Option<bool>>, CrewError> {
+    let mut settled = vec![None; gw as usize * gh as usize];
+    for (list, blocked, flag) in [
+        (&config.blocked_cells, true, "blocked"),
+        (&config.free_cells, false, "free"),
+    ] {
+        for &(x, y) in list {
+            if x >= gw || y >= gh {
+                return Err(whole(
+                    source,
+                    format!("cell ({x}, {y}), settled as {flag}, lies outside the {gw}×{gh} grid (columns 0–{}, rows 0–{})", gw.saturating_sub(1), gh.saturating_sub(1)),
+                ));
+            }
+            let cell = &mut settled[y as usize * gw as usize + x as usize];
+            if *cell == Some(!blocked) {
+                return Err(whole(
+                    source,
+                    format!("cell ({x}, {y}) is settled both as blocked and as free"),
+                ));
+            }
+            *cell = Some(blocked);
+        }
+    }
+    Ok(settled)
 }
 
 /// A failure at a pixel.
@@ -594,6 +638,9 @@ fn read(
             .unwrap_or((0.0, 0.0))
     };
     let cells = gw as usize * gh as usize;
+    // The cells the operator settles: read as given, never refused.
+    let settled = settled_cells(config, (gw, gh), source)?;
+    let is_settled: Vec<bool> = settled.iter().map(Option::is_some).collect();
     let mut shares = Vec::with_capacity(cells);
     for i in 0..cells {
         let Some(share) = coverage.share(i) else {
@@ -690,6 +737,10 @@ fn read(
     };
     let mut blocked = vec![false; cells];
     for (i, b) in blocked.iter_mut().enumerate() {
+        if let Some(given) = settled[i] {
+            *b = given;
+            continue;
+        }
         let share = shares[i];
         if share <= HALF_COVERED.0 {
             continue;
@@ -738,7 +789,7 @@ fn read(
         for i in 0..cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
-            if !blocked[i] {
+            if !blocked[i] || is_settled[i] {
                 continue;
             }
             let beyond = if edge {
@@ -801,6 +852,9 @@ fn read(
             .collect()
     };
     let mut not_floor = looks.iter().enumerate().filter_map(|(i, look)| {
+        if is_settled[i] {
+            return None;
+        }
         let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
         look.as_ref()?.odd().map(|why| {
             at_pixel(
@@ -827,7 +881,7 @@ fn read(
             .iter()
             .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
             .collect();
-        looks::unlike_ring(&bright, &saturation, (gw, gh)).map(|(kind, r)| {
+        looks::unlike_ring(&bright, &saturation, (gw, gh), &is_settled).map(|(kind, r)| {
             let first = r.cells.first().copied().unwrap_or(0);
             let (x, y) = ((first % gw as usize) as u32, (first / gw as usize) as u32);
             let why = match kind {
@@ -854,8 +908,13 @@ fn read(
                 source,
                 cell_centre_px(first),
                 format!(
-                    "{} cells side by side from cell ({x}, {y}) would be free but do not look like the floor: {why}: the top of a shelf of nearly the floor's colour may stand there",
-                    r.cells.len()
+                    "{} cells side by side from cell ({x}, {y}) would be free but do not look like the floor: {why}: the top of a shelf of nearly the floor's colour may stand there (cells {})",
+                    r.cells.len(),
+                    r.cells
+                        .iter()
+                        .map(|&c| format!("({}, {})", c % gw as usize, c / gw as usize))
+                        .collect::<Vec<_>>()
+                        .join(" ")
                 ),
             )
         })
@@ -914,10 +973,10 @@ fn read(
                 ),
             )
         };
-        shadows::uncast(&bins, &levels, (gw, gh))
+        shadows::uncast(&bins, &levels, (gw, gh), &is_settled)
             .map(|u| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
-                sunlit.as_ref()?.unattached().map(|u| {
+                sunlit.as_ref()?.unattached(&is_settled).map(|u| {
                     doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give)")
                 })
             })
@@ -935,8 +994,10 @@ fn read(
             (&near_mark, px),
         );
         let take = if audit { found.len() } else { 1 };
+        let cell = |(x, y): (u32, u32)| y as usize * gw as usize + x as usize;
         found
             .into_iter()
+            .filter(|m| !m.cells.iter().all(|&c| is_settled[cell(c)]))
             .take(take)
             .map(|m| {
                 let [(x, y), (nx, ny)] = m.cells;
@@ -1143,6 +1204,11 @@ fn read(
             corners,
             floor_to_image,
             image_size: (img.width(), img.height()),
+            settled: settled
+                .iter()
+                .enumerate()
+                .filter_map(|(i, s)| s.map(|b| (Cell(i as u32), b)))
+                .collect(),
         },
         doubts,
     })

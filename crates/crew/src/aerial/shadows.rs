@@ -186,13 +186,21 @@ impl Uncast {
     }
 }
 
-/// The first shadow (row-major) that nothing in the image casts, if any. `cells[i]`: cell
-/// `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright the
-/// lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
+/// Whether the operator settled the cell (`settled`: row-major over a floor `gw` cells wide;
+/// shorter, or empty, where nothing is settled).
+fn is_settled(settled: &[bool], (x, y): (u32, u32), gw: u32) -> bool {
+    settled.get(y as usize * gw as usize + x as usize) == Some(&true)
+}
+
+/// The first shadow (row-major) that nothing in the image casts, if any, past those whose
+/// first bin lies on a cell the operator settled (`settled`, see [`is_settled`]). `cells[i]`:
+/// cell `i`'s bins (row-major), `None` for a blocked cell (a caster); `levels[i]`: how bright
+/// the lit floor around cell `i` is ([`super::looks::local_levels`]; 1 where missing).
 pub fn uncast(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
     (gw, gh): (u32, u32),
+    settled: &[bool],
 ) -> Option<Uncast> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
     let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.0)?;
@@ -216,6 +224,7 @@ pub fn uncast(
         let cast = caster || (mark && size <= ROBOT_SHADOW);
         (!cast && size >= MIN_SHADOW)
             .then(|| Uncast::from_bin((region[0] % bw, region[0] / bw), size))
+            .filter(|u| !is_settled(settled, u.cell, gw))
     })
 }
 
@@ -428,7 +437,8 @@ impl<'a> Sunlit<'a> {
         ((count as f64) >= ONE_SUN * *sampled as f64).then_some(best)
     }
 
-    /// The first shadow (row-major) not attached to a caster along the sun's direction, if any.
+    /// The first shadow (row-major) not attached to a caster along the sun's direction, if any,
+    /// past those whose first bin lies on a cell the operator settled (as for [`uncast`]).
     ///
     /// One sun casts every shadow the same way: walking from any point of a shadow toward the sun,
     /// one stays in the shadow until the thing that casts it. So the direction that explains the
@@ -438,7 +448,7 @@ impl<'a> Sunlit<'a> {
     /// is refused: its caster stands on floor read as free, a shelf of the floor's own look
     /// whose shadow touches another's (V0028's graphite shelf, whose shadow joined that of the
     /// pale shelf below it; issue #29's twelfth round).
-    pub fn unattached(&self) -> Option<Uncast> {
+    pub fn unattached(&self, settled: &[bool]) -> Option<Uncast> {
         let (bw, bh) = self.size();
         let best = self.sun_index()?;
         let (kinds, robot_near) = (&self.kinds, &self.robot_near);
@@ -451,8 +461,9 @@ impl<'a> Sunlit<'a> {
         }
         regions(&loose, (bw, bh))
             .into_iter()
-            .find(|region| region.len() >= UNATTACHED)
+            .filter(|region| region.len() >= UNATTACHED)
             .map(|region| Uncast::from_bin(at(region[0]), region.len()))
+            .find(|u| !is_settled(settled, u.cell, self.floor.0))
     }
 
     /// Whether the shadow beside the blocked cell `(x, y)`, the far cell of a run of blocked
@@ -553,7 +564,7 @@ mod tests {
         levels: &[f64],
         floor: (u32, u32),
     ) -> Option<Uncast> {
-        Sunlit::new(cells, levels, floor)?.unattached()
+        Sunlit::new(cells, levels, floor)?.unattached(&[])
     }
 
     /// [`Sunlit::suns`] of a floor, none for a floor with no bins.
@@ -670,14 +681,14 @@ mod tests {
     #[test]
     fn a_shadow_with_nothing_to_cast_it_is_found() {
         let cells = floor(5, 4, &band());
-        let u = uncast(&cells, &[], (5, 4)).unwrap();
+        let u = uncast(&cells, &[], (5, 4), &[]).unwrap();
         assert_eq!(u.cell, (2, 1));
         assert_eq!(u.bins, 24);
         assert!((u.at.0 - 2.125).abs() < 1e-9 && (u.at.1 - 1.125).abs() < 1e-9);
         // Lit floor alone, or a speck of seven bins, has none.
-        assert_eq!(uncast(&floor(5, 4, &[]), &[], (5, 4)), None);
+        assert_eq!(uncast(&floor(5, 4, &[]), &[], (5, 4), &[]), None);
         let speck: Vec<(usize, usize)> = (3..10).map(|x| (x, 3)).collect();
-        assert_eq!(uncast(&floor(5, 4, &speck), &[], (5, 4)), None);
+        assert_eq!(uncast(&floor(5, 4, &speck), &[], (5, 4), &[]), None);
     }
 
     #[test]
@@ -685,14 +696,14 @@ mod tests {
         // Cell (1, 1) blocked: the band's bins x 8.. touch its bins x 4..7 (x 7 next to 8).
         let mut cells = floor(5, 4, &band());
         cells[5 + 1] = None;
-        assert_eq!(uncast(&cells, &[], (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]), None);
         // Or an obstacle's pixels in a free cell, diagonally beside the band's last bin.
         let mut cells = floor(5, 4, &band());
         cells[3 * 5 + 2].as_mut().unwrap()[3] = Bin {
             solid: 9,
             ..Bin::default()
         };
-        assert_eq!(uncast(&cells, &[], (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]), None);
     }
 
     #[test]
@@ -705,29 +716,29 @@ mod tests {
         let small: Vec<(usize, usize)> =
             (4..8).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
         assert_eq!(
-            uncast(&floor(5, 4, &small), &[], (5, 4)).map(|u| u.bins),
+            uncast(&floor(5, 4, &small), &[], (5, 4), &[]).map(|u| u.bins),
             Some(12)
         );
         let mut cells = floor(5, 4, &small);
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, &[], (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]), None);
         let mut cells = floor(5, 4, &band());
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, &[], (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]), None);
         let large: Vec<(usize, usize)> =
             (4..16).flat_map(|y| (8..11).map(move |x| (x, y))).collect();
         let mut cells = floor(5, 4, &large);
         robot_at(&mut cells);
-        assert_eq!(uncast(&cells, &[], (5, 4)).map(|u| u.bins), Some(36));
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]).map(|u| u.bins), Some(36));
         // A goal lies flat: beside the band of 12 it casts nothing.
         let mut cells = floor(5, 4, &small);
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
-        assert_eq!(uncast(&cells, &[], (5, 4)).map(|u| u.bins), Some(12));
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]).map(|u| u.bins), Some(12));
         // A robot's bin two bins away, behind the band of pixels near it, still casts it.
         let mut cells = floor(5, 4, &small);
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 1] = GOAL;
         cells[5 + 1].as_mut().unwrap()[SIDE * SIDE - 2] = ROBOT; // bin (6, 7)
-        assert_eq!(uncast(&cells, &[], (5, 4)), None);
+        assert_eq!(uncast(&cells, &[], (5, 4), &[]), None);
     }
 
     /// A 12 × 12-cell floor with shelves (blocked) on cells (1, 0), (1, 2), …, (1, 10), each
@@ -770,7 +781,7 @@ mod tests {
         // floor.
         let mut cells = sunlit(true);
         cells[5 * 12 + 9] = None;
-        assert_eq!(uncast(&cells, &[], (12, 12)), None);
+        assert_eq!(uncast(&cells, &[], (12, 12), &[]), None);
         assert_eq!(unattached(&cells, &[], (12, 12)).unwrap().cell, (8, 5));
     }
 
@@ -826,15 +837,15 @@ mod tests {
         let square = |o: usize| (o..o + 3).flat_map(move |y| (o..o + 2).map(move |x| (x, y)));
         let mut dark: Vec<(usize, usize)> = square(0).collect();
         dark.extend(square(2).map(|(x, y)| (x, y + 1)));
-        assert_eq!(uncast(&floor(3, 3, &dark), &[], (3, 3)), None);
+        assert_eq!(uncast(&floor(3, 3, &dark), &[], (3, 3), &[]), None);
         // Joined along a side they are one of 12.
         let mut dark: Vec<(usize, usize)> = square(0).collect();
         dark.extend(square(2).map(|(x, y)| (x, y - 2)));
-        let u = uncast(&floor(3, 3, &dark), &[], (3, 3)).unwrap();
+        let u = uncast(&floor(3, 3, &dark), &[], (3, 3), &[]).unwrap();
         assert_eq!((u.cell, u.bins), ((0, 0), 12));
         // A mismatched list of cells is no finding, not a panic.
-        assert_eq!(uncast(&floor(3, 3, &dark), &[], (4, 3)), None);
-        assert_eq!(uncast(&[], &[], (0, 0)), None);
+        assert_eq!(uncast(&floor(3, 3, &dark), &[], (4, 3), &[]), None);
+        assert_eq!(uncast(&[], &[], (0, 0), &[]), None);
     }
 
     #[test]

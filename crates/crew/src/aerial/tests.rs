@@ -335,6 +335,82 @@ fn refuses_what_it_cannot_read() {
     assert!(e.contains("cell (7, 4)") && e.contains("covered"), "{e}");
 }
 
+/// The operator settles the cells a refusal names: a half-covered cell and a shadow with no
+/// caster are read as settled, never refused, also by the audit; cells outside the grid, or
+/// settled both ways, are refused.
+#[test]
+fn settled_cells_are_read_as_the_operator_says() {
+    let settle = |blocked: &[(u32, u32)], free: &[(u32, u32)]| AerialConfig {
+        blocked_cells: blocked.to_vec(),
+        free_cells: free.to_vec(),
+        ..grid(8, 5)
+    };
+    let blocked_cells = |r: &AerialReading| -> Vec<(u32, u32)> {
+        (0..40)
+            .filter(|&i| !r.grid.is_free(Cell(i)))
+            .map(|i| r.grid.xy(Cell(i)))
+            .collect()
+    };
+    // Cell (7, 4) half covered (as in `refuses_what_it_cannot_read`).
+    let mut img = scene().straight(12);
+    for y in 48..60 {
+        for x in 91..93 {
+            img.put_pixel(x, y, Rgb([40, 70, 170]));
+        }
+    }
+    let half = png(&img);
+    let e = read_aerial(&half, "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("cell (7, 4)"), "{e}");
+    let r = read_aerial(&half, "v.png", &settle(&[], &[(7, 4)])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (3, 3)]);
+    assert_eq!(r.settled, [(Cell(39), false)]);
+    let r = read_aerial(&half, "v.png", &settle(&[(7, 4)], &[])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (3, 3), (7, 4)]);
+    assert_eq!(r.settled, [(Cell(39), true)]);
+    // A cell settled against the view: read as settled (a free cell read blocked, here).
+    let r = read_aerial(&half, "v.png", &settle(&[(7, 4)], &[(3, 2)])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 3), (7, 4)]);
+    let audited = audit_aerial(&half, "v.png", &settle(&[], &[(7, 4)])).unwrap();
+    assert!(audited.doubts.is_empty(), "{:?}", audited.doubts);
+    // Another cell settled: still refused at (7, 4).
+    let e = read_aerial(&half, "v.png", &settle(&[], &[(6, 4)])).unwrap_err();
+    assert!(e.reason.contains("cell (7, 4)"), "{e}");
+
+    // A shadow from cell (4, 3) that nothing casts (as in `a_shadow_needs_a_caster`): settled
+    // free where it starts, or its caster settled blocked beside it.
+    let mut img = scene().straight(12);
+    for y in 37..47 {
+        for x in 55..65 {
+            let p = img.get_pixel(x, y).0;
+            img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
+        }
+    }
+    let shadow = png(&img);
+    let e = read_aerial(&shadow, "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("from cell (4, 3)"), "{e}");
+    let r = read_aerial(&shadow, "v.png", &settle(&[], &[(4, 3)])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (3, 3)]);
+    let e = read_aerial(&shadow, "v.png", &settle(&[], &[(5, 3)])).unwrap_err();
+    assert!(e.reason.contains("from cell (4, 3)"), "{e}");
+    let r = read_aerial(&shadow, "v.png", &settle(&[(5, 2)], &[])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (5, 2), (3, 3)]);
+
+    let plain = png(&scene().straight(12));
+    let e = read_aerial(&plain, "v.png", &settle(&[(8, 0)], &[])).unwrap_err();
+    assert!(
+        e.reason
+            .contains("cell (8, 0), settled as blocked, lies outside the 8×5 grid"),
+        "{e}"
+    );
+    let e = read_aerial(&plain, "v.png", &settle(&[], &[(0, 5)])).unwrap_err();
+    assert!(e.reason.contains("settled as free, lies outside"), "{e}");
+    let e = read_aerial(&plain, "v.png", &settle(&[(2, 2)], &[(2, 2)])).unwrap_err();
+    assert!(
+        e.reason.contains("settled both as blocked and as free"),
+        "{e}"
+    );
+}
+
 #[test]
 fn a_robot_against_a_shelf_of_its_colour_is_not_lost_without_a_word() {
     // A shelf of the robots' red over cells (3, 1)–(3, 3).
