@@ -335,9 +335,10 @@ fn refuses_what_it_cannot_read() {
     assert!(e.contains("cell (7, 4)") && e.contains("covered"), "{e}");
 }
 
-/// The operator settles the cells a refusal names: a half-covered cell and a shadow with no
-/// caster are read as settled, never refused, also by the audit; cells outside the grid, or
-/// settled both ways, are refused.
+/// The operator settles the cells a refusal names: a half-covered cell, a shadow with no caster,
+/// a free cell unlike the floor and a painted line that does not show are read as settled,
+/// never refused (also by the audit); cells outside the grid, or settled both ways, are
+/// refused. Each guard fails this test when taken out.
 #[test]
 fn settled_cells_are_read_as_the_operator_says() {
     let settle = |blocked: &[(u32, u32)], free: &[(u32, u32)]| AerialConfig {
@@ -394,6 +395,50 @@ fn settled_cells_are_read_as_the_operator_says() {
     assert!(e.reason.contains("from cell (4, 3)"), "{e}");
     let r = read_aerial(&shadow, "v.png", &settle(&[(5, 2)], &[])).unwrap();
     assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (5, 2), (3, 3)]);
+
+    // Cell (6, 1) a third brighter than the floor: does not look like the floor, unless
+    // settled free.
+    let mut img = scene().straight(12);
+    for y in 12..24 {
+        for x in 72..84 {
+            img.put_pixel(x, y, Rgb([224, 218, 205]));
+        }
+    }
+    let bright = png(&img);
+    let e = read_aerial(&bright, "v.png", &grid(8, 5)).unwrap_err();
+    assert!(
+        e.reason
+            .contains("cell (6, 1) would be free but does not look like the floor"),
+        "{e}"
+    );
+    let r = read_aerial(&bright, "v.png", &settle(&[], &[(6, 1)])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (3, 3)]);
+
+    // Painted lines, the one between cells (5, 3) and (5, 4) hidden: refused until both are
+    // settled.
+    let mut lined = scene();
+    lined.lines = true;
+    let mut img = lined.straight(14);
+    for y in 53..59 {
+        for x in 71..83 {
+            img.put_pixel(x, y, Rgb([170, 165, 155]));
+        }
+    }
+    let hidden = png(&img);
+    let e = read_aerial(&hidden, "v.png", &grid(8, 5)).unwrap_err();
+    assert!(
+        e.reason
+            .contains("painted line between cells (5, 3) and (5, 4)"),
+        "{e}"
+    );
+    let e = read_aerial(&hidden, "v.png", &settle(&[], &[(5, 4)])).unwrap_err();
+    assert!(
+        e.reason
+            .contains("painted line between cells (5, 3) and (5, 4)"),
+        "{e}"
+    );
+    let r = read_aerial(&hidden, "v.png", &settle(&[], &[(5, 3), (5, 4)])).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (3, 2), (3, 3)]);
 
     let plain = png(&scene().straight(12));
     let e = read_aerial(&plain, "v.png", &settle(&[(8, 0)], &[])).unwrap_err();
