@@ -783,6 +783,11 @@ mod tests {
         cells[5 * 12 + 9] = None;
         assert_eq!(uncast(&cells, &[], (12, 12), &[]), None);
         assert_eq!(unattached(&cells, &[], (12, 12)).unwrap().cell, (8, 5));
+        // Cell (8, 5) settled by the operator: that shadow is not refused.
+        let mut settled = vec![false; 144];
+        settled[5 * 12 + 8] = true;
+        let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
+        assert_eq!(sun.unattached(&settled), None);
     }
 
     #[test]
