@@ -1274,24 +1274,28 @@ fn crew_reads_an_aerial_view_and_writes_what_it_read() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `mason crew` on the rendered A0016 (`image`: its path), with its grid and corners.
+fn a0016_view(image: &str) -> [&str; 7] {
+    [
+        "crew",
+        "--image",
+        image,
+        "--grid",
+        "32x14",
+        "--corners",
+        "22.25,19.19 761.04,9.02 749.64,303.29 33.81,315.25",
+    ]
+}
+
 /// The operator settles the cells a refusal names: A0016 (a rendered view) is refused at a
 /// run's far cell; with that cell settled, at another's; with both, it is planned and the JSON
 /// lists them. Malformed cells, and the flags without --image, are refused with exit 2.
 #[test]
 fn crew_plans_a_photograph_once_the_operator_settles_the_cells_it_refuses() {
     let image = data("aerial/A0016.jpg");
-    let corners = "22.25,19.19 761.04,9.02 749.64,303.29 33.81,315.25";
     let read = |extra: &[&str]| {
-        let mut args = vec![
-            "crew",
-            "--image",
-            &image,
-            "--grid",
-            "32x14",
-            "--corners",
-            corners,
-            "--json",
-        ];
+        let mut args = a0016_view(&image).to_vec();
+        args.push("--json");
         args.extend_from_slice(extra);
         mason(&args)
     };
@@ -1444,15 +1448,7 @@ fn crew_audits_a_refused_aerial_view() {
     // Two runs' far cells refused (A0037, refused at two before the sixteenth round, is now
     // refused at one: its run's face shows the other's base).
     let image = data("aerial/A0016.jpg");
-    let view = [
-        "crew",
-        "--image",
-        &image,
-        "--grid",
-        "32x14",
-        "--corners",
-        "22.25,19.19 761.04,9.02 749.64,303.29 33.81,315.25",
-    ];
+    let view = a0016_view(&image);
     let refused = mason(&view);
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
     let reason = stderr(&refused);

@@ -114,6 +114,38 @@ fn png(img: &RgbImage) -> Vec<u8> {
     out.into_inner()
 }
 
+/// Paints the pixels x0..x1 by y0..y1 of an image in one colour.
+fn fill(img: &mut RgbImage, (x0, y0, x1, y1): (u32, u32, u32, u32), c: [u8; 3]) {
+    for y in y0..y1 {
+        for x in x0..x1 {
+            img.put_pixel(x, y, Rgb(c));
+        }
+    }
+}
+
+/// The test scene with half of the window of cell (7, 4) that no neighbour can lean over
+/// (0.4–0.95 of the cell away from the nadir at the image's centre) covered: a strip 2 px
+/// wide, 4 px as the pixels' colours are averaged over 3 × 3.
+fn half_covered_7_4() -> RgbImage {
+    let mut img = scene().straight(12);
+    fill(&mut img, (91, 48, 93, 60), [40, 70, 170]);
+    img
+}
+
+/// The test scene with pixels x0..65 by 37..47 at half their brightness: from x0 = 55, a
+/// shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
+/// goal; from x0 = 48, running to the blocked cells (3, 1)–(3, 3).
+fn shaded_from(x0: u32) -> RgbImage {
+    let mut img = scene().straight(12);
+    for y in 37..47 {
+        for x in x0..65 {
+            let p = img.get_pixel(x, y).0;
+            img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
+        }
+    }
+    img
+}
+
 /// Goals to spare: the test scene has three goals and two robots.
 fn spare() -> AerialConfig {
     AerialConfig {
@@ -256,11 +288,7 @@ fn refuses_what_it_cannot_read() {
     bar.robots.push((1.5, 2.5));
     bar.goals.push((6.5, 0.5));
     let mut img = bar.straight(12);
-    for y in 28..35 {
-        for x in 64..76 {
-            img.put_pixel(x, y, Rgb([200, 30, 25]));
-        }
-    }
+    fill(&mut img, (64, 28, 76, 35), [200, 30, 25]);
     let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
         .unwrap_err()
         .to_string();
@@ -310,26 +338,14 @@ fn refuses_what_it_cannot_read() {
 
     // An amber blob: neither the robots' red nor clearly another colour.
     let mut img = scene().straight(12);
-    for y in 40..48 {
-        for x in 70..78 {
-            img.put_pixel(x, y, Rgb([220, 120, 20]));
-        }
-    }
+    fill(&mut img, (70, 40, 78, 48), [220, 120, 20]);
     let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
         .unwrap_err()
         .to_string();
     assert!(e.contains("neither the robots'"), "{e}");
 
-    // Half of the window of cell (7, 4) that no neighbour can lean over (0.4–0.95 of the cell
-    // away from the nadir at the image's centre) covered: a strip 2 px wide, 4 px as the
-    // pixels' colours are averaged over 3 × 3.
-    let mut img = scene().straight(12);
-    for y in 48..60 {
-        for x in 91..93 {
-            img.put_pixel(x, y, Rgb([40, 70, 170]));
-        }
-    }
-    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+    // Half of a cell's window that no neighbour leans over covered.
+    let e = read_aerial(&png(&half_covered_7_4()), "v.png", &grid(8, 5))
         .unwrap_err()
         .to_string();
     assert!(e.contains("cell (7, 4)") && e.contains("covered"), "{e}");
@@ -352,14 +368,8 @@ fn settled_cells_are_read_as_the_operator_says() {
             .map(|i| r.grid.xy(Cell(i)))
             .collect()
     };
-    // Cell (7, 4) half covered (as in `refuses_what_it_cannot_read`).
-    let mut img = scene().straight(12);
-    for y in 48..60 {
-        for x in 91..93 {
-            img.put_pixel(x, y, Rgb([40, 70, 170]));
-        }
-    }
-    let half = png(&img);
+    // Cell (7, 4) half covered.
+    let half = png(&half_covered_7_4());
     let e = read_aerial(&half, "v.png", &grid(8, 5)).unwrap_err();
     assert!(e.reason.contains("cell (7, 4)"), "{e}");
     let r = read_aerial(&half, "v.png", &settle(&[], &[(7, 4)])).unwrap();
@@ -379,14 +389,7 @@ fn settled_cells_are_read_as_the_operator_says() {
 
     // A shadow from cell (4, 3) that nothing casts (as in `a_shadow_needs_a_caster`): settled
     // free where it starts, or its caster settled blocked beside it.
-    let mut img = scene().straight(12);
-    for y in 37..47 {
-        for x in 55..65 {
-            let p = img.get_pixel(x, y).0;
-            img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
-        }
-    }
-    let shadow = png(&img);
+    let shadow = png(&shaded_from(55));
     let e = read_aerial(&shadow, "v.png", &grid(8, 5)).unwrap_err();
     assert!(e.reason.contains("from cell (4, 3)"), "{e}");
     let r = read_aerial(&shadow, "v.png", &settle(&[], &[(4, 3)])).unwrap();
@@ -399,11 +402,7 @@ fn settled_cells_are_read_as_the_operator_says() {
     // Cell (6, 1) a third brighter than the floor: does not look like the floor, unless
     // settled free.
     let mut img = scene().straight(12);
-    for y in 12..24 {
-        for x in 72..84 {
-            img.put_pixel(x, y, Rgb([224, 218, 205]));
-        }
-    }
+    fill(&mut img, (72, 12, 84, 24), [224, 218, 205]);
     let bright = png(&img);
     let e = read_aerial(&bright, "v.png", &grid(8, 5)).unwrap_err();
     assert!(
@@ -419,11 +418,7 @@ fn settled_cells_are_read_as_the_operator_says() {
     let mut lined = scene();
     lined.lines = true;
     let mut img = lined.straight(14);
-    for y in 53..59 {
-        for x in 71..83 {
-            img.put_pixel(x, y, Rgb([170, 165, 155]));
-        }
-    }
+    fill(&mut img, (71, 53, 83, 59), [170, 165, 155]);
     let hidden = png(&img);
     let e = read_aerial(&hidden, "v.png", &grid(8, 5)).unwrap_err();
     assert!(
@@ -558,17 +553,7 @@ fn a_dark_noisy_floor_looks_like_the_floor() {
 fn a_shadow_needs_a_caster() {
     // A shadow 0.8 cell square on cells (4, 3) and (5, 3), away from every obstacle, robot and
     // goal: a shelf of the floor's own colour casts it, and the view is refused.
-    let shade = |img: &mut RgbImage, x0: u32| {
-        for y in 37..47 {
-            for x in x0..65 {
-                let p = img.get_pixel(x, y).0;
-                img.put_pixel(x, y, Rgb(p.map(|c| (f64::from(c) * 0.5) as u8)));
-            }
-        }
-    };
-    let mut img = scene().straight(12);
-    shade(&mut img, 55);
-    let e = read_aerial(&png(&img), "v.png", &grid(8, 5))
+    let e = read_aerial(&png(&shaded_from(55)), "v.png", &grid(8, 5))
         .unwrap_err()
         .to_string();
     assert!(
@@ -576,9 +561,7 @@ fn a_shadow_needs_a_caster() {
         "{e}"
     );
     // The same shadow running to the blocked cells (3, 1)–(3, 3): theirs; read as before.
-    let mut img = scene().straight(12);
-    shade(&mut img, 48);
-    let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
+    let r = read_aerial(&png(&shaded_from(48)), "v.png", &grid(8, 5)).unwrap();
     assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
     assert_eq!(r.grid.width() * r.grid.height(), 40);
     assert_eq!((0..40).filter(|&i| !r.grid.is_free(Cell(i))).count(), 3);
