@@ -30,6 +30,7 @@ use super::homography::Homography;
 use super::pixels::window;
 use super::shadows;
 use image::RgbImage;
+use rayon::prelude::*;
 
 /// The brightest a free cell's floor may be, relative to the lit floor's median.
 pub const BRIGHTER: f64 = 1.35;
@@ -382,77 +383,97 @@ pub fn look(
     // Floor pixels: (brightness, colour) after white balance.
     type Seen = (f64, u32, [f64; 3]);
     let mut seen: Vec<Seen> = Vec::with_capacity((x1 - x0) * (y1 - y0));
-    let side = shadows::SIDE as f64;
-    let axes = image_to_floor.along_axes((x0, x1), (y0, y1));
-    for y in y0..y1 {
-        for x in x0..x1 {
-            let point = match &axes {
-                Some(axes) => Some(axes.at(x, y)),
-                None => image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)),
-            };
-            let Some((u, v)) = point else {
-                continue;
-            };
-            let (du, dv) = (u - fx, v - fy);
-            if !(0.0..1.0).contains(&du) || !(0.0..1.0).contains(&dv) {
-                continue;
-            }
-            out.area += 1;
-            let class = classes[y * width + x];
-            let (bu, bv) = (
-                ((du * side) as usize).min(shadows::SIDE - 1),
-                ((dv * side) as usize).min(shadows::SIDE - 1),
-            );
-            let bin = &mut out.bins[bv * shadows::SIDE + bu];
-            let near = near_mark[y * width + x];
-            if near == NEAR_EDGE || class == Class::Robot as u8 || class == Class::Goal as u8 {
-                bin.mark += 1;
-                // A speck of the robots' colour (on a shelf's edge, in noise) is no robot: only
-                // the pixels of a robot's blob count (issue #29's fifteenth round, U0017).
-                bin.robot += u32::from(class == Class::Robot as u8 && near == NEAR_EDGE);
-                continue;
-            }
-            let floor = class == Class::Floor as u8;
-            // Only the floor's pixels are seen in colour.
-            let rgb = if floor {
-                classifier.balanced(img.get_pixel(x as u32, y as u32).0)
+    // Where a pixel lies in the cell, from its offset `t` (0–1) along one axis: its bin
+    // along that axis, whether it lies on a painted line, and whether within the middle's
+    // window; `None` outside the cell.
+    let place = |t: f64, (lo, hi): (f64, f64)| {
+        (0.0..1.0).contains(&t).then(|| {
+            (
+                ((t * shadows::SIDE as f64) as usize).min(shadows::SIDE - 1),
+                t.min(1.0 - t) < shadows::LINE,
+                !(t < lo || t > hi),
+            )
+        })
+    };
+    type Along = (usize, bool, bool);
+    let mut visit = |x: usize, y: usize, (bu, line_u, in_u): Along, (bv, line_v, in_v): Along| {
+        out.area += 1;
+        let class = classes[y * width + x];
+        let bin = &mut out.bins[bv * shadows::SIDE + bu];
+        let near = near_mark[y * width + x];
+        if near == NEAR_EDGE || class == Class::Robot as u8 || class == Class::Goal as u8 {
+            bin.mark += 1;
+            // A speck of the robots' colour (on a shelf's edge, in noise) is no robot: only
+            // the pixels of a robot's blob count (issue #29's fifteenth round, U0017).
+            bin.robot += u32::from(class == Class::Robot as u8 && near == NEAR_EDGE);
+            return;
+        }
+        let floor = class == Class::Floor as u8;
+        // Only the floor's pixels are seen in colour.
+        let rgb = if floor {
+            classifier.balanced(img.get_pixel(x as u32, y as u32).0)
+        } else {
+            [0.0; 3]
+        };
+        if floor {
+            if line_u || line_v {
+                // Painted lines and their blur: neither shadow nor lit floor.
             } else {
-                [0.0; 3]
-            };
-            let on_line = du.min(1.0 - du).min(dv).min(1.0 - dv) < shadows::LINE;
-            if floor {
-                if on_line {
-                    // Painted lines and their blur: neither shadow nor lit floor.
+                let b = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+                if b < shadows::DARK {
+                    bin.dark += 1;
                 } else {
-                    let b = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
-                    if b < shadows::DARK {
-                        bin.dark += 1;
-                    } else {
-                        bin.lit += 1;
-                    }
-                    bin.brightness = bin
-                        .brightness
-                        .saturating_add((b * 1000.0).round().min(1e6) as u32);
+                    bin.lit += 1;
                 }
-            } else {
-                bin.solid += 1;
+                bin.brightness = bin.brightness.saturating_add(thousandths(b));
             }
-            if du < wu.0 || du > wu.1 || dv < wv.0 || dv > wv.1 || near <= NEAR_HALO {
-                continue;
+        } else {
+            bin.solid += 1;
+        }
+        if !(in_u && in_v) || near <= NEAR_HALO {
+            return;
+        }
+        out.unsure.1 += 1;
+        match class {
+            c if c == Class::Unsure as u8 => out.unsure.0 += 1,
+            c if c == Class::Floor as u8 => {
+                seen.push((rgb[0].max(rgb[1]).max(rgb[2]), seen.len() as u32, rgb));
+                out.leaning.1 += 1;
+                // Leaning pale in a mark's hue within a cell of a mark: its glow.
+                let glowing = || near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
+                if leaned.get(y * width + x) == Some(&true) && !glowing() {
+                    out.leaning.0 += 1;
+                }
             }
-            out.unsure.1 += 1;
-            match class {
-                c if c == Class::Unsure as u8 => out.unsure.0 += 1,
-                c if c == Class::Floor as u8 => {
-                    seen.push((rgb[0].max(rgb[1]).max(rgb[2]), seen.len() as u32, rgb));
-                    out.leaning.1 += 1;
-                    // Leaning pale in a mark's hue within a cell of a mark: its glow.
-                    let glowing = || near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
-                    if leaned.get(y * width + x) == Some(&true) && !glowing() {
-                        out.leaning.0 += 1;
+            _ => {}
+        }
+    };
+    match image_to_floor.along_axes((x0, x1), (y0, y1)) {
+        // Straight down: a pixel's place along each axis is its column's and its row's.
+        Some(axes) => {
+            let columns: Vec<_> = (x0..x1).map(|x| place(axes.at(x, y0).0 - fx, wu)).collect();
+            for y in y0..y1 {
+                let Some(along_v) = place(axes.at(x0, y).1 - fy, wv) else {
+                    continue;
+                };
+                for (x, along_u) in (x0..x1).zip(&columns) {
+                    if let Some(along_u) = *along_u {
+                        visit(x, y, along_u, along_v);
                     }
                 }
-                _ => {}
+            }
+        }
+        None => {
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5))
+                    else {
+                        continue;
+                    };
+                    if let (Some(along_u), Some(along_v)) = (place(u - fx, wu), place(v - fy, wv)) {
+                        visit(x, y, along_u, along_v);
+                    }
+                }
             }
         }
     }
@@ -481,6 +502,15 @@ pub fn look(
     out
 }
 
+/// `b` in thousandths, rounded half away from zero and at most a million (a bin's brightness
+/// sums them): as `(b * 1000.0).round().min(1e6) as u32`, without the call `round` costs on
+/// every floor pixel (the sum with the largest double below one half, truncated, rounds
+/// every double as `round` does; negative values and NaN give what the cast gives them).
+#[inline]
+fn thousandths(b: f64) -> u32 {
+    (b * 1000.0 + 0.499_999_999_999_999_94).min(1e6) as u32
+}
+
 /// How near each pixel lies to a robot's or a goal's blob of at least [`blobs::MIN_AREA`]
 /// pixels (smaller specks of a mark's colour are noise, on a shelf too): the index of the
 /// first of `reach` (in pixels, ascending) within which it lies, a square around each of the
@@ -502,44 +532,69 @@ pub fn mark_reach(classes: &mut [u8], width: usize, reach: &[usize]) -> Vec<u8> 
     if seeds.is_empty() {
         return out;
     }
+    // The seeds' columns, row by row.
+    let mut starts = vec![0usize; height + 1];
+    for &(_, y) in &seeds {
+        starts[y + 1] += 1;
+    }
+    for y in 0..height {
+        starts[y + 1] += starts[y];
+    }
+    let mut columns = vec![0usize; seeds.len()];
+    let mut next = starts.clone();
+    for &(x, y) in &seeds {
+        columns[next[y]] = x;
+        next[y] += 1;
+    }
     let mut rows = vec![false; classes.len()];
-    let mut count = vec![0u32; width];
-    // The widest reach first, each narrower one over it.
+    // The widest reach first, each narrower one over it; rows and bands of rows on all cores
+    // (each pixel's value does not depend on how they are split).
     for (k, &r) in reach.iter().enumerate().rev() {
-        // Along rows (from each marked pixel), then along columns.
-        rows.fill(false);
-        for &(x, y) in &seeds {
-            let row = y * width;
-            rows[row + x.saturating_sub(r)..=row + (x + r).min(width - 1)].fill(true);
-        }
-        // Row by row (in memory order), each column's count of the rows within r marked there.
-        count.fill(0);
-        let row = |y: usize| &rows[y * width..(y + 1) * width];
-        for y in 0..r.min(height) {
-            count
-                .iter_mut()
-                .zip(row(y))
-                .for_each(|(n, &m)| *n += u32::from(m));
-        }
-        for y in 0..height {
-            if y + r < height {
-                count
-                    .iter_mut()
-                    .zip(row(y + r))
-                    .for_each(|(n, &m)| *n += u32::from(m));
+        // Along rows: the pixels within r of a marked pixel of their row.
+        rows.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+            row.fill(false);
+            for &x in &columns[starts[y]..starts[y + 1]] {
+                row[x.saturating_sub(r)..=(x + r).min(width - 1)].fill(true);
             }
-            if y > r {
-                count
-                    .iter_mut()
-                    .zip(row(y - r - 1))
-                    .for_each(|(n, &m)| *n -= u32::from(m));
-            }
-            for (o, &n) in out[y * width..(y + 1) * width].iter_mut().zip(&count) {
-                if n > 0 {
-                    *o = k as u8;
+        });
+        // Then along columns, a band of rows at a time: each column's count of the rows
+        // within r marked there, slid down the band.
+        let band = (4 * r).max(64);
+        let rows = &rows;
+        out.par_chunks_mut(width * band)
+            .enumerate()
+            .for_each(|(b, out)| {
+                let row = |y: usize| &rows[y * width..(y + 1) * width];
+                let y0 = b * band;
+                let mut count = vec![0u32; width];
+                // As the sweep left it at the band's previous row.
+                for y in y0.saturating_sub(r + 1)..(y0 + r).min(height) {
+                    count
+                        .iter_mut()
+                        .zip(row(y))
+                        .for_each(|(n, &m)| *n += u32::from(m));
                 }
-            }
-        }
+                for (dy, line) in out.chunks_mut(width).enumerate() {
+                    let y = y0 + dy;
+                    if y + r < height {
+                        count
+                            .iter_mut()
+                            .zip(row(y + r))
+                            .for_each(|(n, &m)| *n += u32::from(m));
+                    }
+                    if y > r {
+                        count
+                            .iter_mut()
+                            .zip(row(y - r - 1))
+                            .for_each(|(n, &m)| *n -= u32::from(m));
+                    }
+                    for (o, &n) in line.iter_mut().zip(&count) {
+                        if n > 0 {
+                            *o = k as u8;
+                        }
+                    }
+                }
+            });
     }
     out
 }
@@ -773,6 +828,49 @@ mod tests {
                     .iter()
                     .any(|&(rx, ry): &(usize, usize)| rx.abs_diff(x) <= 2 && ry.abs_diff(y) <= 2);
                 assert_eq!(near[y * w + x] <= 1, want, "({x}, {y})");
+            }
+        }
+    }
+
+    #[test]
+    fn the_reach_is_the_same_across_the_bands_of_rows_it_is_swept_in() {
+        // Tall enough for several bands of rows at every reach; robots of 3 × 3 pixels (each
+        // a blob large enough to be a mark) scattered, some on the image's edges and some
+        // within a reach of a band's border.
+        let (w, h) = (37, 413);
+        let mut classes = vec![Class::Floor as u8; w * h];
+        let mut centres = Vec::new();
+        let mut state = 7u64;
+        for _ in 0..40 {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            let (x, y) = (
+                1 + ((state >> 33) % (w as u64 - 2)) as usize,
+                1 + ((state >> 17) % (h as u64 - 2)) as usize,
+            );
+            centres.push((x, y));
+        }
+        centres.extend([(1, 1), (w - 2, h - 2), (18, 63), (18, 64), (5, 127)]);
+        for &(x, y) in &centres {
+            for ny in y - 1..=y + 1 {
+                for nx in x - 1..=x + 1 {
+                    classes[ny * w + nx] = Class::Robot as u8;
+                }
+            }
+        }
+        let marked: Vec<bool> = classes.iter().map(|&c| c == Class::Robot as u8).collect();
+        let reach = [2, 5, 19];
+        let near = mark_reach(&mut classes, w, &reach);
+        for y in 0..h {
+            for x in 0..w {
+                let within = |r: usize| {
+                    (y.saturating_sub(r)..=(y + r).min(h - 1)).any(|ny| {
+                        (x.saturating_sub(r)..=(x + r).min(w - 1)).any(|nx| marked[ny * w + nx])
+                    })
+                };
+                let want = reach.iter().position(|&r| within(r)).unwrap_or(reach.len());
+                assert_eq!(usize::from(near[y * w + x]), want, "({x}, {y})");
             }
         }
     }
