@@ -65,6 +65,7 @@ use super::blobs::{self, column_row, Blob};
 use super::colour::Class;
 use super::homography::Homography;
 use super::pixels::OUTSIDE;
+use rayon::prelude::*;
 
 /// The middle of a cell, along each axis, whose pixels a blob must fill.
 pub const INNER: (f64, f64) = (0.1, 0.9);
@@ -488,8 +489,9 @@ pub fn absorb(
         }
         (median, sized, shelf_like)
     };
+    // Each blob alone, on all cores (in the order found).
     let without_robots: Vec<Vec<usize>> = blobs_found
-        .into_iter()
+        .into_par_iter()
         .map(|b| {
             b.into_iter()
                 .filter(|&i| robot_sized[i / 64] & (1 << (i % 64)) == 0)
@@ -512,28 +514,42 @@ pub fn absorb(
     // cells at [`FILLED`]: the shelves of a colour near the goals' break into specks of goal
     // pixels, and the median goal could be such a speck, several goals large (E0007: an olive
     // shelf ten goals large was then not large; issue #29's twelfth round).
+    // The cells' middles are remembered, one map a shifted grid (`known`: the middles do not
+    // depend on what asked for them first).
     let steps = (SHIFT_STEPS * SHIFT_STEPS) as usize;
-    let mut shifted: Vec<std::collections::BTreeMap<usize, Middle>> =
-        vec![Default::default(); 2 * steps];
-    let mut fills = |b: &[usize], classes: &[u8], j: usize, share: f64| {
-        (usize::from(j == 0)..steps).find_map(|k| {
+    type Known = std::collections::BTreeMap<usize, Middle>;
+    let fills = |known: &mut [Known], b: &[usize], classes: &[u8], aligned: bool, share: f64| {
+        (usize::from(!aligned)..steps).find_map(|k| {
             let shift = shift_of(k);
-            let known = &mut shifted[j * steps + k];
-            let cells =
-                filled_shifted(b, classes, width, maps, floor, (known, shift, share, false));
+            let cells = filled_shifted(
+                b,
+                classes,
+                width,
+                maps,
+                floor,
+                (&mut known[k], shift, share, false),
+            );
             (!cells.is_empty()).then_some((cells, shift))
         })
     };
-    let firm: Vec<Option<(Vec<usize>, Shift)>> = without_robots
-        .iter()
-        .map(|b| {
-            let aligned = filled_cells(b, classes, width, maps, floor, &mut known);
-            if !aligned.is_empty() {
-                return Some((aligned, ALIGNED));
-            }
-            fills(b, classes, 0, FILLED)
-        })
-        .collect();
+    // Each blob alone, on all cores (in the order found).
+    let firm: Vec<Option<(Vec<usize>, Shift)>> = {
+        let classes = &*classes;
+        without_robots
+            .par_iter()
+            .map_init(
+                || (Known::new(), vec![Known::new(); steps]),
+                |(known, shifted), b| {
+                    let aligned = filled_cells(b, classes, width, maps, floor, known);
+                    if !aligned.is_empty() {
+                        return Some((aligned, ALIGNED));
+                    }
+                    fills(shifted, b, classes, false, FILLED)
+                },
+            )
+            .collect()
+    };
+    let mut loose = vec![Known::new(); steps];
     let firm_ones: Vec<bool> = firm.iter().map(Option::is_some).collect();
     let goal_median = goal_median_without(classes, width, &without_robots, &firm_ones);
     // The marks a blob is measured against: those of the colours that make at least a tenth
@@ -561,7 +577,7 @@ pub fn absorb(
         .filter_map(|(b, firm)| {
             let found = firm.or_else(|| {
                 (b.len() as f64 >= MARKS_LARGE * mark(b))
-                    .then(|| fills(b, classes, 1, LOOSE))
+                    .then(|| fills(&mut loose, b, classes, true, LOOSE))
                     .flatten()
             });
             found.map(|(cells, shift)| (b, cells, shift))
