@@ -60,12 +60,61 @@ impl Blob {
     /// ragged or thin blob, 0 for one too small to have an inside (since issue #29's twelfth
     /// round).
     pub fn solidity(&self) -> f64 {
+        let inside = self.inside() as f64;
+        let area = self.pixels.len() as f64;
+        let radius = (area / std::f64::consts::PI).sqrt();
+        let disc = (radius - 1.0).max(0.0).powi(2) * std::f64::consts::PI / area;
+        if disc <= 0.0 {
+            return 0.0;
+        }
+        inside / area / disc
+    }
+
+    /// How many of its pixels have all four neighbours in the blob: on a map of its bounding
+    /// box, or, for a sparse blob in a large box, by searching its sorted pixels.
+    fn inside(&self) -> usize {
+        let Some((x0, y0, x1, y1)) = self.pixels.iter().fold(None, |b, &(x, y)| {
+            Some(match b {
+                None => (x, y, x, y),
+                Some((a, b, c, d)) => (x.min(a), y.min(b), x.max(c), y.max(d)),
+            })
+        }) else {
+            return 0;
+        };
+        let (bw, bh) = ((x1 - x0) as usize + 1, (y1 - y0) as usize + 1);
+        if bw.saturating_mul(bh) <= 16 * self.pixels.len() + 4096 {
+            let mut has = vec![false; bw * bh];
+            let at = |x: u32, y: u32| (y - y0) as usize * bw + (x - x0) as usize;
+            for &(x, y) in &self.pixels {
+                has[at(x, y)] = true;
+            }
+            // A pixel on the box's edge has a neighbour outside it.
+            self.pixels
+                .iter()
+                .filter(|&&(x, y)| {
+                    x > x0
+                        && x < x1
+                        && y > y0
+                        && y < y1
+                        && has[at(x - 1, y)]
+                        && has[at(x + 1, y)]
+                        && has[at(x, y - 1)]
+                        && has[at(x, y + 1)]
+                })
+                .count()
+        } else {
+            self.inside_sorted()
+        }
+    }
+
+    /// [`Blob::inside`] by searching the sorted pixels.
+    fn inside_sorted(&self) -> usize {
         let mut sorted: Vec<(u32, u32)> = self.pixels.iter().map(|&(x, y)| (y, x)).collect();
         sorted.sort_unstable();
         let has = |p: (u32, u32)| sorted.binary_search(&p).is_ok();
-        let inside = sorted
+        self.pixels
             .iter()
-            .filter(|&&(y, x)| {
+            .filter(|&&(x, y)| {
                 x > 0
                     && y > 0
                     && has((y, x - 1))
@@ -73,14 +122,7 @@ impl Blob {
                     && has((y - 1, x))
                     && has((y + 1, x))
             })
-            .count() as f64;
-        let area = sorted.len() as f64;
-        let radius = (area / std::f64::consts::PI).sqrt();
-        let disc = (radius - 1.0).max(0.0).powi(2) * std::f64::consts::PI / area;
-        if disc <= 0.0 {
-            return 0.0;
-        }
-        inside / area / disc
+            .count()
     }
 
     /// The blob of pixels given by index (row-major, `width` pixels a row).
@@ -1088,6 +1130,21 @@ pub fn on_floor(blob: &Blob, image_to_floor: &Homography) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        #[test]
+        fn the_inside_on_a_map_of_the_box_is_the_inside_searched(
+            pixels in proptest::collection::vec((0u32..24, 0u32..18), 0..300),
+            far in proptest::option::of((1000u32..5000, 1000u32..5000)),
+        ) {
+            // Dense in a small box (the map), or with a pixel far away (the search), and a
+            // pixel given twice counted twice as the search counts it.
+            let mut pixels = pixels;
+            pixels.extend(far);
+            let blob = Blob::from_pixels(pixels);
+            proptest::prop_assert_eq!(blob.inside(), blob.inside_sorted());
+        }
+    }
 
     /// A `w` × `h` class map of `fill`, with the rectangles given set to their class.
     fn class_map(
