@@ -135,7 +135,10 @@ fn grid(
     if cells.len() != gw as usize * gh as usize || bw == 0 || bh == 0 {
         return None;
     }
+    // Each bin alone, then each row of bins alone, on all cores.
+    use rayon::prelude::*;
     let kinds: Vec<Kind> = (0..bw * bh)
+        .into_par_iter()
         .map(|i| {
             let (bx, by) = (i % bw, i / bw);
             let c = (by / SIDE) * gw as usize + bx / SIDE;
@@ -149,26 +152,32 @@ fn grid(
         .collect();
     // Bins with a robot's pixels in them (more than `robot_share` of their pixels) or beside
     // them.
-    let robot = |bx: usize, by: usize| match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
-        None => false,
-        Some(b) => {
-            let b = &b[(by % SIDE) * SIDE + bx % SIDE];
-            let all = b.dark + b.lit + b.solid + b.mark;
-            b.robot > 0 && f64::from(b.robot) >= robot_share * f64::from(all)
-        }
-    };
-    let mut robot_near = vec![false; bw * bh];
-    for by in 0..bh {
-        for bx in 0..bw {
-            if robot(bx, by) {
-                for y in by.saturating_sub(1)..=(by + 1).min(bh - 1) {
-                    for x in bx.saturating_sub(1)..=(bx + 1).min(bw - 1) {
-                        robot_near[y * bw + x] = true;
-                    }
+    let robot: Vec<bool> = (0..bw * bh)
+        .into_par_iter()
+        .map(|i| {
+            let (bx, by) = (i % bw, i / bw);
+            match &cells[(by / SIDE) * gw as usize + bx / SIDE] {
+                None => false,
+                Some(b) => {
+                    let b = &b[(by % SIDE) * SIDE + bx % SIDE];
+                    let all = b.dark + b.lit + b.solid + b.mark;
+                    b.robot > 0 && f64::from(b.robot) >= robot_share * f64::from(all)
                 }
             }
-        }
-    }
+        })
+        .collect();
+    let mut robot_near = vec![false; bw * bh];
+    robot_near
+        .par_chunks_mut(bw)
+        .enumerate()
+        .for_each(|(by, row)| {
+            for ny in by.saturating_sub(1)..=(by + 1).min(bh - 1) {
+                for (bx, near) in row.iter_mut().enumerate() {
+                    let (x0, x1) = (bx.saturating_sub(1), (bx + 1).min(bw - 1));
+                    *near |= robot[ny * bw + x0..=ny * bw + x1].contains(&true);
+                }
+            }
+        });
     Some((kinds, robot_near))
 }
 
@@ -557,6 +566,39 @@ impl<'a> Sunlit<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_bins_beside_a_robots_bin_are_its_eight_neighbours() {
+        // A 3 × 2 floor of lit bins (12 × 8 bins), cell (1, 1) blocked; robots' pixels in
+        // bins (5, 3), (0, 0) and (11, 7), and in bin (8, 2) fewer than the share asked.
+        let lit = Bin {
+            lit: 10,
+            brightness: 10_000,
+            ..Bin::default()
+        };
+        let mut cells = vec![Some([lit; BINS]); 6];
+        cells[4] = None;
+        let mut robot = |(bx, by): (usize, usize), n: u32| {
+            let b = &mut cells[(by / SIDE) * 3 + bx / SIDE].as_mut().unwrap()
+                [(by % SIDE) * SIDE + bx % SIDE];
+            (b.robot, b.mark, b.lit) = (n, n, 10 - n);
+        };
+        for bin in [(5, 3), (0, 0), (11, 7)] {
+            robot(bin, 10);
+        }
+        robot((8, 2), 1);
+        let (kinds, near) = grid(&cells, &[1.0; 6], (3, 2), 0.25).unwrap();
+        assert_eq!(kinds[5], Kind::Lit);
+        assert_eq!(kinds[4 * 12 + 5], Kind::Caster);
+        for by in 0..8usize {
+            for bx in 0..12usize {
+                let want = [(5usize, 3usize), (0, 0), (11, 7)]
+                    .iter()
+                    .any(|&(x, y)| x.abs_diff(bx) <= 1 && y.abs_diff(by) <= 1);
+                assert_eq!(near[by * 12 + bx], want, "bin ({bx}, {by})");
+            }
+        }
+    }
 
     /// [`Sunlit::unattached`] of a floor, as `read` asks it.
     fn unattached(
