@@ -690,13 +690,17 @@ fn goal_median_without(
     blobs_found: &[Vec<usize>],
     taken: &[bool],
 ) -> usize {
-    let hidden: Vec<usize> = blobs_found
-        .iter()
-        .zip(taken)
-        .filter(|(_, &t)| t)
-        .flat_map(|(b, _)| b.iter().copied())
-        .filter(|&i| classes[i] == Class::Goal as u8)
-        .collect();
+    // The blobs' pixels on all cores (the set, not its order, matters).
+    let hidden: Vec<usize> = {
+        let classes = &*classes;
+        blobs_found
+            .par_iter()
+            .zip(taken)
+            .filter(|(_, &t)| t)
+            .flat_map_iter(|(b, _)| b.iter().copied())
+            .filter(|&i| classes[i] == Class::Goal as u8)
+            .collect()
+    };
     for &i in &hidden {
         classes[i] = OUTSIDE;
     }
