@@ -35,6 +35,7 @@ use super::blobs::column_row;
 use super::colour::Class;
 use super::homography::Homography;
 use super::pixels::OUTSIDE;
+use rayon::prelude::*;
 
 /// The least share of a cell's middle's floor pixels that leaned pale, in [`CELLS`] cells of
 /// a top at least.
@@ -92,17 +93,38 @@ pub fn settle(
     let inner = |f: f64| (MIDDLE.0..=MIDDLE.1).contains(&f);
     // The leaning pixels in each cell's middle first: only a cell with enough of them is
     // counted whole.
-    let mut leaning = vec![0u32; w * h];
-    for (i, _) in leaned.iter().enumerate().filter(|&(_, &l)| l) {
-        if classes[i] != floor {
-            continue;
-        }
-        if let Some((cu, cv, fu, fv)) = at(i) {
-            if inner(fu) && inner(fv) {
-                leaning[cv * w + cu] += 1;
-            }
-        }
-    }
+    // Counted per run of rows on all cores, then summed (whole numbers: the totals do not
+    // depend on how the rows were split).
+    let leaning: Vec<u32> = {
+        let classes = &*classes;
+        leaned
+            .par_chunks(width * 64)
+            .enumerate()
+            .fold(
+                || vec![0u32; w * h],
+                |mut leaning, (band, rows)| {
+                    for (k, _) in rows.iter().enumerate().filter(|&(_, &l)| l) {
+                        let i = band * width * 64 + k;
+                        if classes[i] != floor {
+                            continue;
+                        }
+                        if let Some((cu, cv, fu, fv)) = at(i) {
+                            if inner(fu) && inner(fv) {
+                                leaning[cv * w + cu] += 1;
+                            }
+                        }
+                    }
+                    leaning
+                },
+            )
+            .reduce(
+                || vec![0u32; w * h],
+                |mut total, part| {
+                    total.iter_mut().zip(&part).for_each(|(t, n)| *t += n);
+                    total
+                },
+            )
+    };
     // The share of a cell's middle's floor pixels that leaned pale, when it shows enough
     // floor to be judged.
     let share = |c: usize| -> Option<f64> {
@@ -130,6 +152,7 @@ pub fn settle(
     };
     // Each cell's share, when it leans at least by the lower limit.
     let shares: Vec<Option<f64>> = (0..w * h)
+        .into_par_iter()
         .map(|c| {
             (leaning[c] >= MIN_PIXELS)
                 .then(|| share(c))
