@@ -37,7 +37,7 @@ impl std::str::FromStr for Connectivity {
 }
 
 /// Offsets of the 8 moves: orthogonal first, then diagonal.
-const MOVES: [(i32, i32); 8] = [
+pub(crate) const MOVES: [(i32, i32); 8] = [
     (1, 0),
     (-1, 0),
     (0, 1),
