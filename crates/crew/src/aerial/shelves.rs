@@ -514,24 +514,26 @@ pub fn absorb(
     // cells at [`FILLED`]: the shelves of a colour near the goals' break into specks of goal
     // pixels, and the median goal could be such a speck, several goals large (E0007: an olive
     // shelf ten goals large was then not large; issue #29's twelfth round).
-    // The cells' middles are remembered, one map a shifted grid (`known`: the middles do not
-    // depend on what asked for them first).
+    // The first of the shifted grids (from the grid itself, `k` = 0, when `from_aligned`) whose
+    // cells the blob fills. The cells' middles are remembered, one map a shifted grid (`known`:
+    // a middle does not depend on what asked for it first).
     let steps = (SHIFT_STEPS * SHIFT_STEPS) as usize;
     type Known = std::collections::BTreeMap<usize, Middle>;
-    let fills = |known: &mut [Known], b: &[usize], classes: &[u8], aligned: bool, share: f64| {
-        (usize::from(!aligned)..steps).find_map(|k| {
-            let shift = shift_of(k);
-            let cells = filled_shifted(
-                b,
-                classes,
-                width,
-                maps,
-                floor,
-                (&mut known[k], shift, share, false),
-            );
-            (!cells.is_empty()).then_some((cells, shift))
-        })
-    };
+    let fills =
+        |known: &mut [Known], b: &[usize], classes: &[u8], from_aligned: bool, share: f64| {
+            (usize::from(!from_aligned)..steps).find_map(|k| {
+                let shift = shift_of(k);
+                let cells = filled_shifted(
+                    b,
+                    classes,
+                    width,
+                    maps,
+                    floor,
+                    (&mut known[k], shift, share, false),
+                );
+                (!cells.is_empty()).then_some((cells, shift))
+            })
+        };
     // Each blob alone, on all cores (in the order found).
     let firm: Vec<Option<(Vec<usize>, Shift)>> = {
         let classes = &*classes;
