@@ -73,14 +73,10 @@ impl Blob {
     /// How many of its pixels have all four neighbours in the blob: on a map of its bounding
     /// box, or, for a sparse blob in a large box, by searching its sorted pixels.
     fn inside(&self) -> usize {
-        let Some((x0, y0, x1, y1)) = self.pixels.iter().fold(None, |b, &(x, y)| {
-            Some(match b {
-                None => (x, y, x, y),
-                Some((a, b, c, d)) => (x.min(a), y.min(b), x.max(c), y.max(d)),
-            })
-        }) else {
+        if self.pixels.is_empty() {
             return 0;
-        };
+        }
+        let (x0, y0, x1, y1) = self.bbox;
         let (bw, bh) = ((x1 - x0) as usize + 1, (y1 - y0) as usize + 1);
         if bw.saturating_mul(bh) <= 16 * self.pixels.len() + 4096 {
             let mut has = vec![false; bw * bh];

@@ -97,14 +97,15 @@ pub fn settle(
     // depend on how the rows were split).
     let leaning: Vec<u32> = {
         let classes = &*classes;
+        let run = width * 64;
         leaned
-            .par_chunks(width * 64)
+            .par_chunks(run)
             .enumerate()
             .fold(
                 || vec![0u32; w * h],
                 |mut leaning, (band, rows)| {
                     for (k, _) in rows.iter().enumerate().filter(|&(_, &l)| l) {
-                        let i = band * width * 64 + k;
+                        let i = band * run + k;
                         if classes[i] != floor {
                             continue;
                         }
