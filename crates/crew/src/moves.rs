@@ -103,17 +103,36 @@ impl MoveGraph {
         if stop() {
             return None;
         }
-        let w = self.width as i32;
-        let offset = MOVES.map(|(dx, dy)| dy * w + dx);
         let mut dist = vec![NIL; self.cells()];
         dist[source as usize] = 0;
         queue.clear();
         queue.push(source);
-        let mut head = 0;
-        while head < queue.len() {
-            let c = queue[head];
-            head += 1;
-            if head % 65_536 == 0 && stop() {
+        self.expand(&mut dist, queue, &mut 0, NIL, stop)?;
+        Some(dist)
+    }
+
+    /// Goes on with a breadth-first search whose cells `queue` holds in the order found, the
+    /// first `head` of them expanded, until every cell nearer than `depth` steps is expanded:
+    /// then every cell within `depth` steps of the source has its distance in `dist`, and
+    /// every cell beyond still has [`NIL`]. `None` when `stop` says so (every 65 536 cells).
+    fn expand(
+        &self,
+        dist: &mut [u32],
+        queue: &mut Vec<u32>,
+        head: &mut usize,
+        depth: u32,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<()> {
+        let w = self.width as i32;
+        let offset = MOVES.map(|(dx, dy)| dy * w + dx);
+        while *head < queue.len() {
+            let c = queue[*head];
+            // In the order found, distances never fall: the rest are as far.
+            if dist[c as usize] >= depth {
+                break;
+            }
+            *head += 1;
+            if *head % 65_536 == 0 && stop() {
                 return None;
             }
             let d = dist[c as usize] + 1;
@@ -127,7 +146,7 @@ impl MoveGraph {
                 }
             }
         }
-        Some(dist)
+        Some(())
     }
 
     /// For a diagonal move `a → b`, the two other corners of its 2×2 square; `None` for a
@@ -166,9 +185,102 @@ pub fn distances_to_goals_until(
         .collect()
 }
 
+/// Breadth-first searches from each of a set of goals that stop at a depth and go on later
+/// (TSWAP's assignment needs the distances only up to its longest pair, see
+/// [`crate::tswap::bottleneck_assignment`]): `dist[g]` holds the exact step distance to goal g
+/// of every cell within the depth reached, [`NIL`] beyond and where no path goes.
+pub struct GoalSearches {
+    /// The distances found so far, one table a goal.
+    pub dist: Vec<Vec<u32>>,
+    /// Each search's cells in the order found, and how many of them are expanded.
+    fronts: Vec<(Vec<u32>, usize)>,
+}
+
+impl GoalSearches {
+    /// The searches from `goals`, each at its goal alone (depth 0).
+    pub fn new(graph: &MoveGraph, goals: &[Cell]) -> Self {
+        let dist = goals
+            .iter()
+            .map(|g| {
+                let mut d = vec![NIL; graph.cells()];
+                d[g.0 as usize] = 0;
+                d
+            })
+            .collect();
+        let fronts = goals.iter().map(|g| (vec![g.0], 0)).collect();
+        GoalSearches { dist, fronts }
+    }
+
+    /// Every search taken on until each cell within `depth` steps of its goal has its distance,
+    /// on all cores (each search alone: the tables do not depend on the cores). `None` when
+    /// `stop` says so (before, and every 65 536 cells of a search).
+    pub fn deepen(
+        &mut self,
+        graph: &MoveGraph,
+        depth: u32,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<()> {
+        self.dist
+            .par_iter_mut()
+            .zip(self.fronts.par_iter_mut())
+            .try_for_each(|(dist, (queue, head))| {
+                if stop() {
+                    return None;
+                }
+                graph.expand(dist, queue, head, depth, stop)
+            })
+    }
+
+    /// Whether every search has reached every cell it can: the tables are whole.
+    pub fn whole(&self) -> bool {
+        self.fronts.iter().all(|(queue, head)| *head == queue.len())
+    }
+
+    /// Search `g` taken on to every cell it can reach.
+    pub fn finish(&mut self, graph: &MoveGraph, g: usize) {
+        let (queue, head) = &mut self.fronts[g];
+        graph.expand(&mut self.dist[g], queue, head, NIL, &|| false);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_search_cut_short_and_finished_is_the_whole_table() {
+        let mut g = Grid::open(9, 7);
+        for x in 0..8 {
+            g.set_blocked(g.cell(x, 3).unwrap(), true);
+        }
+        g.set_blocked(g.cell(4, 5).unwrap(), true);
+        for conn in [Connectivity::Four, Connectivity::Eight] {
+            let m = MoveGraph::new(&g, conn);
+            let goals = [g.cell(0, 0).unwrap(), g.cell(2, 6).unwrap()];
+            let whole = distances_to_goals(&m, &goals);
+            let mut s = GoalSearches::new(&m, &goals);
+            for depth in [0, 1, 3, 6] {
+                s.deepen(&m, depth, &|| false).expect("never stopped");
+                for (cut, full) in s.dist.iter().zip(&whole) {
+                    for (&a, &b) in cut.iter().zip(full) {
+                        // Exact within the depth, nothing beyond.
+                        assert_eq!(
+                            a,
+                            if b <= depth { b } else { NIL },
+                            "{conn:?} depth {depth}"
+                        );
+                    }
+                }
+            }
+            assert!(!s.whole());
+            s.finish(&m, 1);
+            assert_eq!(s.dist[1], whole[1]);
+            assert_ne!(s.dist[0], whole[0]);
+            s.deepen(&m, NIL, &|| false).expect("never stopped");
+            assert!(s.whole());
+            assert_eq!(s.dist, whole);
+        }
+    }
 
     #[test]
     fn lists_the_grids_moves() {

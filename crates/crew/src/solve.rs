@@ -6,7 +6,7 @@ use crate::distance::UNREACHABLE;
 use crate::grid::Cell;
 use crate::instance::Instance;
 use crate::lacam::LacamEnd;
-use crate::moves::{distances_to_goals_until, MoveGraph};
+use crate::moves::{distances_to_goals_until, GoalSearches, MoveGraph};
 use crate::outcome::{Budget, CrewOutcome, CrewStats, Paths, Status};
 use crate::paper::resolve_by_waiting;
 use crate::prm::{PrmConfig, Roadmap};
@@ -486,6 +486,36 @@ fn solve_lacam(
     }
 }
 
+/// The depth of TSWAP's first goal searches; each round doubles it (see [`joint_tables`]).
+const FIRST_DEPTH: u32 = 32;
+
+/// The goal searches TSWAP needs from `starts`, and the bottleneck assignment on them: the
+/// searches go `first_depth` steps deep, then twice as deep, and so on, until the assignment
+/// pairs every robot or the searches reach every cell. A complete assignment within the depth
+/// reached is the one the whole tables give (its longest pair is within the depth, and every
+/// pair up to it is there), and TSWAP never needs a distance beyond its longest pair (each
+/// robot's distance to its goal never grows past it, and its next cell is one step nearer):
+/// on a large floor the searches stop near the goals, instead of crossing the whole map 500
+/// times. `None` when `stop` says so.
+fn joint_tables(
+    graph: &MoveGraph,
+    goals: &[Cell],
+    starts: &[u32],
+    first_depth: u32,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Option<(GoalSearches, Vec<Option<usize>>)> {
+    let mut searches = GoalSearches::new(graph, goals);
+    let mut depth = first_depth.max(1);
+    loop {
+        searches.deepen(graph, depth, stop)?;
+        let greedy = bottleneck_assignment(&searches.dist, starts);
+        if greedy.iter().all(Option::is_some) || searches.whole() {
+            return Some((searches, greedy));
+        }
+        depth = depth.saturating_mul(2);
+    }
+}
+
 /// Unlabelled: TSWAP from the bottleneck step-distance assignment.
 fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcome {
     let (grid, conn) = (&inst.grid, inst.connectivity);
@@ -503,14 +533,15 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
         }
     };
     let fallback: Vec<usize> = (0..inst.robot_count()).collect();
-    let tables = MoveGraph::new_until(grid, conn, &|| budget.out_of_time()).and_then(|graph| {
-        distances_to_goals_until(&graph, &inst.goals, &|| budget.out_of_time()).map(|d| (graph, d))
+    let stop = || budget.out_of_time();
+    let tables = MoveGraph::new_until(grid, conn, &stop).and_then(|graph| {
+        joint_tables(&graph, &inst.goals, &starts, FIRST_DEPTH, &stop).map(|t| (graph, t))
     });
-    let Some((graph, dist)) = tables else {
+    let Some((graph, (mut searches, greedy))) = tables else {
         let (status, reason) = tables_out_of_time(grid, inst.goals.len());
         return done(status, fallback, None, Some(reason), stats);
     };
-    let greedy = bottleneck_assignment(&dist, &starts);
+    let dist = &searches.dist;
     if let Some(r) = greedy.iter().position(Option::is_none) {
         return done(
             Status::Infeasible,
@@ -529,16 +560,18 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
         .max()
         .unwrap_or(0);
     let max_steps = (longest + inst.robot_count() as u32 + grid.len() as u32).saturating_mul(4);
-    match tswap(&graph, &dist, &goal_cells, &starts, &initial, max_steps, budget) {
+    match tswap(&graph, dist, &goal_cells, &starts, &initial, max_steps, budget) {
         TswapEnd::Found { goals, paths } => {
             stats.first_solution = Some(started.elapsed());
-            stats.lower_bound = Some(
-                starts
-                    .iter()
-                    .zip(&goals)
-                    .map(|(&s, &g)| u64::from(dist[g][s as usize]))
-                    .sum(),
-            );
+            // A robot's last goal may lie beyond the depth its search reached.
+            let mut bound = 0u64;
+            for (&s, &g) in starts.iter().zip(&goals) {
+                if searches.dist[g][s as usize] == crate::moves::NIL {
+                    searches.finish(&graph, g);
+                }
+                bound += u64::from(searches.dist[g][s as usize]);
+            }
+            stats.lower_bound = Some(bound);
             done(Status::Feasible, goals, Some(to_cells(paths)), None, stats)
         }
         TswapEnd::Unreachable { robot } => done(
@@ -557,5 +590,87 @@ fn solve_joint(inst: &Instance, budget: &Budget, started: Instant) -> CrewOutcom
             )),
             stats,
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Connectivity;
+    use crate::moves::distances_to_goals;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Searches cut at any depth give TSWAP the same assignment and the same plan as the whole
+    /// tables, on random floors with walls (robots walled off from every goal too), for both
+    /// connectivities; within the depth reached their distances are the whole tables'.
+    #[test]
+    fn goal_searches_cut_short_plan_as_the_whole_tables() {
+        let mut rng = ChaCha8Rng::seed_from_u64(29);
+        for case in 0..120 {
+            let (w, h) = (rng.gen_range(3..14u32), rng.gen_range(3..14u32));
+            let conn = if case % 2 == 0 {
+                Connectivity::Four
+            } else {
+                Connectivity::Eight
+            };
+            let mut grid = crate::Grid::open(w, h);
+            for c in 0..grid.len() as u32 {
+                if rng.gen_bool(0.25) {
+                    grid.set_blocked(Cell(c), true);
+                }
+            }
+            let mut free: Vec<Cell> = (0..grid.len() as u32)
+                .map(Cell)
+                .filter(|&c| grid.is_free(c))
+                .collect();
+            if free.len() < 2 {
+                continue;
+            }
+            for i in (1..free.len()).rev() {
+                free.swap(i, rng.gen_range(0..=i));
+            }
+            let n = rng.gen_range(1..=(free.len() / 2).min(12));
+            let goals: Vec<Cell> = free[..n].to_vec();
+            let starts: Vec<u32> = free[n..2 * n].iter().map(|c| c.0).collect();
+            let goal_cells: Vec<u32> = goals.iter().map(|c| c.0).collect();
+            let graph = MoveGraph::new(&grid, conn);
+            let whole = distances_to_goals(&graph, &goals);
+            let want = bottleneck_assignment(&whole, &starts);
+            let plan = |dist: &[Vec<u32>], initial: &[Option<usize>]| {
+                let initial: Option<Vec<usize>> = initial.iter().copied().collect();
+                initial.map(|i| {
+                    let end = tswap(
+                        &graph,
+                        dist,
+                        &goal_cells,
+                        &starts,
+                        &i,
+                        10_000,
+                        &Budget::default(),
+                    );
+                    match end {
+                        TswapEnd::Found { goals, paths } => Some((goals, paths)),
+                        _ => None,
+                    }
+                })
+            };
+            let want_plan = plan(&whole, &want);
+            for first in [1, 2, 3, 5, 32] {
+                let (searches, got) =
+                    joint_tables(&graph, &goals, &starts, first, &|| false).expect("never stopped");
+                assert_eq!(got, want, "case {case}, first depth {first}");
+                assert_eq!(
+                    plan(&searches.dist, &got),
+                    want_plan,
+                    "case {case}, first depth {first}"
+                );
+                for (cut, full) in searches.dist.iter().zip(&whole) {
+                    for (&a, &b) in cut.iter().zip(full) {
+                        assert!(a == b || a == crate::moves::NIL, "case {case}: {a} for {b}");
+                    }
+                }
+            }
+        }
     }
 }
