@@ -3,7 +3,7 @@
 
 use crate::error::{InputError, InputResult};
 use crate::files::{read_input, MAX_INPUT_BYTES};
-use mason_crew::aerial::{read_aerial, AerialConfig, AerialReading};
+use mason_crew::aerial::{decode, read_aerial_image, AerialConfig, AerialReading, MAX_PIXELS};
 use mason_crew::image::{read_birdseye, read_occupancy};
 use mason_crew::movingai::{parse_map, parse_scen};
 use mason_crew::{
@@ -43,7 +43,7 @@ pub fn load_crew(input: &CrewInput<'_>, conn: Connectivity) -> InputResult<(Inst
                     "--agents applies to --scen, not to --image",
                 ));
             }
-            let view = load_view(image, None, conn)?;
+            let view = load_view(image, None, conn, false)?;
             Ok((view.inst, view.name))
         }
         (Some(map), Some(scen), None) => {
@@ -73,28 +73,35 @@ pub struct View {
     pub name: String,
     /// The aerial reading (`None` for a one-pixel-per-cell map).
     pub aerial: Option<AerialReading>,
-    /// The image file's bytes (for an overlay).
+    /// The image file's bytes (for an overlay), when asked to keep them; else empty.
     pub bytes: Vec<u8>,
 }
 
 /// Reads an image: with `aerial` (grid, cell size or corners given) as a photograph of the
 /// floor; without, a one-pixel-per-cell map of at most 16 colours reads as before
 /// ([`read_birdseye`]) and anything else as a photograph whose grid is painted on the floor,
-/// or is refused.
+/// or is refused. The file's bytes are kept in the view with `keep_bytes` (to draw an
+/// overlay); without, a photograph's are let go once decoded, before it is read (the speed
+/// case's 27 MB PNG is a fifth of the reading's peak memory).
 pub fn load_view(
     path: &Path,
     aerial: Option<&AerialConfig>,
     conn: Connectivity,
+    keep_bytes: bool,
 ) -> InputResult<View> {
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     let name = path.display().to_string();
-    let bytes = read(path)?;
+    let mut bytes = read(path)?;
     let (grid, robots, goals, reading) = if pixel_map(&bytes, &name, aerial) {
         let seen = read_birdseye(&bytes, &name).map_err(bad)?;
         (seen.grid, seen.robots, seen.goals, None)
     } else {
         let config = aerial.cloned().unwrap_or_default();
-        let r = read_aerial(&bytes, &name, &config).map_err(bad)?;
+        let img = decode(&bytes, &name, MAX_PIXELS).map_err(bad)?;
+        if !keep_bytes {
+            bytes = Vec::new();
+        }
+        let r = read_aerial_image(&img, &name, &config).map_err(bad)?;
         (r.grid.clone(), r.robot_cells(), r.goal_cells(), Some(r))
     };
     let inst = Instance::new(grid, conn, robots, goals, None, &name).map_err(bad)?;
@@ -122,24 +129,32 @@ pub struct AuditedView {
     pub name: String,
     /// The reading and the refusals.
     pub audited: mason_crew::aerial::Audited,
-    /// The image file's bytes (for an overlay).
+    /// The image file's bytes (for an overlay), when asked to keep them; else empty.
     pub bytes: Vec<u8>,
 }
 
 /// Reads a photograph of the floor past every refusal about a cell
 /// ([`mason_crew::aerial::audit_aerial`]). A one-pixel-per-cell map (without `aerial`) has
-/// nothing to audit and is refused.
-pub fn audit_view(path: &Path, aerial: Option<&AerialConfig>) -> InputResult<AuditedView> {
+/// nothing to audit and is refused. The file's bytes as for [`load_view`].
+pub fn audit_view(
+    path: &Path,
+    aerial: Option<&AerialConfig>,
+    keep_bytes: bool,
+) -> InputResult<AuditedView> {
     let bad = |e: mason_crew::CrewError| InputError::bad(e.to_string());
     let name = path.display().to_string();
-    let bytes = read(path)?;
+    let mut bytes = read(path)?;
     if pixel_map(&bytes, &name, aerial) {
         return Err(InputError::bad(format!(
             "{name}: a one-pixel-per-cell map has no refusal to audit (--audit reads photographs)"
         )));
     }
     let config = aerial.cloned().unwrap_or_default();
-    let audited = mason_crew::aerial::audit_aerial(&bytes, &name, &config).map_err(bad)?;
+    let img = decode(&bytes, &name, MAX_PIXELS).map_err(bad)?;
+    if !keep_bytes {
+        bytes = Vec::new();
+    }
+    let audited = mason_crew::aerial::audit_aerial_image(&img, &name, &config).map_err(bad)?;
     Ok(AuditedView {
         name,
         audited,
@@ -314,6 +329,33 @@ pub fn check_size(inst: &Instance, source: &str) -> InputResult<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A photograph read without keeping its file's bytes reads the same, and keeps none.
+    #[test]
+    fn a_view_keeps_its_file_only_when_asked() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../tests/data/aerial/A0901.png"
+        ));
+        let config = AerialConfig {
+            grid: Some((12, 8)),
+            ..AerialConfig::default()
+        };
+        let kept = load_view(path, Some(&config), Connectivity::Eight, true).unwrap();
+        let let_go = load_view(path, Some(&config), Connectivity::Eight, false).unwrap();
+        assert_eq!(kept.bytes, std::fs::read(path).unwrap());
+        assert!(let_go.bytes.is_empty());
+        assert_eq!(kept.inst.grid, let_go.inst.grid);
+        assert_eq!(kept.inst.robots, let_go.inst.robots);
+        assert_eq!(kept.inst.goals, let_go.inst.goals);
+        let audited = audit_view(path, Some(&config), false).unwrap();
+        assert!(audited.bytes.is_empty());
+        assert_eq!(
+            audit_view(path, Some(&config), true).unwrap().bytes,
+            kept.bytes
+        );
+        assert_eq!(audited.audited.reading.grid, kept.inst.grid);
+    }
 
     #[test]
     fn the_inputs_must_come_in_a_sensible_combination() {

@@ -166,7 +166,12 @@ pub fn run(a: CrewArgs) -> CliResult<()> {
             if a.agents.is_some() {
                 return Err(input_error("--agents applies to --scen, not to --image"));
             }
-            let v = mason_io::load_view(image, aerial.as_ref(), choices.connectivity)?;
+            let v = mason_io::load_view(
+                image,
+                aerial.as_ref(),
+                choices.connectivity,
+                a.overlay.is_some(),
+            )?;
             (v.inst.clone(), v.name.clone(), Some(v))
         }
         _ => {
@@ -239,7 +244,7 @@ fn audit(a: &CrewArgs, aerial: Option<&mason_crew::aerial::AerialConfig>) -> Cli
         name,
         audited,
         bytes,
-    } = mason_io::audit_view(image, aerial)?;
+    } = mason_io::audit_view(image, aerial, a.overlay.is_some())?;
     let r = &audited.reading;
     for doubt in &audited.doubts {
         eprintln!("doubt: {doubt}");

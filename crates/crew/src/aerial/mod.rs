@@ -558,7 +558,16 @@ pub fn audit_aerial(
     config: &AerialConfig,
 ) -> Result<Audited, CrewError> {
     let img = decode(bytes, source, MAX_PIXELS)?;
-    read(&img, source, config, true)
+    audit_aerial_image(&img, source, config)
+}
+
+/// [`audit_aerial`] on an image already decoded.
+pub fn audit_aerial_image(
+    img: &RgbImage,
+    source: &str,
+    config: &AerialConfig,
+) -> Result<Audited, CrewError> {
+    read(img, source, config, true)
 }
 
 /// The reader: with `audit`, past the cells' refusals (see [`audit_aerial`]).
