@@ -321,6 +321,18 @@ FAMILIES = {
                              (0.72, 0.60, 0.42)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # f: held out, rendered in issue #29's twenty-first round (which changed no reading rule)
+    # and not looked at until scored once. Puck, box-dome and box robots, disc, cross and
+    # diamond goals, light sand, dark slate-blue and mid warm-grey floors tiled every half
+    # cell, navy, pale peach, forest green, light grey-violet and rust shelves from 0.3 to 2.1
+    # high inset 0.05 cell, a sun 25-70 degrees up of strength 2.4-3.8, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "f": dict(robot_shapes=("puck", "boxdome", "box"), goal_shapes=("disc", "cross", "diamond"),
+              floors=((0.74, 0.68, 0.56), (0.18, 0.21, 0.28), (0.50, 0.47, 0.44)),
+              shelf_colours=((0.08, 0.12, 0.35), (0.88, 0.74, 0.62), (0.12, 0.32, 0.16), (0.70, 0.68, 0.78),
+                             (0.58, 0.26, 0.12)),
+              shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 
