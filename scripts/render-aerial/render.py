@@ -333,6 +333,18 @@ FAMILIES = {
                              (0.58, 0.26, 0.12)),
               shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # g: held out from issue #29's twenty-first round, rendered after its final reader (the
+    # band check of `face::shifted_run`) and not looked at until scored once. Yawed-box,
+    # cylinder and dome robots, ring, ellipse and cross goals, pale cream, mid blue-grey and
+    # dark brown floors tiled every third of a cell, ivory, plum, teal, khaki and charcoal
+    # shelves from 0.3 to 2.2 high inset 0.06 cell, a sun 25-70 degrees up of strength
+    # 2.4-3.8, warmer and cooler light, and a camera from 45 to 165 cells per 24 high.
+    "g": dict(robot_shapes=("rotbox", "cylinder", "dome"), goal_shapes=("ring", "ellipse", "cross"),
+              floors=((0.80, 0.77, 0.68), (0.40, 0.44, 0.50), (0.24, 0.18, 0.14)),
+              shelf_colours=((0.90, 0.88, 0.80), (0.42, 0.18, 0.38), (0.08, 0.40, 0.42), (0.62, 0.58, 0.38),
+                             (0.20, 0.20, 0.22)),
+              shelf_height=(0.3, 2.2), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
 }
 
 

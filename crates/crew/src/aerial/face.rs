@@ -253,9 +253,154 @@ fn profile(
         .collect()
 }
 
+/// How much darker than the lit floor around it (its local level) a free cell toward the
+/// nadir from a blocked run may be and still be read as a face ([`shifted_run`]): darker than
+/// lit floor's own spread, not as dark as most cast shadows.
+pub const BAND: (f64, f64) = (0.72, 0.9);
+/// The fewest cells side by side of a run whose cells toward the nadir all show such a band.
+pub const BAND_RUN: usize = 2;
+/// A sun whose direction (toward it) leans less than this against the band's direction cannot
+/// cast the run's shadow over the band (cosine).
+pub const BAND_SUN: f64 = -0.3;
+
+/// A run of blocked cells that may stand a whole cell nearer the nadir (issue #29's held-out
+/// family f, f0018). A tall top leaning a whole cell covers the cells beyond its base almost
+/// exactly, as a top of their own would; what tells the two apart is the base's cells: under a
+/// top of its own, the free cells toward the nadir show floor up to the run's border, while
+/// under a top leaning a whole cell they show the obstacle's face toward the nadir. A face in
+/// shade, of a pale shelf, reads as floor a little darker than the lit floor around it.
+///
+/// So: along each row (and each column) of cells on one side of the nadir, the first run of at
+/// least [`BAND_RUN`] blocked cells side by side whose every neighbour toward the nadir across
+/// the run is a free cell, within [`BAND`] of its local lit level, when no sun the view's
+/// shadows give could cast the run's shadow over them (every sun's direction, toward it, at
+/// least [`BAND_SUN`] along the band's), or the view gives no sun. Cells the operator settled
+/// (`settled`) end a run and are not a band. Returns the run's first cell and the step from
+/// the run to its band; rows first, then columns, each in order.
+#[allow(clippy::too_many_arguments)]
+pub fn shifted_run(
+    blocked: &[bool],
+    settled: &[bool],
+    bright: &[Option<f64>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+    nadir_side: impl Fn(i64, i64) -> (i32, i32),
+    suns: &[(f64, f64)],
+) -> Option<((i64, i64), (i64, i64))> {
+    let (w, h) = (i64::from(gw), i64::from(gh));
+    let index = |x: i64, y: i64| (y * w + x) as usize;
+    let band_cell = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return false;
+        }
+        let i = index(x, y);
+        !blocked[i]
+            && !settled[i]
+            && bright[i].is_some_and(|b| {
+                let r = b / levels[i].max(f64::MIN_POSITIVE);
+                (BAND.0..=BAND.1).contains(&r)
+            })
+    };
+    let unlit = |step: (i64, i64)| {
+        suns.iter()
+            .all(|s| s.0 * step.0 as f64 + s.1 * step.1 as f64 >= BAND_SUN)
+    };
+    // Rows (the band a row nearer the nadir), then columns.
+    for rows in [true, false] {
+        let (lines, along) = if rows { (h, w) } else { (w, h) };
+        for a in 0..lines {
+            let cell = |b: i64| if rows { (b, a) } else { (a, b) };
+            let (sx, sy) = nadir_side(cell(0).0, cell(0).1);
+            let step = if rows {
+                (0, i64::from(sy))
+            } else {
+                (i64::from(sx), 0)
+            };
+            if step == (0, 0) || !unlit(step) {
+                continue;
+            }
+            let mut b = 0;
+            while b < along {
+                let start = b;
+                while b < along && {
+                    let (x, y) = cell(b);
+                    blocked[index(x, y)] && !settled[index(x, y)]
+                } {
+                    b += 1;
+                }
+                let run = (start..b).map(cell);
+                if (b - start) as usize >= BAND_RUN
+                    && run.clone().all(|(x, y)| band_cell(x + step.0, y + step.1))
+                {
+                    return Some((cell(start), step));
+                }
+                b += 1;
+            }
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A run of three blocked cells (row 1) with a band a little darker than the lit floor on
+    /// its side toward the nadir (row 2): refused without a sun, and with a sun that casts
+    /// shadows across the band's direction; not with a sun that casts the run's shadow over
+    /// the band, nor when the band is lit floor or shadow-dark, nor when the run is one cell,
+    /// nor when the operator settled a cell of the band.
+    #[test]
+    fn a_run_whose_cells_toward_the_nadir_show_a_band_may_stand_there() {
+        let (w, h) = (6u32, 5u32);
+        let mut blocked = vec![false; 30];
+        for x in 1..4 {
+            blocked[w as usize + x] = true;
+        }
+        let levels = vec![1.0; 30];
+        let bright_with = |band: f64| -> Vec<Option<f64>> {
+            (0..30)
+                .map(|i| {
+                    if blocked[i] {
+                        None
+                    } else if i / 6 == 2 && (1..4).contains(&(i % 6)) {
+                        Some(band)
+                    } else {
+                        Some(1.0)
+                    }
+                })
+                .collect()
+        };
+        // The nadir below the floor: every cell has it beyond, along y.
+        let side = |_: i64, _: i64| (0, 1);
+        let none = vec![false; 30];
+        let run = |bright: &[Option<f64>], settled: &[bool], suns: &[(f64, f64)]| {
+            shifted_run(&blocked, settled, bright, &levels, (w, h), side, suns)
+        };
+        let face = bright_with(0.81);
+        assert_eq!(run(&face, &none, &[]), Some(((1, 1), (0, 1))));
+        // A sun from the right: shadows fall left, not over the band.
+        assert_eq!(run(&face, &none, &[(1.0, 0.0)]), Some(((1, 1), (0, 1))));
+        // A sun from above (toward −y): the run's shadow falls over the band.
+        assert_eq!(run(&face, &none, &[(0.0, -1.0)]), None);
+        assert_eq!(run(&bright_with(1.0), &none, &[]), None);
+        assert_eq!(run(&bright_with(0.55), &none, &[]), None);
+        let mut settled = none.clone();
+        settled[2 * 6 + 2] = true;
+        assert_eq!(run(&face, &settled, &[]), None);
+        // One cell of the band lit: not a face across the run.
+        let mut partly = face.clone();
+        partly[2 * 6 + 3] = Some(1.0);
+        assert_eq!(run(&partly, &none, &[]), None);
+        // A run of one cell.
+        let mut one = blocked.clone();
+        one[w as usize + 2] = false;
+        one[w as usize + 3] = false;
+        assert_eq!(
+            shifted_run(&one, &none, &face, &levels, (w, h), side, &[]),
+            None
+        );
+    }
     use crate::aerial::colour::Class;
     use image::Rgb;
 

@@ -935,6 +935,38 @@ fn read(
     // The free floor's shadow bins and the sun's directions, found once for the far cells
     // and the shadows behind lit floor.
     let sunlit = shadows::Sunlit::new(&bins, &levels, (gw, gh));
+    // A run of blocked cells whose cells toward the nadir show a band a little darker than the
+    // lit floor, which no sun of the view's shadows casts: its base may be there, under a top
+    // leaning a whole cell (see `face::shifted_run`).
+    if let Some(n) = nadir {
+        let suns = sunlit
+            .as_ref()
+            .map(shadows::Sunlit::suns)
+            .unwrap_or_default();
+        let side = |x: i64, y: i64| nadir_side((x, y), n);
+        let found = face::shifted_run(
+            &blocked,
+            &is_settled,
+            &bright,
+            &levels,
+            (gw, gh),
+            side,
+            &suns,
+        );
+        if let Some(((x, y), (dx, dy))) = found {
+            doubt!(at_pixel(
+                source,
+                cell_centre_px((y * i64::from(gw) + x) as usize),
+                format!(
+                    "the blocked cells from cell ({x}, {y}) on are a run whose free cells toward the camera, from cell ({}, {}) on, show a band {:.2}–{:.2} as bright as the lit floor around them that no shadow explains: the obstacle may stand on those cells, its top leaning a whole cell over the run, its face showing there: cannot tell where it stands",
+                    x + dx,
+                    y + dy,
+                    face::BAND.0,
+                    face::BAND.1
+                ),
+            ));
+        }
+    }
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
     // top may cover whole, unless the shadow beside them shows the base reaching them.
     if !far_cells.is_empty() {
