@@ -344,6 +344,8 @@ pub fn shifted_run(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::aerial::colour::Class;
+    use image::Rgb;
 
     /// A run of three blocked cells (row 1) with a band a little darker than the lit floor on
     /// its side toward the nadir (row 2): refused without a sun, and with a sun that casts
@@ -401,8 +403,6 @@ mod tests {
             None
         );
     }
-    use crate::aerial::colour::Class;
-    use image::Rgb;
 
     /// A floor of 10 × 4 cells of 10 px seen straight down; along row 1, the cover of a run
     /// from u = 2 (the base's near edge) to `end`: a face of shade `face` up to `face_end`,
