@@ -345,6 +345,20 @@ FAMILIES = {
                              (0.20, 0.20, 0.22)),
               shelf_height=(0.3, 2.2), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # h: held out from issue #29's twenty-second round, rendered after its final reader (the
+    # shelves of the floor's colour told by their look and their shadow or hidden lines, in
+    # `corroborated`) and not looked at until scored once. Dome, puck and cylinder robots,
+    # square, disc and ring goals, warm grey, dark olive-grey and pale blue-grey floors tiled
+    # every quarter cell, shelves near the floors' colours (greige, dark olive, pale steel)
+    # and mustard and maroon ones, from 0.3 to 2.0 high inset 0.07 cell, a sun 20-65 degrees
+    # up of strength 2.2-3.6, warmer and cooler light, and a camera from 45 to 165 cells per
+    # 24 high.
+    "h": dict(robot_shapes=("dome", "puck", "cylinder"), goal_shapes=("square", "disc", "ring"),
+              floors=((0.62, 0.58, 0.52), (0.26, 0.27, 0.22), (0.70, 0.74, 0.80)),
+              shelf_colours=((0.66, 0.62, 0.55), (0.30, 0.31, 0.25), (0.74, 0.78, 0.84), (0.80, 0.62, 0.12),
+                             (0.40, 0.08, 0.12)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 65), sun_power=(2.2, 3.6)),
 }
 
 

@@ -1,7 +1,8 @@
 //! What Mason read from an aerial view, drawn over the view itself: the floor grid, the
 //! blocked cells, each robot (circle, numbered) and goal (square) where it was read, and the
 //! planned paths, all mapped into the image through the floor's homography; the cells the
-//! operator settled (dashed orange); for an audit, the refusals too, where they point.
+//! operator settled (dashed orange), the cells read as a shelf of the floor's colour (dotted
+//! magenta); for an audit, the refusals too, where they point.
 
 use crate::crew_svg::MAX_PATHS;
 use crate::svg::{escape, robot_colour};
@@ -117,8 +118,24 @@ pub fn aerial_audit_svg(
         let _ = write!(s, r#"<polygon points="{}"/>"#, pts.join(" "));
     }
     s.push_str("</g>");
-    // Cells the operator settled: a dashed orange outline inside the cell.
-    for &(c, blocked) in &reading.settled {
+    // Cells the operator settled: a dashed orange outline inside the cell; cells read as a
+    // shelf of the floor's colour: a dotted magenta one.
+    let outlined = reading
+        .settled
+        .iter()
+        .map(|&(c, blocked)| {
+            let how = if blocked { "blocked" } else { "free" };
+            (c, "#ff9100", 2.0, format!("settled {how} by the operator"))
+        })
+        .chain(reading.floor_tops.iter().map(|&c| {
+            (
+                c,
+                "#ff40ff",
+                0.8,
+                "read as a shelf of the floor's colour (it does not look like the floor, and a shadow nothing else casts or a hidden painted line agrees)".to_string(),
+            )
+        }));
+    for (c, colour, dash, why) in outlined {
         let (x, y) = grid.xy(c);
         let (x, y) = (f64::from(x), f64::from(y));
         let (a, b) = (0.08, 0.92);
@@ -131,11 +148,10 @@ pub fn aerial_audit_svg(
             .collect();
         let _ = write!(
             s,
-            r##"<polygon points="{}" fill="none" stroke="#ff9100" stroke-width="{:.2}" stroke-dasharray="{:.1}"><title>cell ({x}, {y}) settled {} by the operator</title></polygon>"##,
+            r##"<polygon points="{}" fill="none" stroke="{colour}" stroke-width="{:.2}" stroke-dasharray="{:.1}"><title>cell ({x}, {y}) {why}</title></polygon>"##,
             pts.join(" "),
             stroke,
-            2.0 * stroke,
-            if blocked { "blocked" } else { "free" }
+            dash * stroke,
         );
     }
     // Paths (every k-th beyond MAX_PATHS).

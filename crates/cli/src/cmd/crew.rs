@@ -511,6 +511,7 @@ pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
             "blocked": settled(true),
             "free": settled(false),
         },
+        "floor_tops": r.floor_tops.iter().map(|&c| xy(&r.grid, c)).collect::<Vec<_>>(),
     })
 }
 

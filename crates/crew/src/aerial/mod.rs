@@ -20,7 +20,10 @@
 //!    touch what casts it ([`shadows`]: a shelf of the floor's own colour shows by its shadow;
 //!    in a lamp's pool of light a shadow is judged against the light around it) and, under one
 //!    sun, lie behind it, not behind lit floor ([`shadows::Sunlit::unattached`]), and on a
-//!    floor with painted lines every line between free cells must show ([`painted`]);
+//!    floor with painted lines every line between free cells must show ([`painted`]); where
+//!    cells unlike the floor and a shadow nothing casts beside them, or a line hidden among
+//!    them, agree, they are a shelf of the floor's colour, and the view is read again with
+//!    them blocked ([`corroborated`]);
 //! 3. robots and goals as [`blobs`] of their colour, sized against the typical one of their
 //!    kind (the most alike blobs by count times area), each put on the cell under its centre on
 //!    the floor (a robot's top leans away from the camera; its base is found); a blob of
@@ -60,6 +63,7 @@
 
 pub mod blobs;
 pub mod colour;
+pub mod corroborated;
 pub mod cover;
 pub mod dull;
 pub mod enclosed;
@@ -188,6 +192,10 @@ pub struct AerialReading {
     /// The cells the operator settled ([`AerialConfig::blocked_cells`] and
     /// [`AerialConfig::free_cells`]), each with whether it is blocked, row-major.
     pub settled: Vec<(Cell, bool)>,
+    /// Cells read as blocked by a shelf of the floor's colour: unlike the floor, and with a
+    /// shadow that nothing else casts beside them or a painted line hidden between them
+    /// ([`corroborated`]), row-major.
+    pub floor_tops: Vec<Cell>,
 }
 
 impl AerialReading {
@@ -577,6 +585,18 @@ fn read(
     config: &AerialConfig,
     audit: bool,
 ) -> Result<Audited, CrewError> {
+    read_inner(img, source, config, audit, true).map(|(audited, _)| audited)
+}
+
+/// The reader; with `infer`, the shelves of the floor's colour that two kinds of evidence
+/// tell ([`corroborated`]) are proposed and the view read again with them blocked.
+fn read_inner(
+    img: &RgbImage,
+    source: &str,
+    config: &AerialConfig,
+    audit: bool,
+    infer: bool,
+) -> Result<(Audited, f64), CrewError> {
     let mut doubts: Vec<CrewError> = Vec::new();
     // A cell's refusal: at once, or, auditing, listed.
     macro_rules! doubt {
@@ -860,37 +880,47 @@ fn read(
             })
             .collect()
     };
-    let mut not_floor = looks.iter().enumerate().filter_map(|(i, look)| {
-        if is_settled[i] {
-            return None;
-        }
-        let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-        look.as_ref()?.odd().map(|why| {
-            at_pixel(
-                source,
-                cell_centre_px(i),
-                format!("cell ({x}, {y}) would be free but does not look like the floor: {why}"),
-            )
+    // Every such cell (for the shelves of the floor's colour); refused, auditing, each, else the
+    // first.
+    let (odd_cells, mut not_floor): (Vec<usize>, Vec<CrewError>) = looks
+        .iter()
+        .enumerate()
+        .filter_map(|(i, look)| {
+            if is_settled[i] {
+                return None;
+            }
+            let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            look.as_ref()?.odd().map(|why| {
+                (
+                    i,
+                    at_pixel(
+                        source,
+                        cell_centre_px(i),
+                        format!(
+                            "cell ({x}, {y}) would be free but does not look like the floor: {why}"
+                        ),
+                    ),
+                )
+            })
         })
-    });
-    // Auditing, every such cell; else the first.
-    let not_floor: Vec<CrewError> = if audit {
-        not_floor.collect()
-    } else {
-        not_floor.next().into_iter().collect()
-    };
+        .unzip();
+    if !audit {
+        not_floor.truncate(1);
+    }
     // Lit free cells side by side brighter or more tinted than the lit free floor around them
     // (see `looks::unlike_ring`): the top of a pale shelf of nearly the floor's colour.
     let bright: Vec<Option<f64>> = looks
         .iter()
         .map(|l| l.as_ref().and_then(|l| l.bright))
         .collect();
+    let mut unlike_cells: Vec<usize> = Vec::new();
+    let saturation: Vec<f64> = looks
+        .iter()
+        .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
+        .collect();
     let unlike = {
-        let saturation: Vec<f64> = looks
-            .iter()
-            .map(|l| l.as_ref().map_or(0.0, |l| l.saturation))
-            .collect();
         looks::unlike_ring(&bright, &saturation, (gw, gh), &is_settled).map(|(kind, r)| {
+            unlike_cells.clone_from(&r.cells);
             let first = r.cells.first().copied().unwrap_or(0);
             let (x, y) = ((first % gw as usize) as u32, (first / gw as usize) as u32);
             let why = match kind {
@@ -1005,6 +1035,7 @@ fn read(
     }
     // Every shadow on the free floor must have a caster (see `shadows`): a shelf of the
     // floor's own colour and brightness shows only by its shadow.
+    let shadow_regions = shadows::uncast_regions(&bins, &levels, (gw, gh));
     let uncast = {
         let doubt = |u: shadows::Uncast, why: &str| {
             let (x, y) = u.cell;
@@ -1017,7 +1048,10 @@ fn read(
                 ),
             )
         };
-        shadows::uncast(&bins, &levels, (gw, gh), &is_settled)
+        shadow_regions
+            .iter()
+            .map(|(u, _)| *u)
+            .find(|u| !is_settled[u.cell.1 as usize * gw as usize + u.cell.0 as usize])
             .map(|u| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
                 sunlit.as_ref()?.unattached(&is_settled).map(|u| {
@@ -1027,6 +1061,7 @@ fn read(
     };
     // On a floor with painted lines, every line between free cells must show (see
     // `painted`): a shelf of the floor's colour with hardly a shadow hides them.
+    let hidden_lines: Vec<[(u32, u32); 2]>;
     let hidden: Vec<CrewError> = {
         let found = painted::missing(
             img,
@@ -1039,6 +1074,7 @@ fn read(
         );
         let take = if audit { found.len() } else { 1 };
         let cell = |(x, y): (u32, u32)| y as usize * gw as usize + x as usize;
+        hidden_lines = found.iter().map(|m| m.cells).collect();
         found
             .into_iter()
             .filter(|m| !m.cells.iter().all(|&c| is_settled[cell(c)]))
@@ -1230,6 +1266,38 @@ fn read(
             ));
         }
     }
+    // Shelves of the floor's colour that two kinds of evidence tell: read again with them
+    // blocked, and that reading kept when it refuses nothing (see `corroborated`).
+    let told = !(not_floor.is_empty() && uncast.is_none() && unlike.is_none() && hidden.is_empty());
+    if infer && told && doubts.is_empty() {
+        let unlike_all: Vec<usize> = odd_cells.iter().chain(&unlike_cells).copied().collect();
+        let shadows_all: Vec<Vec<usize>> = shadow_regions
+            .into_iter()
+            .filter(|(u, _)| !is_settled[u.cell.1 as usize * gw as usize + u.cell.0 as usize])
+            .map(|(_, bins)| bins)
+            .collect();
+        let tops = corroborated::shelves(&unlike_all, &shadows_all, &hidden_lines, (gw, gh));
+        let free_looks: Vec<Option<(f64, f64, f64)>> = (0..cells)
+            .map(|i| {
+                let b = bright[i].filter(|_| grid.is_free(Cell(i as u32)) && !is_settled[i])?;
+                Some((b, saturation[i], levels[i]))
+            })
+            .collect();
+        if !tops.is_empty() && corroborated::alone(&tops, &free_looks) {
+            let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            let mut again = config.clone();
+            again.blocked_cells.extend(tops.iter().map(|&i| xy(i)));
+            if let Ok((mut read, lightly)) = read_inner(img, source, &again, audit, false) {
+                if read.doubts.is_empty() && lightly < corroborated::FREE_COVER {
+                    read.reading
+                        .settled
+                        .retain(|(c, _)| tops.binary_search(&(c.0 as usize)).is_err());
+                    read.reading.floor_tops = tops.iter().map(|&i| Cell(i as u32)).collect();
+                    return Ok((read, lightly));
+                }
+            }
+        }
+    }
     for e in not_floor
         .into_iter()
         .chain(uncast)
@@ -1238,24 +1306,33 @@ fn read(
     {
         doubt!(e);
     }
-    Ok(Audited {
-        reading: AerialReading {
-            grid,
-            robots,
-            goals,
-            cell_px: px,
-            grid_source,
-            corners,
-            floor_to_image,
-            image_size: (img.width(), img.height()),
-            settled: settled
-                .iter()
-                .enumerate()
-                .filter_map(|(i, s)| s.map(|b| (Cell(i as u32), b)))
-                .collect(),
+    // The most any free cell's window is covered by an obstacle.
+    let lightly = (0..cells)
+        .filter(|&i| grid.is_free(Cell(i as u32)))
+        .map(|i| shares[i])
+        .fold(0.0, f64::max);
+    Ok((
+        Audited {
+            reading: AerialReading {
+                grid,
+                robots,
+                goals,
+                cell_px: px,
+                grid_source,
+                corners,
+                floor_to_image,
+                image_size: (img.width(), img.height()),
+                settled: settled
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, s)| s.map(|b| (Cell(i as u32), b)))
+                    .collect(),
+                floor_tops: Vec::new(),
+            },
+            doubts,
         },
-        doubts,
-    })
+        lightly,
+    ))
 }
 
 /// Mean cell side in pixels over the floor.

@@ -211,30 +211,53 @@ pub fn uncast(
     (gw, gh): (u32, u32),
     settled: &[bool],
 ) -> Option<Uncast> {
+    uncast_regions(cells, levels, (gw, gh))
+        .into_iter()
+        .map(|(u, _)| u)
+        .find(|u| !is_settled(settled, u.cell, gw))
+}
+
+/// Every shadow that nothing in the image casts (as for [`uncast`], none settled), row-major,
+/// each with its bins (floor bin indices, `gw × SIDE` wide, row-major).
+pub fn uncast_regions(
+    cells: &[Option<[Bin; BINS]>],
+    levels: &[f64],
+    (gw, gh): (u32, u32),
+) -> Vec<(Uncast, Vec<usize>)> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
-    let (kinds, robot_near) = grid(cells, levels, (gw, gh), 0.0)?;
+    let Some((kinds, robot_near)) = grid(cells, levels, (gw, gh), 0.0) else {
+        return Vec::new();
+    };
     let dark: Vec<bool> = kinds.iter().map(|&k| k == Kind::Dark).collect();
-    regions(&dark, (bw, bh)).into_iter().find_map(|region| {
-        // What touches the region, its 8-neighbours included.
-        let (mut caster, mut mark) = (false, false);
-        for &i in &region {
-            mark |= robot_near[i];
-            let (x, y) = ((i % bw) as i64, (i / bw) as i64);
-            for (nx, ny) in (-1..=1i64).flat_map(|dy| (-1..=1i64).map(move |dx| (x + dx, y + dy))) {
-                if nx < 0 || ny < 0 || nx >= bw as i64 || ny >= bh as i64 {
-                    continue;
+    regions(&dark, (bw, bh))
+        .into_iter()
+        .filter_map(|region| {
+            // What touches the region, its 8-neighbours included.
+            let (mut caster, mut mark) = (false, false);
+            for &i in &region {
+                mark |= robot_near[i];
+                let (x, y) = ((i % bw) as i64, (i / bw) as i64);
+                for (nx, ny) in
+                    (-1..=1i64).flat_map(|dy| (-1..=1i64).map(move |dx| (x + dx, y + dy)))
+                {
+                    if nx < 0 || ny < 0 || nx >= bw as i64 || ny >= bh as i64 {
+                        continue;
+                    }
+                    let j = ny as usize * bw + nx as usize;
+                    caster |= kinds[j] == Kind::Caster;
+                    mark |= kinds[j] == Kind::Mark && robot_near[j];
                 }
-                let j = ny as usize * bw + nx as usize;
-                caster |= kinds[j] == Kind::Caster;
-                mark |= kinds[j] == Kind::Mark && robot_near[j];
             }
-        }
-        let size = region.len();
-        let cast = caster || (mark && size <= ROBOT_SHADOW);
-        (!cast && size >= MIN_SHADOW)
-            .then(|| Uncast::from_bin((region[0] % bw, region[0] / bw), size))
-            .filter(|u| !is_settled(settled, u.cell, gw))
-    })
+            let size = region.len();
+            let cast = caster || (mark && size <= ROBOT_SHADOW);
+            (!cast && size >= MIN_SHADOW).then(|| {
+                (
+                    Uncast::from_bin((region[0] % bw, region[0] / bw), size),
+                    region,
+                )
+            })
+        })
+        .collect()
 }
 
 /// The 4-connected regions of the bins `inside` (a grid `bw` × `bh`, row-major), each as its

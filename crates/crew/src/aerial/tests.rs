@@ -1007,3 +1007,64 @@ fn disc_px(cx: f64, cy: f64, r: f64) -> Vec<usize> {
         .map(|(x, y)| y * 120 + x)
         .collect()
 }
+
+/// A shelf of nearly the floor's colour on cell (6, 1): brighter than the floor, with its
+/// shadow beside it. Either alone is refused; together they tell the shelf
+/// ([`super::corroborated`]), unless another free cell looks like its top, or a free cell's
+/// window is partly covered. Each guard fails this test when taken out.
+#[test]
+fn a_shelf_of_the_floor_s_colour_is_told_by_its_look_and_its_shadow() {
+    let top = [224u8, 218, 205];
+    let view = |shadow: bool| {
+        let mut p = scene();
+        if shadow {
+            p.blocked.push((6, 1));
+        }
+        let mut img = p.straight(12);
+        fill(&mut img, (72, 12, 84, 24), top);
+        img
+    };
+    let blocked_cells = |r: &AerialReading| -> Vec<(u32, u32)> {
+        (0..40)
+            .filter(|&i| !r.grid.is_free(Cell(i)))
+            .map(|i| r.grid.xy(Cell(i)))
+            .collect()
+    };
+    let told = png(&view(true));
+    let r = read_aerial(&told, "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(blocked_cells(&r), [(3, 1), (6, 1), (3, 2), (3, 3)]);
+    assert_eq!(r.floor_tops, [Cell(14)]);
+    assert!(r.settled.is_empty());
+    let audited = audit_aerial(&told, "v.png", &grid(8, 5)).unwrap();
+    assert!(audited.doubts.is_empty(), "{:?}", audited.doubts);
+    assert_eq!(audited.reading.floor_tops, r.floor_tops);
+    // The look alone (no shadow): refused.
+    let e = read_aerial(&png(&view(false)), "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("does not look like the floor"), "{e}");
+    // Another free cell, (1, 3), as bright as the top: it may be one too.
+    let mut img = view(true);
+    fill(&mut img, (12, 36, 24, 48), top);
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("does not look like the floor"), "{e}");
+    // A free cell, (5, 3), a fifth brighter than the floor: like the floor on its own, but
+    // more like the top than the floor beside a top read so.
+    let brighter = [204u8, 198, 186];
+    let mut img = scene().straight(12);
+    fill(&mut img, (62, 38, 70, 46), brighter);
+    let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
+    assert!(r.grid.is_free(Cell(29)));
+    let mut img = view(true);
+    fill(&mut img, (62, 38, 70, 46), brighter);
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("does not look like the floor"), "{e}");
+    // A free cell, (6, 4), partly covered (a speck 1 × 5 px, past the 3 × 3 averaging a fifth
+    // of its window): read free alone, but not in a view read so.
+    let mut img = view(true);
+    fill(&mut img, (79, 52, 80, 57), [40, 70, 170]);
+    let e = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap_err();
+    assert!(e.reason.contains("does not look like the floor"), "{e}");
+    let mut img = scene().straight(12);
+    fill(&mut img, (79, 52, 80, 57), [40, 70, 170]);
+    let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
+    assert!(r.grid.is_free(Cell(38)));
+}
