@@ -322,13 +322,27 @@ fn refusals(n: usize) -> String {
     }
 }
 
-/// ", 2 cells settled (dashed orange)" for a title, when the operator settled any.
+/// ", 2 cells settled (dashed orange)" for a title, when the operator settled any, and ", 3
+/// cells a shelf of the floor's colour (dotted magenta)" when the reader read any.
 fn settled_note(r: &mason_crew::aerial::AerialReading) -> String {
-    match r.settled.len() {
-        0 => String::new(),
-        1 => ", 1 cell settled (dashed orange)".to_string(),
-        n => format!(", {n} cells settled (dashed orange)"),
+    let cells = |n: usize| {
+        if n == 1 {
+            "1 cell".to_string()
+        } else {
+            format!("{n} cells")
+        }
+    };
+    let mut note = String::new();
+    if !r.settled.is_empty() {
+        note += &format!(", {} settled (dashed orange)", cells(r.settled.len()));
     }
+    if !r.floor_tops.is_empty() {
+        note += &format!(
+            ", {} a shelf of the floor's colour (dotted magenta)",
+            cells(r.floor_tops.len())
+        );
+    }
+    note
 }
 
 /// The aerial reader's settings, when any of its flags is given.
