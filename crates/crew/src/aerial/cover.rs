@@ -13,7 +13,11 @@
 //! which lean away from N. So a floor point p is covered by the obstacles on the cells
 //! already known to be blocked (`sure`) exactly when, walking from p toward N, one reaches
 //! such a cell at a point q with |p − N| / |q − N| ≤ k. That ratio is each bin's `reach`
-//! (infinite when no blocked cell lies within [`MAX_LEAN`] cells toward N).
+//! (infinite when no blocked cell lies within [`MAX_LEAN`] cells toward N, or when the walk
+//! crosses more than a corner ([`CROSS`]) of a cell that is neither: a top leaning over that
+//! cell would cover it, and it would be blocked; until issue #29's twenty-second round such a
+//! walk went on, and M0018's cell (1, 11), 94 % covered inside a shelf's run, was read free
+//! under the top of a shelf two cells away across free floor).
 //!
 //! A cell is free under a leaning top when one k (the same for the whole cell) splits its
 //! bins: covered bins reach within k, bins showing floor do not, with at most [`MISFIT`] of
@@ -42,6 +46,9 @@ use image::RgbImage;
 pub const BINS: usize = 10;
 /// How far (cells) a top may lean over the floor beyond its obstacle.
 pub const MAX_LEAN: f64 = 2.0;
+/// How far (cells) the walk toward the nadir may cross a cell that is not covered (neither
+/// the cell judged nor a blocked one) before a blocked cell: a corner's width.
+pub const CROSS: f64 = 0.25;
 /// At most this share of a cell's bins may contradict the split at k (blur, noise and holes in
 /// a dark top). Was 0.06 until issue #29's ninth round: the free cells B0009 (9, 10) and K0038
 /// (8, 19), under a light-blue and a white top, misfit 0.074 and 0.1; on A–K, with the
@@ -122,11 +129,21 @@ fn reach(p: Point, nadir: Point, own: (i64, i64), sure: &dyn Fn(i64, i64) -> boo
     let (ux, uy) = (dx / dist, dy / dist);
     const STEP: f64 = 1.0 / 32.0;
     let steps = (MAX_LEAN.min(dist) / STEP) as usize;
+    let mut crossed = 0.0;
     for j in 1..=steps {
         let t = j as f64 * STEP;
         let cell = ((p.0 + ux * t).floor() as i64, (p.1 + uy * t).floor() as i64);
-        if cell != own && sure(cell.0, cell.1) {
+        if cell == own {
+            continue;
+        }
+        if sure(cell.0, cell.1) {
             return dist / (dist - t);
+        }
+        // A top leaning over a cell between covers that cell too, whose window would then be
+        // covered (sure): only a corner of one may be crossed.
+        crossed += STEP;
+        if crossed > CROSS {
+            break;
         }
     }
     f64::INFINITY
@@ -717,6 +734,26 @@ mod tests {
             }
         }
         (classes, f2i, i2f, blocked)
+    }
+
+    #[test]
+    fn a_top_leans_over_a_cell_only_from_a_blocked_cell_beside_it() {
+        // The nadir far to the right of cell (1, 0), level with its middle: a point of it walks
+        // right, toward the nadir, into cell (2, 0), then (3, 0).
+        let nadir = (20.0, 0.5);
+        let p = (1.9, 0.5);
+        // Cell (2, 0) blocked: its top reaches p at a scale of 18.1 / 18.0.
+        let beside = |x: i64, y: i64| (x, y) == (2, 0);
+        let k = reach(p, nadir, (1, 0), &beside);
+        assert!((k - 18.1 / 18.0).abs() < 0.01, "{k}");
+        // Only cell (3, 0) blocked, (2, 0) between them free: a top leaning from (3, 0) over p
+        // would cover (2, 0) whole, and (2, 0) is not covered: none reaches p.
+        let across = |x: i64, y: i64| (x, y) == (3, 0);
+        assert!(reach(p, nadir, (1, 0), &across).is_infinite());
+        // Walking diagonally past a corner of a free cell into a blocked one still reaches.
+        let diagonal = |x: i64, y: i64| (x, y) == (2, 1);
+        let k = reach((1.95, 0.9), (20.0, 10.0), (1, 0), &diagonal);
+        assert!(k.is_finite() && k < 1.02, "{k}");
     }
 
     #[test]
