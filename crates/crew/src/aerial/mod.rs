@@ -1035,7 +1035,7 @@ fn read_inner(
     }
     // Every shadow on the free floor must have a caster (see `shadows`): a shelf of the
     // floor's own colour and brightness shows only by its shadow.
-    let shadow_regions = shadows::uncast_regions(&bins, &levels, (gw, gh));
+    let shadow_regions = shadows::uncast_regions(&bins, &levels, (gw, gh), &is_settled);
     let uncast = {
         let doubt = |u: shadows::Uncast, why: &str| {
             let (x, y) = u.cell;
@@ -1049,10 +1049,8 @@ fn read_inner(
             )
         };
         shadow_regions
-            .iter()
-            .map(|(u, _)| *u)
-            .find(|u| !is_settled[u.cell.1 as usize * gw as usize + u.cell.0 as usize])
-            .map(|u| doubt(u, "no obstacle or robot in the image casts"))
+            .first()
+            .map(|&(u, _)| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
                 sunlit.as_ref()?.unattached(&is_settled).map(|u| {
                     doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give)")
@@ -1271,19 +1269,18 @@ fn read_inner(
     let told = !(not_floor.is_empty() && uncast.is_none() && unlike.is_none() && hidden.is_empty());
     if infer && told && doubts.is_empty() {
         let unlike_all: Vec<usize> = odd_cells.iter().chain(&unlike_cells).copied().collect();
-        let shadows_all: Vec<Vec<usize>> = shadow_regions
-            .into_iter()
-            .filter(|(u, _)| !is_settled[u.cell.1 as usize * gw as usize + u.cell.0 as usize])
-            .map(|(_, bins)| bins)
-            .collect();
+        let shadows_all: Vec<Vec<usize>> =
+            shadow_regions.into_iter().map(|(_, bins)| bins).collect();
         let tops = corroborated::shelves(&unlike_all, &shadows_all, &hidden_lines, (gw, gh));
-        let free_looks: Vec<Option<(f64, f64, f64)>> = (0..cells)
-            .map(|i| {
-                let b = bright[i].filter(|_| grid.is_free(Cell(i as u32)) && !is_settled[i])?;
-                Some((b, saturation[i], levels[i]))
-            })
-            .collect();
-        if !tops.is_empty() && corroborated::alone(&tops, &free_looks) {
+        let free_looks = || -> Vec<Option<(f64, f64, f64)>> {
+            (0..cells)
+                .map(|i| {
+                    let b = bright[i].filter(|_| grid.is_free(Cell(i as u32)) && !is_settled[i])?;
+                    Some((b, saturation[i], levels[i]))
+                })
+                .collect()
+        };
+        if !tops.is_empty() && corroborated::alone(&tops, &free_looks()) {
             let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let mut again = config.clone();
             again.blocked_cells.extend(tops.iter().map(|&i| xy(i)));

@@ -211,18 +211,20 @@ pub fn uncast(
     (gw, gh): (u32, u32),
     settled: &[bool],
 ) -> Option<Uncast> {
-    uncast_regions(cells, levels, (gw, gh))
+    uncast_regions(cells, levels, (gw, gh), settled)
         .into_iter()
         .map(|(u, _)| u)
-        .find(|u| !is_settled(settled, u.cell, gw))
+        .next()
 }
 
-/// Every shadow that nothing in the image casts (as for [`uncast`], none settled), row-major,
-/// each with its bins (floor bin indices, `gw × SIDE` wide, row-major).
+/// Every shadow that nothing in the image casts, as for [`uncast`] (past those whose first bin
+/// lies on a settled cell), row-major, each with its bins (floor bin indices, `gw × SIDE`
+/// wide, row-major).
 pub fn uncast_regions(
     cells: &[Option<[Bin; BINS]>],
     levels: &[f64],
     (gw, gh): (u32, u32),
+    settled: &[bool],
 ) -> Vec<(Uncast, Vec<usize>)> {
     let (bw, bh) = (gw as usize * SIDE, gh as usize * SIDE);
     let Some((kinds, robot_near)) = grid(cells, levels, (gw, gh), 0.0) else {
@@ -250,12 +252,8 @@ pub fn uncast_regions(
             }
             let size = region.len();
             let cast = caster || (mark && size <= ROBOT_SHADOW);
-            (!cast && size >= MIN_SHADOW).then(|| {
-                (
-                    Uncast::from_bin((region[0] % bw, region[0] / bw), size),
-                    region,
-                )
-            })
+            let u = Uncast::from_bin((region[0] % bw, region[0] / bw), size);
+            (!cast && size >= MIN_SHADOW && !is_settled(settled, u.cell, gw)).then_some((u, region))
         })
         .collect()
 }
