@@ -153,6 +153,21 @@ fn a_run_s_far_cell_a_top_could_cover_whole_is_refused() {
     }
 }
 
+/// A run's far cell whose face toward the nadir shows nothing, where a free far cell would need
+/// a face a cell long, is the run's own when the view's other faces that look the same way
+/// show plainly (issue #29's twenty-third round): T0003's cell (25, 4), whose face is of the
+/// top's shade, and a0001's cell (13, 19), whose face is short and faint. Both were refused
+/// before, as A0037 and B0027 still are.
+#[test]
+fn a_run_s_far_cell_is_told_by_the_view_s_other_faces() {
+    for name in ["T0003", "a0001"] {
+        let (image, truth) = scene(name);
+        let r = read_aerial(&image, name, &config(&truth, true))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_exact(name, &r, &truth);
+    }
+}
+
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still

@@ -468,26 +468,7 @@ pub fn lean_doubt(
             {
                 continue; // its own top shows past the reach of the run's
             }
-            let mut cells = 1;
-            while is_blocked(xi - cells * dx, yi - cells * dy) {
-                cells += 1;
-            }
-            let run = face::Run {
-                along_u: dx != 0,
-                dir: (dx + dy) as f64,
-                far: i64::from(a),
-                across: i64::from(l),
-                cells,
-                nadir: na,
-            };
-            let centre = (x as f64 + 0.5, y as f64 + 0.5);
-            let px = match (
-                floor_to_image.apply(centre),
-                floor_to_image.apply((centre.0 + dx as f64, centre.1 + dy as f64)),
-            ) {
-                (Some(p), Some(q)) => (p.0 - q.0).hypot(p.1 - q.1),
-                _ => 0.0,
-            };
+            let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
             match face::judge(img, classes, maps, run, px) {
                 face::Face::Own => continue, // the face toward the nadir shows how little the top leans
                 face::Face::Hidden => {
@@ -505,6 +486,100 @@ pub fn lean_doubt(
         });
     }
     None
+}
+
+/// The run of blocked cells (`is_blocked`) ending at cell `(x, y)` along `(dx, dy)` (away from
+/// the nadir), for [`face::judge`], and the cell's size in pixels along the run there.
+fn run_to(
+    (x, y): (u32, u32),
+    (dx, dy): (i64, i64),
+    nadir: Point,
+    floor_to_image: &Homography,
+    is_blocked: impl Fn(i64, i64) -> bool,
+) -> (face::Run, f64) {
+    let (xi, yi) = (i64::from(x), i64::from(y));
+    let mut cells = 1;
+    while is_blocked(xi - cells * dx, yi - cells * dy) {
+        cells += 1;
+    }
+    let (far, across, na) = if dx != 0 {
+        (xi, yi, nadir.0)
+    } else {
+        (yi, xi, nadir.1)
+    };
+    let run = face::Run {
+        along_u: dx != 0,
+        dir: (dx + dy) as f64,
+        far,
+        across,
+        cells,
+        nadir: na,
+    };
+    let centre = (x as f64 + 0.5, y as f64 + 0.5);
+    let px = match (
+        floor_to_image.apply(centre),
+        floor_to_image.apply((centre.0 + dx as f64, centre.1 + dy as f64)),
+    ) {
+        (Some(p), Some(q)) => (p.0 - q.0).hypot(p.1 - q.1),
+        _ => 0.0,
+    };
+    (run, px)
+}
+
+/// Whether another run of blocked cells pointing `(dx, dy)` away from the nadir shows its face
+/// toward the nadir plainly unlike its top ([`face::Face::Own`]): faces that look the same way
+/// are lit alike in one view (the sun's and the sky's light on a face, over the light on the
+/// top, does not depend on the paint), so a face of a run pointing that way that shows
+/// nothing is no face. Runs whose far cell is in `doubted` are left out. Since issue #29's
+/// twenty-third round; see [`face::Face::Hidden`].
+#[allow(clippy::too_many_arguments)]
+pub fn face_shown(
+    img: &RgbImage,
+    classes: &[u8],
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    (gw, gh): (u32, u32),
+    blocked: &[bool],
+    nadir: Point,
+    (dx, dy): (i64, i64),
+    doubted: &[usize],
+) -> bool {
+    let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
+    let is_blocked =
+        |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    (0..gw as usize * gh as usize).any(|i| {
+        let (xi, yi) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
+        if !blocked[i] || doubted.contains(&i) {
+            return false;
+        }
+        if !inside(xi + dx, yi + dy) || is_blocked(xi + dx, yi + dy) {
+            return false;
+        }
+        // The run must point away from the nadir.
+        let (inner, na, dir) = if dx != 0 {
+            (
+                xi as f64 + if dx > 0 { 0.0 } else { 1.0 },
+                nadir.0,
+                dx as f64,
+            )
+        } else {
+            (
+                yi as f64 + if dy > 0 { 0.0 } else { 1.0 },
+                nadir.1,
+                dy as f64,
+            )
+        };
+        if (inner - na) * dir <= 0.0 {
+            return false;
+        }
+        let (run, px) = run_to(
+            (xi as u32, yi as u32),
+            (dx, dy),
+            nadir,
+            floor_to_image,
+            is_blocked,
+        );
+        face::shows(img, classes, (floor_to_image, image_to_floor), run, px)
+    })
 }
 
 /// A far cell's own top shows when the cover past it reaches this many times further than the
@@ -734,6 +809,62 @@ mod tests {
             }
         }
         (classes, f2i, i2f, blocked)
+    }
+
+    #[test]
+    fn a_view_s_faces_that_look_one_way_show_alike() {
+        // A floor of 10 × 4 cells of 10 px seen straight down, the nadir 20 cells before its
+        // left edge; runs of cells 2–5 along rows 1 and 3, each top (shade 160) ending at
+        // u = 6.52. Row 1's face (shade `face`, from its base at u = 2 to 2.44) is plain or
+        // of the top's shade; row 3 shows none.
+        let view = |face: u8| {
+            let f2i = Homography::floor_to_image(
+                10.0,
+                4.0,
+                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+            )
+            .unwrap();
+            let i2f = f2i.inverse().unwrap();
+            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
+            let mut classes = vec![Class::Floor as u8; 100 * 40];
+            for y in (10..20u32).chain(30..40) {
+                for x in 0..100u32 {
+                    let u = (f64::from(x) + 0.5) / 10.0;
+                    if (2.0..6.52).contains(&u) {
+                        let shade = if y < 20 && u < 2.44 { face } else { 160 };
+                        img.put_pixel(x, y, image::Rgb([shade; 3]));
+                        classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
+                    }
+                }
+            }
+            let mut blocked = vec![false; 40];
+            for x in 2..6 {
+                blocked[10 + x] = true;
+                blocked[30 + x] = true;
+            }
+            (img, classes, f2i, i2f, blocked)
+        };
+        let shown = |face: u8, dir: (i64, i64), doubted: &[usize]| {
+            let (img, classes, f2i, i2f, blocked) = view(face);
+            face_shown(
+                &img,
+                &classes,
+                (&f2i, &i2f),
+                (10, 4),
+                &blocked,
+                (-20.0, 2.0),
+                dir,
+                doubted,
+            )
+        };
+        // Row 3's far cell in doubt: row 1's face tells how faces looking left show.
+        assert!(shown(80, (1, 0), &[35]));
+        // Row 1's face of the top's shade tells nothing.
+        assert!(!shown(160, (1, 0), &[35]));
+        // Nor does a run whose far cell is itself in doubt.
+        assert!(!shown(80, (1, 0), &[15, 35]));
+        // Nor runs pointing the other way (toward the nadir: no face shows toward it).
+        assert!(!shown(80, (-1, 0), &[35]));
     }
 
     #[test]

@@ -1007,6 +1007,7 @@ fn read_inner(
             .as_ref()
             .map(shadows::Sunlit::suns)
             .unwrap_or_default();
+        let doubted: Vec<usize> = far_cells.iter().map(|&(i, _)| i).collect();
         for (i, far) in far_cells {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
             if sunlit
@@ -1016,8 +1017,24 @@ fn read_inner(
                 continue;
             }
             // No face shows where a free far cell would need a long one, and the sun shines
-            // from behind that face: it would be in its own shadow, unlike the lit top.
-            if far.hidden_face && face::in_own_shadow(&suns, far.dir) {
+            // from behind that face (it would be in its own shadow, unlike the lit top), or
+            // another run pointing the same way shows its face plainly (faces that look one
+            // way are lit alike in one view; see `face`).
+            if far.hidden_face
+                && (face::in_own_shadow(&suns, far.dir)
+                    || nadir.is_some_and(|n| {
+                        cover::face_shown(
+                            img,
+                            &classes,
+                            maps,
+                            (gw, gh),
+                            &blocked,
+                            n,
+                            far.dir,
+                            &doubted,
+                        )
+                    }))
+            {
                 continue;
             }
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
