@@ -342,9 +342,11 @@ pub struct Doubt {
 /// blocked cells is returned (a step in cells), with what the run's face tells. For
 /// [`Beyond::Free`], not when the cover runs on past the cell, over the free cells beyond,
 /// further than that top could reach ([`Past`]):
-/// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
-/// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
-/// sixteenth round).
+/// the cell's own top is there (since issue #29's fourteenth round). Nor, for either, when the
+/// run's face toward the nadir is too short for a top that leans over a free far cell
+/// ([`face`], since the sixteenth round; on the floor's edge since the twenty-third, the cover
+/// read up to the edge: a free edge cell's top would reach it at least, and its face be at
+/// least as long as that needs).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
     img: &RgbImage,
@@ -454,8 +456,8 @@ pub fn lean_doubt(
         if reach < 1.0 - EVIDENCE {
             continue;
         }
+        let maps = (floor_to_image, image_to_floor);
         if beyond == Beyond::Free {
-            let maps = (floor_to_image, image_to_floor);
             let past = Past {
                 cell: (xi, yi),
                 step: (dx, dy),
@@ -468,17 +470,19 @@ pub fn lean_doubt(
             {
                 continue; // its own top shows past the reach of the run's
             }
-            let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
-            match face::judge(img, classes, maps, run, px) {
-                face::Face::Own => continue, // the face toward the nadir shows how little the top leans
-                face::Face::Hidden => {
-                    return Some(Doubt {
-                        dir: (dx, dy),
-                        hidden_face: true,
-                    })
-                }
-                face::Face::Unknown => {}
+        }
+        // On the floor's edge the cover is read up to the edge alone: a free far cell's top
+        // would reach at least that far, and its face be at least as long as that needs.
+        let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
+        match face::judge(img, classes, maps, run, px) {
+            face::Face::Own => continue, // the face toward the nadir shows how little the top leans
+            face::Face::Hidden => {
+                return Some(Doubt {
+                    dir: (dx, dy),
+                    hidden_face: true,
+                })
             }
+            face::Face::Unknown => {}
         }
         return Some(Doubt {
             dir: (dx, dy),
@@ -917,6 +921,57 @@ mod tests {
         // Not on the edge, or nothing blocked behind it.
         assert!(!doubt_at(2.0, (0.5, -20.0), (1, 2)));
         assert!(!doubt_at(2.0, (0.5, -20.0), (3, 3)));
+    }
+
+    #[test]
+    fn an_edge_cell_whose_run_shows_a_short_face_is_the_run_s_own() {
+        // A floor of 10 × 4 cells of 10 px seen straight down, the nadir 20 cells before its
+        // left edge, level with row 1; cells 6–9 of row 1 blocked, the last on the floor's
+        // right edge. Their cover runs from u = 6 to the edge: a face of shade `face` up to
+        // `face_end`, then a top of shade 160, on floor of shade 120. Nothing beside the run
+        // measures its lean (k taken at 1.25): a free edge cell would need a top leaning from
+        // u = 9 to the edge at least, k = 30 / 29, and so a face at least 0.9 cell long.
+        let doubt = |face_end: f64, face: u8| {
+            let f2i = Homography::floor_to_image(
+                10.0,
+                4.0,
+                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+            )
+            .unwrap();
+            let i2f = f2i.inverse().unwrap();
+            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
+            let mut classes = vec![Class::Floor as u8; 100 * 40];
+            for y in 10..20u32 {
+                for x in 60..100u32 {
+                    let u = (f64::from(x) + 0.5) / 10.0;
+                    let shade = if u < face_end { face } else { 160 };
+                    img.put_pixel(x, y, image::Rgb([shade; 3]));
+                    classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
+                }
+            }
+            let mut blocked = vec![false; 40];
+            for x in 6..10 {
+                blocked[10 + x] = true;
+            }
+            lean_doubt(
+                &img,
+                &classes,
+                100,
+                (&f2i, &i2f),
+                (10, 4),
+                &blocked,
+                (-20.0, 1.5),
+                (9, 1),
+                Beyond::Edge,
+            )
+        };
+        // A face of 0.35 cell (4 px), plainly darker: the top leans too little for a free
+        // edge cell.
+        assert!(doubt(6.45, 80).is_none());
+        // A face as long as a free edge cell needs: in doubt.
+        assert!(doubt(6.95, 80).is_some_and(|d| !d.hidden_face));
+        // No face shows: in doubt unless the sun or the view's other faces tell.
+        assert!(doubt(6.0, 80).is_some_and(|d| d.hidden_face));
     }
 
     #[test]
