@@ -530,12 +530,13 @@ fn run_to(
     (run, px)
 }
 
-/// Whether another run of blocked cells pointing `(dx, dy)` away from the nadir shows its face
-/// toward the nadir plainly unlike its top ([`face::Face::Own`]): faces that look the same way
-/// are lit alike in one view (the sun's and the sky's light on a face, over the light on the
-/// top, does not depend on the paint), so a face of a run pointing that way that shows
-/// nothing is no face. Runs whose far cell is in `doubted` are left out. Since issue #29's
-/// twenty-third round; see [`face::Face::Hidden`].
+/// Whether another run of blocked cells pointing `(dx, dy)` away from the nadir (its far cell
+/// with a free cell or the floor's edge beyond) shows its face toward the nadir plainly unlike
+/// its top, whatever the face's length ([`face::shows`]): faces that look the same way are lit
+/// alike in one view (the sun's and the sky's light on a face, over the light on the top, does
+/// not depend on the paint), so a face of a run pointing that way that shows nothing is no
+/// face. Runs whose far cell is in `doubted` are left out. Since issue #29's twenty-third
+/// round; see [`face::Face::Hidden`].
 #[allow(clippy::too_many_arguments)]
 pub fn face_shown(
     img: &RgbImage,
@@ -555,7 +556,7 @@ pub fn face_shown(
         if !blocked[i] || doubted.contains(&i) {
             return false;
         }
-        if !inside(xi + dx, yi + dy) || is_blocked(xi + dx, yi + dy) {
+        if is_blocked(xi + dx, yi + dy) {
             return false;
         }
         // The run must point away from the nadir.
