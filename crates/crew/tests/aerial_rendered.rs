@@ -168,6 +168,18 @@ fn a_run_s_far_cell_is_told_by_the_view_s_other_faces() {
     }
 }
 
+/// A covered cell a neighbour's leaning top may cover almost whole, read as the far cell of the
+/// run behind it, is the run's own when the run's face toward the nadir is too short for a
+/// top leaning over it (issue #29's twenty-third round): T0012's cell (10, 12), 96 % covered,
+/// was refused before.
+#[test]
+fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_run_s_face() {
+    let (image, truth) = scene("T0012");
+    let r = read_aerial(&image, "T0012", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("T0012: {e}"));
+    assert_exact("T0012", &r, &truth);
+}
+
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still

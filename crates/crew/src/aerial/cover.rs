@@ -482,7 +482,7 @@ pub fn lean_doubt(
                     hidden_face: true,
                 })
             }
-            face::Face::Unknown => {}
+            face::Face::Long | face::Face::Unknown => {}
         }
         return Some(Doubt {
             dir: (dx, dy),
@@ -490,6 +490,71 @@ pub fn lean_doubt(
         });
     }
     None
+}
+
+/// What the faces toward the nadir tell of a covered cell (`(x, y)`, blocked in `blocked`)
+/// that a neighbour's leaning top may cover almost whole ([`Fit::doubtful`]), read as the far
+/// cell of each run of blocked cells behind it (toward the nadir) with a free cell or the
+/// floor's edge beyond it: `None` when a run's face is too short for a top leaning over the
+/// cell ([`face::Face::Own`]) and no run's face is as long as that needs
+/// ([`face::Face::Long`]): the cell is the run's own. Otherwise the doubt: along a run whose
+/// face is long, with nothing more to tell; else along the run whose face is hidden if one is
+/// ([`face::Face::Hidden`], for the reader to judge with the sun and the view's other faces),
+/// else along the first run, or with no direction (`(0, 0)`) when no run ends there. Since
+/// issue #29's twenty-third round.
+pub fn face_tells(
+    img: &RgbImage,
+    classes: &[u8],
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    (gw, gh): (u32, u32),
+    blocked: &[bool],
+    nadir: Point,
+    (x, y): (u32, u32),
+) -> Option<Doubt> {
+    let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
+    let is_blocked =
+        |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    let (xi, yi) = (i64::from(x), i64::from(y));
+    let mut doubt = Doubt {
+        dir: (0, 0),
+        hidden_face: false,
+    };
+    let (mut own, mut long) = (false, None);
+    for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
+        if !is_blocked(xi - dx, yi - dy) || is_blocked(xi + dx, yi + dy) {
+            continue;
+        }
+        let (inner, na) = if dx != 0 {
+            (f64::from(x) + if dx > 0 { 0.0 } else { 1.0 }, nadir.0)
+        } else {
+            (f64::from(y) + if dy > 0 { 0.0 } else { 1.0 }, nadir.1)
+        };
+        if (inner - na) * (dx + dy) as f64 <= 0.0 {
+            continue; // the run points toward the nadir: its top leans away from the cell
+        }
+        let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
+        match face::judge(img, classes, (floor_to_image, image_to_floor), run, px) {
+            face::Face::Own => own = true,
+            // A face as long as a free cell needs: whatever another run tells, in doubt.
+            face::Face::Long => long = Some((dx, dy)),
+            face::Face::Hidden if !doubt.hidden_face => {
+                doubt = Doubt {
+                    dir: (dx, dy),
+                    hidden_face: true,
+                }
+            }
+            _ if doubt.dir == (0, 0) => doubt.dir = (dx, dy),
+            _ => {}
+        }
+    }
+    match long {
+        Some(dir) => Some(Doubt {
+            dir,
+            hidden_face: false,
+        }),
+        None if own => None,
+        None => Some(doubt),
+    }
 }
 
 /// The run of blocked cells (`is_blocked`) ending at cell `(x, y)` along `(dx, dy)` (away from
@@ -973,6 +1038,86 @@ mod tests {
         assert!(doubt(6.95, 80).is_some_and(|d| !d.hidden_face));
         // No face shows: in doubt unless the sun or the view's other faces tell.
         assert!(doubt(6.0, 80).is_some_and(|d| d.hidden_face));
+    }
+
+    #[test]
+    fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_faces_of_the_runs_ending_there() {
+        // As above: cells 6–8 of row 1 blocked and the cell (9, 1) on the floor's right edge
+        // covered, their cover from u = 6 to the edge with a face of shade 80 up to
+        // `face_end`; with `column`, cells (9, 2) and (9, 3) blocked too, their cover (and
+        // (9, 1)'s) a top of shade 160 with a face 0.95 cell long at its end toward the nadir,
+        // below. The nadir 20 cells before the left edge and 20 below the top one.
+        let tells = |face_end: f64, column: bool| {
+            let f2i = Homography::floor_to_image(
+                10.0,
+                4.0,
+                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+            )
+            .unwrap();
+            let i2f = f2i.inverse().unwrap();
+            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
+            let mut classes = vec![Class::Floor as u8; 100 * 40];
+            let mut put = |x: u32, y: u32, shade: u8| {
+                img.put_pixel(x, y, image::Rgb([shade; 3]));
+                classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
+            };
+            for y in 10..20u32 {
+                for x in 60..100u32 {
+                    let u = (f64::from(x) + 0.5) / 10.0;
+                    put(x, y, if u < face_end { 80 } else { 160 });
+                }
+            }
+            let mut blocked = vec![false; 40];
+            for x in 6..10 {
+                blocked[10 + x] = true;
+            }
+            if column {
+                for y in 20..40u32 {
+                    for x in 90..100u32 {
+                        let v = (f64::from(y) + 0.5) / 10.0;
+                        put(x, y, if v > 3.05 { 80 } else { 160 });
+                    }
+                }
+                blocked[29] = true;
+                blocked[39] = true;
+            }
+            face_tells(
+                &img,
+                &classes,
+                (&f2i, &i2f),
+                (10, 4),
+                &blocked,
+                (-20.0, 20.0),
+                (9, 1),
+            )
+        };
+        // The row's face too short for a top leaning over the cell: the run's own.
+        assert_eq!(tells(6.45, false), None);
+        // As long as a free cell needs: in doubt along the row, nothing more told.
+        assert_eq!(
+            tells(6.95, false),
+            Some(Doubt {
+                dir: (1, 0),
+                hidden_face: false
+            })
+        );
+        // No face: in doubt, for the sun and the view's other faces to tell.
+        assert_eq!(
+            tells(6.0, false),
+            Some(Doubt {
+                dir: (1, 0),
+                hidden_face: true
+            })
+        );
+        // The column's long face is as a free cell's under its top: in doubt whatever the
+        // row's face tells.
+        assert_eq!(
+            tells(6.45, true),
+            Some(Doubt {
+                dir: (0, -1),
+                hidden_face: false
+            })
+        );
     }
 
     #[test]

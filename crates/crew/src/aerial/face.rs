@@ -114,6 +114,11 @@ pub enum Face {
     /// that look the same way show plainly (see `mod.rs`, where the sun's directions are
     /// known, and [`super::cover::face_shown`]).
     Hidden,
+    /// A face at least half as long as a free far cell needs shows (since issue #29's
+    /// twenty-third round; before, [`Face::Unknown`]): nothing tells the cell is the run's own,
+    /// and a cell read otherwise as the run's own by another run ending at it is not
+    /// ([`super::cover::face_tells`]).
+    Long,
     /// Nothing to tell.
     Unknown,
 }
@@ -219,7 +224,7 @@ fn judged(
         .map(|s| offset(s) + SLICE / 2.0)
         .fold(0.0, f64::max);
     if face > MARGIN * free && !any_length {
-        return None;
+        return Some(Face::Long);
     }
     if face * px < FACE_PX {
         return (free >= HIDDEN_FREE && !any_length).then_some(Face::Hidden);
@@ -495,10 +500,10 @@ mod tests {
     #[test]
     fn a_face_as_long_as_a_free_far_cell_needs_does_not() {
         // The same end from a base to u = 5: k = 1.061, a face 1.34 long.
-        assert_eq!(judged(3.34, 6.52, 80, 10.0), Face::Unknown);
+        assert_eq!(judged(3.34, 6.52, 80, 10.0), Face::Long);
         // Past the margin, half of the 1.34 a free far cell needs (the pixels' centres read
         // the face 0.05 short).
-        assert_eq!(judged(2.8, 6.52, 80, 10.0), Face::Unknown);
+        assert_eq!(judged(2.8, 6.52, 80, 10.0), Face::Long);
         assert!(shows(2.6, 6.52, 80));
     }
 
@@ -510,8 +515,8 @@ mod tests {
         // showed, since a free far cell's face would run 1.34 cells (issue #29's 23rd round;
         // before it, nothing was told).
         assert_eq!(judged(2.44, 6.52, 145, 10.0), Face::Hidden);
-        // As long as a free far cell's face, that faint: nothing is told.
-        assert_eq!(judged(3.34, 6.52, 145, 10.0), Face::Unknown);
+        // As long as a free far cell's face, that faint: a long face.
+        assert_eq!(judged(3.34, 6.52, 145, 10.0), Face::Long);
         // Too short to tell from blur (0.2 cell: 2 px).
         assert_eq!(judged(2.2, 6.52, 80, 10.0), Face::Hidden);
         // The same face in cells of 5 px: 2.2 px.
@@ -537,7 +542,7 @@ mod tests {
         // Short (the run's own far cell) or as long as a free far cell needs: plainly darker.
         assert!(shows_light(2.44, 80));
         assert!(shows_light(3.34, 80));
-        assert_eq!(judged(3.34, 6.52, 80, 10.0), Face::Unknown);
+        assert_eq!(judged(3.34, 6.52, 80, 10.0), Face::Long);
         // Brighter, as well.
         assert!(shows_light(3.34, 220));
         // Of the top's shade, or faint: no light told.
@@ -573,10 +578,7 @@ mod tests {
         // The cover starts 0.4 cell into the run: its face is not read from its base.
         // (0.9 long from u = 2, too long for a blocked far cell; 0.45 from 2.45 would not be.)
         let (mut img, mut classes, f2i, i2f) = scene(2.9, 6.52, 80);
-        assert_eq!(
-            judge(&img, &classes, (&f2i, &i2f), RUN, 10.0),
-            Face::Unknown
-        );
+        assert_eq!(judge(&img, &classes, (&f2i, &i2f), RUN, 10.0), Face::Long);
         for y in 10..20u32 {
             for x in 20..24u32 {
                 img.put_pixel(x, y, Rgb([120; 3]));

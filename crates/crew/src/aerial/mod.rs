@@ -765,6 +765,8 @@ fn read_inner(
         )
     };
     let mut blocked = vec![false; cells];
+    // Covered cells a neighbour's leaning top may cover almost whole.
+    let mut almost: Vec<usize> = Vec::new();
     for (i, b) in blocked.iter_mut().enumerate() {
         if let Some(given) = settled[i] {
             *b = given;
@@ -780,14 +782,9 @@ fn read_inner(
             continue;
         }
         if share >= HALF_COVERED.1 && leaning.is_some_and(|f| f.doubtful()) {
-            doubt!(at_pixel(
-                source,
-                cell_centre_px(i),
-                format!(
-                    "cell ({x}, {y}) is {:.0} % covered by an obstacle, but a neighbour's leaning top may cover it almost whole: cannot tell whether it is blocked",
-                    share * 100.0
-                ),
-            ));
+            // Judged once every cell's cover is known, by the faces toward the nadir and the
+            // shadows (below).
+            almost.push(i);
         } else if share < HALF_COVERED.1 && !own_top(i) {
             doubt!(at_pixel(
                 source,
@@ -841,6 +838,24 @@ fn read_inner(
             }
         }
     }
+    // A cell a leaning top may cover almost whole is the run's own when its face toward the
+    // nadir, read as the far cell of the run behind it, is too short for a top leaning over
+    // it (see `cover::face_tells`); the others are judged with the far cells, below.
+    let almost: Vec<(usize, cover::Doubt)> = almost
+        .into_iter()
+        .filter_map(|i| {
+            let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            let no_run = cover::Doubt {
+                dir: (0, 0),
+                hidden_face: false,
+            };
+            match nadir {
+                Some(n) => cover::face_tells(img, &classes, maps, (gw, gh), &blocked, n, (x, y)),
+                None => Some(no_run),
+            }
+            .map(|d| (i, d))
+        })
+        .collect();
     // Every free cell must look like the floor (see `looks`): a shelf of a colour close to
     // the floor's is refused there, not read as free (after the robots' and goals' own
     // reasons to refuse, which say more). Pixels within an eighth of a cell of a mark are left
@@ -1002,17 +1017,19 @@ fn read_inner(
     }
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
     // top may cover whole, unless the shadow beside them shows the base reaching them.
-    if !far_cells.is_empty() {
+    if !far_cells.is_empty() || !almost.is_empty() {
         let suns = sunlit
             .as_ref()
             .map(shadows::Sunlit::suns)
             .unwrap_or_default();
-        let doubted: Vec<usize> = far_cells.iter().map(|&(i, _)| i).collect();
-        for (i, far) in far_cells {
+        let doubted: Vec<usize> = far_cells.iter().chain(&almost).map(|&(i, _)| i).collect();
+        let almost_whole = almost.len();
+        for (k, (i, far)) in almost.into_iter().chain(far_cells).enumerate() {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-            if sunlit
-                .as_ref()
-                .is_some_and(|s| s.base_reaches(&suns, (x, y), far.dir))
+            if far.dir != (0, 0)
+                && sunlit
+                    .as_ref()
+                    .is_some_and(|s| s.base_reaches(&suns, (x, y), far.dir))
             {
                 continue;
             }
@@ -1035,6 +1052,17 @@ fn read_inner(
                         )
                     }))
             {
+                continue;
+            }
+            if k < almost_whole {
+                doubt!(at_pixel(
+                    source,
+                    cell_centre_px(i),
+                    format!(
+                        "cell ({x}, {y}) is {:.0} % covered by an obstacle, but a neighbour's leaning top may cover it almost whole: cannot tell whether it is blocked",
+                        shares[i] * 100.0
+                    ),
+                ));
                 continue;
             }
             let edge = x == 0 || y == 0 || x + 1 == gw || y + 1 == gh;
