@@ -386,6 +386,19 @@ FAMILIES = {
                              (0.10, 0.14, 0.40)),
               shelf_height=(0.3, 2.1), tiles=0.25, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # k: held out from issue #29's twenty-third round, rendered after the edge cells' faces
+    # were withdrawn (the round's final reader) and not looked at until scored once. Puck,
+    # dome and box robots, square, cross and disc goals, pale warm grey, mid slate and dark
+    # brown floors tiled every third of a cell, a light stone shelf near the first floor, a
+    # dark chocolate one near the third, and ochre, plum and sea-green ones, from 0.3 to 2.0
+    # high inset 0.05 cell, a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "k": dict(robot_shapes=("puck", "dome", "box"), goal_shapes=("square", "cross", "disc"),
+              floors=((0.74, 0.72, 0.68), (0.36, 0.40, 0.46), (0.30, 0.22, 0.16)),
+              shelf_colours=((0.80, 0.78, 0.72), (0.24, 0.16, 0.11), (0.78, 0.58, 0.16), (0.45, 0.20, 0.40),
+                             (0.18, 0.50, 0.38)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
