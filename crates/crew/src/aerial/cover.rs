@@ -531,12 +531,7 @@ pub fn face_tells(
         if !is_blocked(xi - dx, yi - dy) || !free_beyond {
             continue;
         }
-        let (inner, na) = if dx != 0 {
-            (f64::from(x) + if dx > 0 { 0.0 } else { 1.0 }, nadir.0)
-        } else {
-            (f64::from(y) + if dy > 0 { 0.0 } else { 1.0 }, nadir.1)
-        };
-        if (inner - na) * (dx + dy) as f64 <= 0.0 {
+        if !points_away((xi, yi), (dx, dy), nadir) {
             continue; // the run points toward the nadir: its top leans away from the cell
         }
         let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
@@ -562,6 +557,17 @@ pub fn face_tells(
         None if own => None,
         None => Some(doubt),
     }
+}
+
+/// Whether a run of cells along `(dx, dy)` ending at cell `(x, y)` points away from the nadir:
+/// the cell's inner border (toward the run) lies beyond the nadir along that step.
+fn points_away((x, y): (i64, i64), (dx, dy): (i64, i64), nadir: Point) -> bool {
+    let (inner, na) = if dx != 0 {
+        (x as f64 + if dx > 0 { 0.0 } else { 1.0 }, nadir.0)
+    } else {
+        (y as f64 + if dy > 0 { 0.0 } else { 1.0 }, nadir.1)
+    };
+    (inner - na) * (dx + dy) as f64 > 0.0
 }
 
 /// The run of blocked cells (`is_blocked`) ending at cell `(x, y)` along `(dx, dy)` (away from
@@ -631,21 +637,7 @@ pub fn face_shown(
         if is_blocked(xi + dx, yi + dy) {
             return false;
         }
-        // The run must point away from the nadir.
-        let (inner, na, dir) = if dx != 0 {
-            (
-                xi as f64 + if dx > 0 { 0.0 } else { 1.0 },
-                nadir.0,
-                dx as f64,
-            )
-        } else {
-            (
-                yi as f64 + if dy > 0 { 0.0 } else { 1.0 },
-                nadir.1,
-                dy as f64,
-            )
-        };
-        if (inner - na) * dir <= 0.0 {
+        if !points_away((xi, yi), (dx, dy), nadir) {
             return false;
         }
         let (run, px) = run_to(
@@ -888,6 +880,40 @@ mod tests {
         (classes, f2i, i2f, blocked)
     }
 
+    /// A floor of 10 × 4 cells of 10 px seen straight down, its floor of shade 120, with an
+    /// obstacle of shade `shade(u, v)` (floor coordinates of the pixel's centre) over the
+    /// pixels of columns `xs` and of the rows from each pair's first to its end in `rows`, and
+    /// `blocked` cells: the image, the pixels'
+    /// classes, the maps and the blocked cells.
+    fn floor_of_10x4(
+        xs: std::ops::Range<u32>,
+        rows: &[(u32, u32)],
+        shade: impl Fn(f64, f64) -> u8,
+        blocked_cells: &[usize],
+    ) -> (RgbImage, Vec<u8>, Homography, Homography, Vec<bool>) {
+        let f2i = Homography::floor_to_image(
+            10.0,
+            4.0,
+            [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+        )
+        .unwrap();
+        let i2f = f2i.inverse().unwrap();
+        let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
+        let mut classes = vec![Class::Floor as u8; 100 * 40];
+        for y in rows.iter().flat_map(|&(first, end)| first..end) {
+            for x in xs.clone() {
+                let (u, v) = ((f64::from(x) + 0.5) / 10.0, (f64::from(y) + 0.5) / 10.0);
+                img.put_pixel(x, y, image::Rgb([shade(u, v); 3]));
+                classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
+            }
+        }
+        let mut blocked = vec![false; 40];
+        for &i in blocked_cells {
+            blocked[i] = true;
+        }
+        (img, classes, f2i, i2f, blocked)
+    }
+
     #[test]
     fn a_view_s_faces_that_look_one_way_show_alike() {
         // A floor of 10 × 4 cells of 10 px seen straight down, the nadir 20 cells before its
@@ -895,31 +921,12 @@ mod tests {
         // u = 6.52. Row 1's face (shade `face`, from its base at u = 2 to 2.44) is plain or
         // of the top's shade; row 3 shows none.
         let view = |face: u8| {
-            let f2i = Homography::floor_to_image(
-                10.0,
-                4.0,
-                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+            floor_of_10x4(
+                20..65,
+                &[(10, 20), (30, 40)],
+                |u, v| if v < 2.0 && u < 2.44 { face } else { 160 },
+                &[12, 13, 14, 15, 32, 33, 34, 35],
             )
-            .unwrap();
-            let i2f = f2i.inverse().unwrap();
-            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
-            let mut classes = vec![Class::Floor as u8; 100 * 40];
-            for y in (10..20u32).chain(30..40) {
-                for x in 0..100u32 {
-                    let u = (f64::from(x) + 0.5) / 10.0;
-                    if (2.0..6.52).contains(&u) {
-                        let shade = if y < 20 && u < 2.44 { face } else { 160 };
-                        img.put_pixel(x, y, image::Rgb([shade; 3]));
-                        classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
-                    }
-                }
-            }
-            let mut blocked = vec![false; 40];
-            for x in 2..6 {
-                blocked[10 + x] = true;
-                blocked[30 + x] = true;
-            }
-            (img, classes, f2i, i2f, blocked)
         };
         let shown = |face: u8, dir: (i64, i64), doubted: &[usize]| {
             let (img, classes, f2i, i2f, blocked) = view(face);
@@ -1005,27 +1012,12 @@ mod tests {
         // measures its lean (k taken at 1.25): a free edge cell would need a top leaning from
         // u = 9 to the edge at least, k = 30 / 29, and so a face at least 0.9 cell long.
         let doubt = |face_end: f64, face: u8| {
-            let f2i = Homography::floor_to_image(
-                10.0,
-                4.0,
-                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
-            )
-            .unwrap();
-            let i2f = f2i.inverse().unwrap();
-            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
-            let mut classes = vec![Class::Floor as u8; 100 * 40];
-            for y in 10..20u32 {
-                for x in 60..100u32 {
-                    let u = (f64::from(x) + 0.5) / 10.0;
-                    let shade = if u < face_end { face } else { 160 };
-                    img.put_pixel(x, y, image::Rgb([shade; 3]));
-                    classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
-                }
-            }
-            let mut blocked = vec![false; 40];
-            for x in 6..10 {
-                blocked[10 + x] = true;
-            }
+            let (img, classes, f2i, i2f, blocked) = floor_of_10x4(
+                60..100,
+                &[(10, 20)],
+                |u, _| if u < face_end { face } else { 160 },
+                &[16, 17, 18, 19],
+            );
             lean_doubt(
                 &img,
                 &classes,
@@ -1055,34 +1047,23 @@ mod tests {
         // of shade 160 with a face 0.95 cell long at its end toward the nadir, below. The nadir
         // 20 cells before the left edge and 20 below the top one.
         let tells = |face_end: f64, column: bool| {
-            let f2i = Homography::floor_to_image(
-                10.0,
-                4.0,
-                [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
-            )
-            .unwrap();
-            let i2f = f2i.inverse().unwrap();
-            let mut img = RgbImage::from_pixel(100, 40, image::Rgb([120, 120, 120]));
-            let mut classes = vec![Class::Floor as u8; 100 * 40];
-            let mut put = |x: u32, y: u32, shade: u8| {
-                img.put_pixel(x, y, image::Rgb([shade; 3]));
-                classes[(y * 100 + x) as usize] = Class::Obstacle as u8;
-            };
-            for y in 10..20u32 {
-                for x in 60..90u32 {
-                    let u = (f64::from(x) + 0.5) / 10.0;
-                    put(x, y, if u < face_end { 80 } else { 160 });
-                }
-            }
-            let mut blocked = vec![false; 40];
-            for x in 6..8 {
-                blocked[10 + x] = true;
-            }
+            let (mut img, mut classes, f2i, i2f, mut blocked) = floor_of_10x4(
+                60..90,
+                &[(10, 20)],
+                |u, _| if u < face_end { 80 } else { 160 },
+                &[16, 17],
+            );
             if column {
+                let (column_img, column_classes, ..) = floor_of_10x4(
+                    80..90,
+                    &[(20, 40)],
+                    |_, v| if v > 3.05 { 80 } else { 160 },
+                    &[],
+                );
                 for y in 20..40u32 {
                     for x in 80..90u32 {
-                        let v = (f64::from(y) + 0.5) / 10.0;
-                        put(x, y, if v > 3.05 { 80 } else { 160 });
+                        img.put_pixel(x, y, *column_img.get_pixel(x, y));
+                        classes[(y * 100 + x) as usize] = column_classes[(y * 100 + x) as usize];
                     }
                 }
                 blocked[28] = true;
