@@ -358,9 +358,7 @@ pub fn lean_doubt(
     beyond: Beyond,
 ) -> Option<Doubt> {
     let height = classes.len() / width.max(1);
-    let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
-    let is_blocked =
-        |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    let (inside, is_blocked) = lookups(blocked, (gw, gh));
     let (xi, yi) = (i64::from(x), i64::from(y));
     for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
         let fits = match beyond {
@@ -517,9 +515,7 @@ pub fn face_tells(
     nadir: Point,
     (x, y): (u32, u32),
 ) -> Option<Doubt> {
-    let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
-    let is_blocked =
-        |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    let (inside, is_blocked) = lookups(blocked, (gw, gh));
     let (xi, yi) = (i64::from(x), i64::from(y));
     let mut doubt = Doubt {
         dir: (0, 0),
@@ -557,6 +553,22 @@ pub fn face_tells(
         None if own => None,
         None => Some(doubt),
     }
+}
+
+/// Whether a cell (x, y) lies on the floor of `gw` × `gh` cells, and whether it is blocked there
+/// (`blocked`, row-major; a cell off the floor is not).
+fn lookups(
+    blocked: &[bool],
+    (gw, gh): (u32, u32),
+) -> (
+    impl Fn(i64, i64) -> bool + Copy,
+    impl Fn(i64, i64) -> bool + Copy + '_,
+) {
+    let inside =
+        move |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
+    let is_blocked =
+        move |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    (inside, is_blocked)
 }
 
 /// Whether a run of cells along `(dx, dy)` ending at cell `(x, y)` points away from the nadir:
@@ -626,9 +638,7 @@ pub fn face_shown(
     (dx, dy): (i64, i64),
     doubted: &[usize],
 ) -> bool {
-    let inside = |cx: i64, cy: i64| cx >= 0 && cy >= 0 && cx < i64::from(gw) && cy < i64::from(gh);
-    let is_blocked =
-        |cx: i64, cy: i64| inside(cx, cy) && blocked[(cy * i64::from(gw) + cx) as usize];
+    let (_, is_blocked) = lookups(blocked, (gw, gh));
     (0..gw as usize * gh as usize).any(|i| {
         let (xi, yi) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
         if !blocked[i] || doubted.contains(&i) {

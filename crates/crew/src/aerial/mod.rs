@@ -1024,6 +1024,15 @@ fn read_inner(
             .unwrap_or_default();
         let doubted: Vec<usize> = far_cells.iter().chain(&almost).map(|&(i, _)| i).collect();
         let almost_whole = almost.len();
+        // Whether the view's other faces show, for each direction (−u, +u, −v, +v), found
+        // once.
+        let mut shown: [Option<bool>; 4] = [None; 4];
+        let side = |(dx, dy): (i64, i64)| match (dx, dy) {
+            (-1, 0) => 0,
+            (1, 0) => 1,
+            (0, -1) => 2,
+            _ => 3,
+        };
         for (k, (i, far)) in almost.into_iter().chain(far_cells).enumerate() {
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
             if far.dir != (0, 0)
@@ -1039,17 +1048,19 @@ fn read_inner(
             // way are lit alike in one view; see `face`).
             if far.hidden_face
                 && (face::in_own_shadow(&suns, far.dir)
-                    || nadir.is_some_and(|n| {
-                        cover::face_shown(
-                            img,
-                            &classes,
-                            maps,
-                            (gw, gh),
-                            &blocked,
-                            n,
-                            far.dir,
-                            &doubted,
-                        )
+                    || *shown[side(far.dir)].get_or_insert_with(|| {
+                        nadir.is_some_and(|n| {
+                            cover::face_shown(
+                                img,
+                                &classes,
+                                maps,
+                                (gw, gh),
+                                &blocked,
+                                n,
+                                far.dir,
+                                &doubted,
+                            )
+                        })
                     }))
             {
                 continue;
