@@ -180,6 +180,19 @@ fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_run_s_face() {
     assert_exact("T0012", &r, &truth);
 }
 
+/// A free cell in a faint shadow under a blue sky is floor, though lit by the loose limit of a
+/// pixel leaning pale and tinted: the tint is the floor's under a mix of the sun's light and
+/// the shadows' (issue #29's twenty-fourth round). D0007's cell (17, 0), in a shelf's shadow
+/// whose far part is 0.87 as bright as the lit floor, leaned pale over 91 % of its middle and
+/// was refused before.
+#[test]
+fn a_free_cell_tinted_by_the_sky_s_light_in_a_shadow_is_floor() {
+    let (image, truth) = scene("D0007");
+    let r = read_aerial(&image, "D0007", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("D0007: {e}"));
+    assert_exact("D0007", &r, &truth);
+}
+
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still

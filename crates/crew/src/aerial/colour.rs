@@ -149,6 +149,9 @@ pub struct Classifier {
     /// The saturation after white balance from which a lit floor-coloured pixel leans pale
     /// (see [`Classifier::leaning`]).
     lean_tint: f64,
+    /// The floor's colour after white balance in the view's shadows, if known
+    /// ([`super::pale::shade`]).
+    shade: Option<[f64; 3]>,
 }
 
 /// Saturation and chroma (max − min, relative to the lit floor) of a robot's or goal's pixel:
@@ -192,6 +195,7 @@ impl Classifier {
             floor_bright: bright,
             floor_chromaticity: floor.map(|c| c / sum),
             lean_tint: super::pale::LEANING.2,
+            shade: None,
         }
     }
 
@@ -206,12 +210,27 @@ impl Classifier {
         }
     }
 
+    /// The classifier with the floor's colour in the view's shadows (see
+    /// [`super::pale::shade`]).
+    pub fn with_shade(self, shade: Option<[f64; 3]>) -> Classifier {
+        Classifier { shade, ..self }
+    }
+
     /// Whether a colour after white balance leans pale: at least [`super::pale::LEANING`]'s
     /// brightness, or lit and at least this classifier's leaning saturation.
     pub fn leaning(&self, balanced: [f64; 3]) -> bool {
         super::pale::is_leaning_with(balanced, self.lean_tint)
     }
 
+    /// Whether a colour after white balance that leans pale by its tint, not its brightness,
+    /// is the floor under a mix of the sun's and the sky's light
+    /// ([`super::pale::shade_explains`]; never when the view's shadows' colour is unknown).
+    pub fn shaded(&self, balanced: [f64; 3]) -> bool {
+        self.shade.is_some_and(|shade| {
+            balanced.iter().all(|&c| c < super::pale::LEANING.0)
+                && super::pale::shade_explains(balanced, shade, self.lean_tint)
+        })
+    }
     /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:
     /// a clear colour (as a mark's, relative to the lit floor) within a mark's hue band and
     /// at least `RAW_APART` (0.06) in chromaticity from the floor's. A floor of a clear colour,

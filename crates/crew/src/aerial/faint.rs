@@ -34,6 +34,7 @@
 use super::blobs::column_row;
 use super::colour::Class;
 use super::homography::Homography;
+use super::pale::NOT_LEANED;
 use super::pixels::OUTSIDE;
 use rayon::prelude::*;
 
@@ -66,16 +67,16 @@ pub const THICK: f64 = 0.5;
 pub const MIN_PIXELS: u32 = 12;
 
 /// Turns the tops of nearly the floor's colour into obstacle pixels (see the module's
-/// comment); `leaned` holds the pixels that leaned pale ([`super::pale::settle`]). Returns how
+/// comment); `leaned` tells the pixels that leaned pale ([`super::pale::settle`]), either way. Returns how
 /// many cells such tops stand on.
 pub fn settle(
     classes: &mut [u8],
-    leaned: &[bool],
+    leaned: &[u8],
     width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     (gw, gh): (u32, u32),
 ) -> usize {
-    if width == 0 || !leaned.iter().any(|&l| l) {
+    if width == 0 || !leaned.iter().any(|&l| l != NOT_LEANED) {
         return 0;
     }
     let (w, h) = (gw as usize, gh as usize);
@@ -104,7 +105,7 @@ pub fn settle(
             .fold(
                 || vec![0u32; w * h],
                 |mut leaning, (band, rows)| {
-                    for (k, _) in rows.iter().enumerate().filter(|&(_, &l)| l) {
+                    for (k, _) in rows.iter().enumerate().filter(|&(_, &l)| l != NOT_LEANED) {
                         let i = band * run + k;
                         if classes[i] != floor {
                             continue;
@@ -286,7 +287,8 @@ pub fn settle(
                     all += 1;
                     let k = ny * width + nx;
                     lean += usize::from(
-                        (leaned[k] && classes[k] == floor) || classes[k] == Class::Obstacle as u8,
+                        (leaned[k] != NOT_LEANED && classes[k] == floor)
+                            || classes[k] == Class::Obstacle as u8,
                     );
                 }
             }
@@ -304,7 +306,7 @@ pub fn settle(
             for y in y0..y1 {
                 for x in x0..x1 {
                     let i = y * width + x;
-                    if !leaned[i] || classes[i] != floor {
+                    if leaned[i] == NOT_LEANED || classes[i] != floor {
                         continue;
                     }
                     if let Some((cu, cv, fu, fv)) = at(i) {
@@ -327,7 +329,8 @@ pub fn settle(
             for ny in y.saturating_sub(1)..(y + 2).min(height) {
                 for nx in x.saturating_sub(1)..(x + 2).min(width) {
                     let j = ny * width + nx;
-                    if leaned[j] && classes[j] == floor && seen.insert(j) && !thin(j) {
+                    if leaned[j] != NOT_LEANED && classes[j] == floor && seen.insert(j) && !thin(j)
+                    {
                         stack.push(j);
                     }
                 }
@@ -366,10 +369,10 @@ mod tests {
     }
 
     /// The pixels of the box `(x0, y0)`–`(x1, y1)` (ends excluded) marked in `leaned`.
-    fn lean(leaned: &mut [bool], (x0, y0, x1, y1): (usize, usize, usize, usize)) {
+    fn lean(leaned: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize)) {
         for y in y0..y1 {
             for x in x0..x1 {
-                leaned[y * 60 + x] = true;
+                leaned[y * 60 + x] = super::super::pale::LEANED;
             }
         }
     }
@@ -377,7 +380,7 @@ mod tests {
     #[test]
     fn two_cells_side_by_side_that_lean_pale_are_a_top() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         // Cells (1, 1) and (2, 1), and a strip 3 px deep of their top leaning below them.
         lean(&mut leaned, (11, 11, 29, 22));
         let turned = settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3));
@@ -390,7 +393,7 @@ mod tests {
     #[test]
     fn bright_lines_painted_on_the_floor_are_not_the_top_s() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 29, 19));
         // White lines 1 px wide along every cell border, leaning pale over the whole floor.
         for k in 0..6 {
@@ -410,7 +413,7 @@ mod tests {
     #[test]
     fn a_single_cell_that_leans_pale_is_left_to_the_looks() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 19, 19));
         assert_eq!(
             settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
@@ -422,7 +425,7 @@ mod tests {
     #[test]
     fn cells_that_lean_pale_in_part_are_no_top() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         // Two cells' middles (rows 12–17) leaning but for one row of each: 5 of 6 rows.
         lean(&mut leaned, (11, 11, 29, 16));
         lean(&mut leaned, (11, 17, 29, 19));
@@ -435,7 +438,7 @@ mod tests {
     #[test]
     fn leaning_pixels_running_on_over_the_floor_are_its_light() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         // Two cells leaning whole, joined by a band of leaning pixels 0.4 cell wide (between
         // the middles of the next row of cells) to the floor's far end, more than REACH cells
         // away: a pool of light, not a top.
@@ -451,7 +454,7 @@ mod tests {
     #[test]
     fn a_top_s_third_cell_may_lean_a_little_less() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         // Cells (1, 1) to (3, 1), the middle of (3, 1) leaning in 5 of its 6 rows (83 %).
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (29, 11, 39, 16));
@@ -466,7 +469,7 @@ mod tests {
     #[test]
     fn cells_leaning_pale_in_no_rectangle_are_no_top() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         // Cells (1, 1), (2, 1) and (2, 0): an L, as a band of light winds.
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (21, 1, 29, 11));
@@ -479,13 +482,13 @@ mod tests {
     #[test]
     fn cells_leaning_pale_as_the_floor_around_them_does_are_no_top() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 29, 19));
         // A pixel in four of the floor around leans pale too, each apart from the others: the
         // cells around lean by a quarter.
         for y in (0..30).step_by(2) {
             for x in (0..60).step_by(2) {
-                leaned[y * 60 + x] = true;
+                leaned[y * 60 + x] = super::super::pale::LEANED;
             }
         }
         assert_eq!(
@@ -497,7 +500,7 @@ mod tests {
     #[test]
     fn marks_in_a_cell_leave_too_little_floor_to_judge() {
         let (to_image, to_floor, mut classes) = floor();
-        let mut leaned = vec![false; classes.len()];
+        let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 29, 19));
         // A goal over two thirds of cell (2, 1)'s middle (columns 22–25 of 22–27).
         for y in 11..19 {

@@ -41,6 +41,8 @@ pub const TINTED: f64 = 0.17;
 /// The largest share of a free cell's middle's floor pixels that lean pale (their colour
 /// averaged as in [`super::pixels`]: at least 1.3 times as bright as the lit floor, or at
 /// least 0.8 with a saturation of 0.1; see [`super::pale`]) without making a pale obstacle.
+/// A pixel whose tint the view's shadows' light explains is not counted
+/// ([`super::pale::LEANED_IN_SHADE`]).
 pub const LEANING: f64 = 0.5;
 /// ... judged on at least this share of the cell's pixels. The middle shrinks where a
 /// neighbour's top may lean over the cell and near a robot or a goal; a few dozen pixels
@@ -358,7 +360,7 @@ pub fn look(
     image_to_floor: &Homography,
     nadir: Option<(f64, f64)>,
     near_mark: &[u8],
-    leaned: &[bool],
+    leaned: &[u8],
     (cx, cy): (u32, u32),
 ) -> Look {
     let width = img.width() as usize;
@@ -441,7 +443,7 @@ pub fn look(
                 out.leaning.1 += 1;
                 // Leaning pale in a mark's hue within a cell of a mark: its glow.
                 let glowing = || near <= NEAR_GLOW && classifier.of_a_marks_hue(rgb);
-                if leaned.get(y * width + x) == Some(&true) && !glowing() {
+                if leaned.get(y * width + x) == Some(&super::pale::LEANED) && !glowing() {
                     out.leaning.0 += 1;
                 }
             }

@@ -636,14 +636,13 @@ fn read_inner(
     let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
     let px = cell_size_px(&floor_to_image, (fw, fh));
     let radius = pixels::denoise_radius(px);
-    // A lit floor-coloured pixel leans pale from a saturation above the floor's own noise.
-    let classifier = classifier.with_lean_tint(pale::lean_tint(&mut pixels::floor_saturations(
-        img,
-        &classifier,
-        &image_to_floor,
-        (gw, gh),
-        radius,
-    )));
+    // A lit floor-coloured pixel leans pale from a saturation above the floor's own noise; one
+    // whose tint the view's shadows' light explains is told apart (`pale::PALE_SHADE`).
+    let mut samples = pixels::floor_samples(img, &classifier, &image_to_floor, (gw, gh), radius);
+    let sampled = samples.lit_saturations.len() + samples.shaded.len();
+    let classifier = classifier
+        .with_lean_tint(pale::lean_tint(&mut samples.lit_saturations))
+        .with_shade(pale::shade(&mut samples.shaded, sampled));
     let mut classes = pixels::classify(img, &classifier, &image_to_floor, (gw, gh), radius);
     let width = img.width() as usize;
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));

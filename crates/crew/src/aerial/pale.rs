@@ -18,7 +18,13 @@
 //!   brighter than [`BRIGHTER`] times the lit floor, or lit and tinted).
 //!
 //! The leaning pixels of pale squares are an obstacle's; the others are floor, robot or goal
-//! pixels again. Painted lines (at most a tenth of a cell wide, a little more with blur) fill
+//! pixels again. Under a coloured sky or sun the floor itself is tinted where the sun is
+//! partly hidden: a soft shadow's rim, a faint shadow (bluish under a blue sky, brownish under
+//! a warm one, after white balance on the sunlit floor). A leaning pixel whose tint a mix of
+//! the sun's light and the shadows' explains ([`shade_explains`], against the view's
+//! shadows' colour, [`shade`]) still counts toward a pale square, so a pale top keeps its
+//! cover, but left floor it is told apart ([`LEANED_IN_SHADE`]): [`super::looks`] does not
+//! count it against a free cell (issue #29's twenty-fourth round). Painted lines (at most a tenth of a cell wide, a little more with blur) fill
 //! less than half of such a square, and specks of noise less still, so they stay floor.
 //!
 //! Pixels as bright as the lit floor or darker, and grey ones, are not judged here: a shelf
@@ -41,6 +47,19 @@ const BAND_ROWS: usize = 64;
 /// colour class, but leaning pale.
 pub const PALE: u8 = 6;
 
+/// Like [`PALE`], for a floor-coloured pixel whose tint the view's shadows' light explains
+/// ([`Classifier::shaded`]): it counts toward a pale square as [`PALE`] does (a pale top of
+/// the sky's tint stays an obstacle), but left floor it is not reported as leaning pale (a
+/// shadow's faint or soft rim under a coloured sky is floor).
+pub const PALE_SHADE: u8 = 9;
+
+/// How a pixel left floor by [`settle`] leaned pale: not at all, ...
+pub const NOT_LEANED: u8 = 0;
+/// ... as [`PALE`] ...
+pub const LEANED: u8 = 1;
+/// ... or as [`PALE_SHADE`].
+pub const LEANED_IN_SHADE: u8 = 2;
+
 /// Like [`PALE`], for a pixel of a robot's colour whose surroundings lean pale: a robot's
 /// pixel unless [`settle`] finds it in a pale square.
 pub const PALE_ROBOT: u8 = 7;
@@ -57,7 +76,17 @@ pub fn speck(mark: Class) -> u8 {
 }
 
 fn leaning_code(c: u8) -> bool {
-    c == PALE || c == PALE_ROBOT || c == PALE_GOAL
+    c == PALE || c == PALE_SHADE || c == PALE_ROBOT || c == PALE_GOAL
+}
+
+/// The code of a floor-coloured pixel that leans pale, after white balance `balanced`:
+/// [`PALE_SHADE`] when the shadows' light explains its tint, [`PALE`] otherwise.
+pub fn pale_code(classifier: &Classifier, balanced: [f64; 3]) -> u8 {
+    if classifier.shaded(balanced) {
+        PALE_SHADE
+    } else {
+        PALE
+    }
 }
 
 /// The brightest the lit floor may be after white balance over a square (the lit floor's
@@ -155,6 +184,69 @@ pub fn lit_floor_bright(rgb: [f64; 3]) -> bool {
     (LEANING.1..LEANING.0).contains(&max)
 }
 
+/// The brightness (relative to the lit floor) of the floor in a shadow, sampled for [`shade`]:
+/// darker than the lit floor ([`LEANING`]'s lit limit), brighter than a painted line or a
+/// shelf's dark side is likely to be.
+pub const SHADE_BRIGHT: (f64, f64) = (0.3, LEANING.1);
+/// At least this share of the floor's samples, and [`SHADE_SAMPLES`] of them, must be shaded for
+/// [`shade`] to tell the shadows' colour.
+pub const SHADE_SHARE: f64 = 0.02;
+/// See [`SHADE_SHARE`].
+pub const SHADE_SAMPLES: usize = 32;
+
+/// Whether a colour after white balance is as dark as the floor in a shadow ([`SHADE_BRIGHT`]).
+pub fn shade_bright(rgb: [f64; 3]) -> bool {
+    let max = rgb[0].max(rgb[1]).max(rgb[2]);
+    (SHADE_BRIGHT.0..SHADE_BRIGHT.1).contains(&max)
+}
+
+/// The colour after white balance of the floor in the view's shadows, lit by the sky alone:
+/// the median of each channel of the `shaded` samples (see [`super::pixels::floor_samples`]),
+/// when they are at least [`SHADE_SHARE`] of all `samples` and [`SHADE_SAMPLES`] in number;
+/// `None` otherwise. Under a coloured sky or sun the shadows are tinted (bluish under a blue
+/// sky, brownish under a warm one, after white balance on the sunlit floor), and so is the
+/// floor where the sun is partly hidden (a soft shadow's rim) or a shadow is faint: see
+/// [`shade_explains`]. `shaded` is reordered.
+pub fn shade(shaded: &mut [[f64; 3]], samples: usize) -> Option<[f64; 3]> {
+    let n = shaded.len();
+    if n < SHADE_SAMPLES || (n as f64) < SHADE_SHARE * samples as f64 {
+        return None;
+    }
+    let mut channel = vec![0.0; n];
+    let mut out = [0.0; 3];
+    for (c, o) in out.iter_mut().enumerate() {
+        for (v, p) in channel.iter_mut().zip(shaded.iter()) {
+            *v = p[c];
+        }
+        *o = *channel.select_nth_unstable_by(n / 2, f64::total_cmp).1;
+    }
+    Some(out)
+}
+
+/// The brightest a relit floor pixel may be ([`shade_explains`]), relative to the lit floor.
+/// The lowest of those tried in issue #29's twenty-fourth round (1.05, 1.15, and 1.3, the
+/// loose limit of a pixel leaning by its brightness): at 1.3, M0018's shelf of the floor's
+/// colour no longer showed as cells unlike the floor, and its shadow was refused as cast by
+/// nothing; 1.15 read one view more (U0008) than 1.05.
+pub const RELIT: f64 = 1.05;
+/// The sun's share of the light tried by [`shade_explains`]: 0, 0.1, …, 0.9.
+const SUN_SHARES: usize = 10;
+
+/// Whether a colour after white balance, tinted, is floor under a mix of the sun's light and
+/// the sky's: relit (divided by the light of a sun's share α of the lit floor's and the rest
+/// `shade`'s, for some α below 1), it is no brighter than the lit floor's texture allows
+/// ([`RELIT`]) and less saturated than `tint`. A tinted pale top lit by the sun is brighter
+/// than any relit floor where its tint is the sky's, and of another hue elsewhere.
+pub fn shade_explains(rgb: [f64; 3], shade: [f64; 3], tint: f64) -> bool {
+    (0..SUN_SHARES).any(|k| {
+        let sun = k as f64 / SUN_SHARES as f64;
+        let relit: [f64; 3] =
+            std::array::from_fn(|c| rgb[c] / (sun + (1.0 - sun) * shade[c]).max(1e-6));
+        let (max, min) = extremes(relit);
+        max < RELIT && !saturation_at_least(max, min, tint)
+    })
+}
+
 /// The side in pixels of the squares for cells `cell_px` wide: at least 3.
 pub fn square_px(cell_px: f64) -> usize {
     (OPENING * cell_px).round().max(3.0) as usize
@@ -188,8 +280,8 @@ impl Column {
             }
             PALE_ROBOT | PALE_GOAL => step(&mut self.leaning, 1),
             _ if c == Class::Robot as u8 || c == Class::Goal as u8 => step(&mut self.marks, 1),
-            _ if c == PALE || c == Class::Floor as u8 => {
-                if c == PALE {
+            _ if c == PALE || c == PALE_SHADE || c == Class::Floor as u8 => {
+                if c != Class::Floor as u8 {
                     step(&mut self.leaning, 1);
                 }
                 step(&mut self.floor, 1);
@@ -215,14 +307,11 @@ impl Column {
 
 /// Turns [`PALE`], [`PALE_ROBOT`] and [`PALE_GOAL`] pixels into obstacle pixels where they
 /// lie in a pale `side` × `side` square (see the module's comment), and into floor, robot
-/// and goal pixels elsewhere. Returns the pixels that leaned pale and became floor (empty
-/// when none leaned): [`super::looks`] refuses a free cell whose floor mostly leans pale.
-pub fn settle(
-    classes: &mut [u8],
-    img: &RgbImage,
-    classifier: &Classifier,
-    side: usize,
-) -> Vec<bool> {
+/// and goal pixels elsewhere. Returns how each pixel that became floor leaned pale
+/// ([`NOT_LEANED`], [`LEANED`] or [`LEANED_IN_SHADE`]; empty when none leaned):
+/// [`super::faint`] reads tops of nearly the floor's colour from both, and [`super::looks`]
+/// refuses a free cell whose floor mostly leans pale as [`PALE`] does.
+pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier, side: usize) -> Vec<u8> {
     let width = img.width() as usize;
     if width == 0 || !classes.iter().any(|&c| leaning_code(c)) {
         return Vec::new();
@@ -309,7 +398,7 @@ pub fn settle(
         }
     });
     let right = corner;
-    let mut leaned = vec![false; classes.len()];
+    let mut leaned = vec![NOT_LEANED; classes.len()];
     classes
         .par_chunks_mut(width * BAND_ROWS)
         .zip(leaned.par_chunks_mut(width * BAND_ROWS))
@@ -341,7 +430,12 @@ pub fn settle(
                     }
                     if leaning_code(*c) {
                         let covered = last[x].is_some_and(|l| y - l < side);
-                        *was = !covered && *c == PALE;
+                        *was = match *c {
+                            _ if covered => NOT_LEANED,
+                            PALE => LEANED,
+                            PALE_SHADE => LEANED_IN_SHADE,
+                            _ => NOT_LEANED,
+                        };
                         *c = match *c {
                             _ if covered => Class::Obstacle as u8,
                             PALE_ROBOT => Class::Robot as u8,
@@ -508,6 +602,70 @@ mod tests {
         assert_eq!(square_px(8.0), 4);
         assert_eq!(square_px(4.0), 3);
         assert_eq!(square_px(30.0), 15);
+    }
+
+    #[test]
+    fn the_shadows_colour_is_the_median_of_enough_shaded_samples() {
+        // Too few samples, or too small a share of the floor's.
+        assert_eq!(shade(&mut [[0.5, 0.55, 0.7]; 10], 100), None);
+        assert_eq!(shade(&mut vec![[0.5, 0.55, 0.7]; 40], 4000), None);
+        let mut shaded: Vec<[f64; 3]> = (0..40)
+            .map(|k| [0.5 + 0.001 * k as f64, 0.6, 0.7 - 0.001 * k as f64])
+            .collect();
+        let got = shade(&mut shaded, 400).unwrap();
+        assert!((got[0] - 0.52).abs() < 1e-12, "{got:?}");
+        assert_eq!(got[1], 0.6);
+        assert!((got[2] - 0.681).abs() < 1e-12, "{got:?}");
+        assert!(shade_bright([0.5, 0.6, 0.7]));
+        assert!(!shade_bright([0.2, 0.25, 0.28]), "a painted line's dark");
+        assert!(!shade_bright([0.8, 0.8, 0.85]), "lit");
+    }
+
+    #[test]
+    fn a_tint_the_sky_s_light_gives_the_floor_is_explained_and_a_pale_top_s_is_not() {
+        // The floor in a shadow under a blue sky, after white balance on the sunlit floor.
+        let sky = [0.55, 0.62, 0.75];
+        // Half the sun's light (a soft shadow's rim): lit by the loose limit, and tinted.
+        let rim = [0.775, 0.81, 0.875];
+        assert!(is_leaning_with(rim, LEANING.2));
+        assert!(shade_explains(rim, sky, LEANING.2));
+        // Lilac at the floor's brightness: another hue than the sky's.
+        let lilac = [1.0, 0.85, 1.05];
+        assert!(is_leaning_with(lilac, LEANING.2));
+        assert!(!shade_explains(lilac, sky, LEANING.2));
+        // A pale blue top: the sky's hue, but relit brighter than the floor can be.
+        let blue = [1.05, 1.1, 1.25];
+        assert!(is_leaning_with(blue, LEANING.2));
+        assert!(!shade_explains(blue, sky, LEANING.2));
+        // Under a grey sky the rim is grey, and a tinted pixel stays unexplained.
+        assert!(!shade_explains(rim, [0.6, 0.6, 0.6], LEANING.2));
+        // The classifier knows no shadows' colour until it is told one.
+        let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
+        assert!(!classifier.shaded(rim));
+        assert!(classifier.with_shade(Some(sky)).shaded(rim));
+        assert_eq!(
+            pale_code(&classifier.with_shade(Some(sky)), rim),
+            PALE_SHADE
+        );
+        assert_eq!(pale_code(&classifier, rim), PALE);
+    }
+
+    #[test]
+    fn pixels_leaning_by_the_shadows_tint_make_pale_tops_but_are_told_apart_as_floor() {
+        let rows = ["llll...l", "llll....", "llll....", "llll...."];
+        for (code, left) in [(PALE, LEANED), (PALE_SHADE, LEANED_IN_SHADE)] {
+            let (mut c, img, classifier) = scene(&rows);
+            for k in c.iter_mut().filter(|k| **k == PALE) {
+                *k = code;
+            }
+            let leaned = settle(&mut c, &img, &classifier, 3);
+            // The 4 × 4 block is a top either way; the lone pixel is floor that leaned.
+            assert!((0..4).all(|y| (0..4).all(|x| c[y * 8 + x] == O)), "{c:?}");
+            assert_eq!(c[7], F);
+            assert_eq!(leaned[7], left);
+            assert_eq!(leaned[0], NOT_LEANED, "a top's pixel");
+            assert_eq!(leaned[12], NOT_LEANED, "floor");
+        }
     }
 
     #[test]

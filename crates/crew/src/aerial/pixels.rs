@@ -245,22 +245,35 @@ fn floor_span(
     Some(lo..hi.max(lo))
 }
 
-/// The saturation after white balance of the lit floor's pixels (of the floor's colour class
-/// and brightness, see [`pale::lit_floor_bright`]), each judged as [`classify`] judges it
-/// (averaged over its square of radius `radius`), sampled every 8th pixel of every 8th row
-/// inside the floor, each row of samples shifted by 3 pixels from the one before: for
-/// [`pale::lean_tint`].
-pub fn floor_saturations(
+/// The floor's pixels, each judged as [`classify`] judges it (averaged over its square of
+/// radius `radius`), sampled every 8th pixel of every 8th row inside the floor, each row of
+/// samples shifted by 3 pixels from the one before: the saturation after white balance of
+/// those of the floor's colour class and the lit floor's brightness (see
+/// [`pale::lit_floor_bright`]), for [`pale::lean_tint`], and the colours after white balance
+/// of those of the floor's class as dark as a shadow ([`pale::SHADE_BRIGHT`]), for
+/// [`pale::shade`].
+pub struct FloorSamples {
+    /// The lit floor's saturations.
+    pub lit_saturations: Vec<f64>,
+    /// The shaded floor's colours.
+    pub shaded: Vec<[f64; 3]>,
+}
+
+/// See [`FloorSamples`].
+pub fn floor_samples(
     img: &RgbImage,
     classifier: &Classifier,
     image_to_floor: &Homography,
     (w, h): (u32, u32),
     radius: usize,
-) -> Vec<f64> {
+) -> FloorSamples {
     let (width, height) = (img.width() as usize, img.height() as usize);
     let raw = img.as_raw();
     let (fw, fh) = (f64::from(w), f64::from(h));
-    let mut out = Vec::new();
+    let mut out = FloorSamples {
+        lit_saturations: Vec::new(),
+        shaded: Vec::new(),
+    };
     for y in (0..height).step_by(8) {
         for x in ((y / 8 * 3) % 8..width).step_by(8) {
             let inside = image_to_floor
@@ -282,8 +295,13 @@ pub fn floor_saturations(
             let n = ((x1 - x0 + 1) * (y1 - y0 + 1)) as u32;
             let mean = sum.map(|s| ((s + n / 2) / n) as u8);
             let balanced = classifier.balanced(mean);
-            if classifier.classify(mean) == Class::Floor && pale::lit_floor_bright(balanced) {
-                out.push(pale::saturation(balanced));
+            if classifier.classify(mean) != Class::Floor {
+                continue;
+            }
+            if pale::lit_floor_bright(balanced) {
+                out.lit_saturations.push(pale::saturation(balanced));
+            } else if pale::shade_bright(balanced) {
+                out.shaded.push(balanced);
             }
         }
     }
@@ -333,14 +351,16 @@ pub fn classify(
                             colour(&mean)
                         };
                         line[k] = if leaning(judged) {
-                            pale::PALE
+                            pale::pale_code(classifier, classifier.balanced(judged))
                         } else {
                             Class::Floor as u8
                         };
                         return;
                     }
                     let judged = |p: [u8; 3]| match classifier.classify(p) {
-                        Class::Floor if leaning(p) => pale::PALE,
+                        Class::Floor if leaning(p) => {
+                            pale::pale_code(classifier, classifier.balanced(p))
+                        }
                         c => c as u8,
                     };
                     line[k] = match classifier.classify(colour(own)) {
@@ -348,7 +368,7 @@ pub fn classify(
                         // pixels): the mark's class unless `pale::settle` finds the shelf.
                         mark @ (Class::Robot | Class::Goal) if radius > 0 => {
                             match judged(colour(&mean)) {
-                                pale::PALE => pale::speck(mark),
+                                pale::PALE | pale::PALE_SHADE => pale::speck(mark),
                                 _ => mark as u8,
                             }
                         }
@@ -494,7 +514,7 @@ mod tests {
         .unwrap()
         .inverse()
         .unwrap();
-        let mut s = floor_saturations(&img, &classifier, &to_floor, (10, 10), 0);
+        let mut s = floor_samples(&img, &classifier, &to_floor, (10, 10), 0).lit_saturations;
         assert_eq!(s.len(), 100);
         assert_eq!(s.iter().filter(|&&x| x > 0.0).count(), 50);
         let tinted = 1.0 - 1.0 / 1.1;
@@ -509,7 +529,7 @@ mod tests {
                 [120, 120, 120]
             })
         });
-        let mut s = floor_saturations(&quarter, &classifier, &to_floor, (10, 10), 0);
+        let mut s = floor_samples(&quarter, &classifier, &to_floor, (10, 10), 0).lit_saturations;
         assert_eq!(pale::lean_tint(&mut s), pale::LEANING.2);
         // Outside the floor nothing is sampled.
         let half_floor = Homography::floor_to_image(
@@ -521,9 +541,26 @@ mod tests {
         .inverse()
         .unwrap();
         assert_eq!(
-            floor_saturations(&img, &classifier, &half_floor, (10, 10), 0).len(),
+            floor_samples(&img, &classifier, &half_floor, (10, 10), 0)
+                .lit_saturations
+                .len(),
             50
         );
+        // A bluish shadow over the right half (the sky's light): its colour is sampled as the
+        // shaded floor's, none of it as the lit floor's.
+        let shadowed = RgbImage::from_fn(80, 80, |x, _| {
+            image::Rgb(if x < 40 {
+                [120, 120, 120]
+            } else {
+                [66, 74, 90]
+            })
+        });
+        let samples = floor_samples(&shadowed, &classifier, &to_floor, (10, 10), 0);
+        assert_eq!(samples.lit_saturations.len(), 50);
+        assert_eq!(samples.shaded.len(), 50);
+        let mut shaded = samples.shaded;
+        let shade = pale::shade(&mut shaded, 100).unwrap();
+        assert!((shade[0] - 0.55).abs() < 1e-9 && (shade[2] - 0.75).abs() < 1e-9);
     }
 
     #[test]
