@@ -50,6 +50,13 @@ pub const SEEN: f64 = 0.5;
 pub const MIDDLE: (f64, f64) = (0.2, 0.8);
 /// The fewest cells of a top that lean pale by [`SHARE`].
 pub const CELLS: usize = 2;
+/// ... or this many cells that lean pale by this share: a longer top, of which the camera's
+/// noise or the sky's tint leaves a little more floor-like in each cell (issue #29's
+/// twenty-fourth round: K0009's top over five cells leaned pale by 0.92–0.97, each cell
+/// refused as a free cell unlike the floor). On families A–Z and a–e it turned no free cell
+/// and read N0017 and b0006, and V0036's top of six cells at 0.5–0.9, read free past its
+/// refusals, blocked.
+pub const WIDE: (usize, f64) = (3, 0.85);
 /// How far (in cells, along each axis) a top's leaning pixels may lie from its cells.
 pub const REACH: f64 = 2.0;
 /// The largest median share of leaning pixels over the cells around a top (those showing
@@ -206,12 +213,16 @@ pub fn settle(
     let mut in_ring = vec![false; w * h];
     // The tops' pixels, turned once every group is judged on the classes as they were.
     let mut tops: Vec<usize> = Vec::new();
-    for (id, members) in groups.iter().enumerate().filter(|(_, g)| {
+    let leaning_by = |g: &[usize], least: f64| {
         g.iter()
-            .filter(|&&c| shares[c].is_some_and(|s| s >= SHARE))
+            .filter(|&&c| shares[c].is_some_and(|s| s >= least))
             .count()
-            >= CELLS
-    }) {
+    };
+    for (id, members) in groups
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| leaning_by(g, SHARE) >= CELLS || leaning_by(g, WIDE.1) >= WIDE.0)
+    {
         // The cells' box on the floor, grown by REACH.
         let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
         for &c in members {
@@ -433,6 +444,41 @@ mod tests {
             settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
             0
         );
+    }
+
+    #[test]
+    fn three_cells_side_by_side_that_lean_pale_a_little_less_are_a_top() {
+        // Each cell's middle (6 × 6 px) leaning but for 4 of its pixels: 0.89, under SHARE.
+        let leaned_cells = |cells: usize| {
+            let mut leaned = vec![NOT_LEANED; 60 * 30];
+            lean(&mut leaned, (11, 11, 9 + 10 * cells, 19));
+            for k in 0..cells {
+                for y in 12..16 {
+                    leaned[y * 60 + 13 + 10 * k] = NOT_LEANED;
+                }
+            }
+            leaned
+        };
+        let (to_image, to_floor, mut classes) = floor();
+        let turned = settle(
+            &mut classes,
+            &leaned_cells(2),
+            60,
+            (&to_image, &to_floor),
+            (6, 3),
+        );
+        assert_eq!(turned, 0, "two cells");
+        assert_eq!(
+            settle(
+                &mut classes,
+                &leaned_cells(3),
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            ),
+            3
+        );
+        assert_eq!(classes[15 * 60 + 35], Class::Obstacle as u8);
     }
 
     #[test]
