@@ -193,6 +193,19 @@ fn a_free_cell_tinted_by_the_sky_s_light_in_a_shadow_is_floor() {
     assert_exact("D0007", &r, &truth);
 }
 
+/// A shelf whose face toward the nadir reads as floor (in its own shadow) covers only the far
+/// part of its own cell, its top leaning half over the cell beyond; that cover is its own top,
+/// for no neighbour toward the nadir is covered, and the cell beyond is free under it (issue
+/// #29's twenty-fourth round). O0011's cells (5, 12), 63 % covered, and (5, 13), under its
+/// top, were refused before.
+#[test]
+fn a_shelf_whose_face_reads_as_floor_is_told_by_its_top_s_band() {
+    let (image, truth) = scene("O0011");
+    let r = read_aerial(&image, "O0011", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("O0011: {e}"));
+    assert_exact("O0011", &r, &truth);
+}
+
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still

@@ -684,13 +684,61 @@ fn read_inner(
         };
         shares.push(share);
     }
-    // Cells whose window is mostly covered; those among them, and the half-covered cells,
-    // that a neighbour's leaning top explains are free (see `cover`).
-    let sure: Vec<bool> = shares.iter().map(|&s| s >= HALF_COVERED.1).collect();
     let index = |x: i64, y: i64| {
         (x >= 0 && y >= 0 && x < i64::from(gw) && y < i64::from(gh))
             .then(|| (y * i64::from(gw) + x) as usize)
     };
+    // Half-covered cells whose cover is their own top leaning away from the nadir, their face
+    // read as floor (see `tops::faced`), on all cores.
+    let faced: Vec<bool> = {
+        use rayon::prelude::*;
+        let share_at = |x: i64, y: i64| index(x, y).map(|k| shares[k]);
+        (0..cells)
+            .into_par_iter()
+            .map(|i| {
+                let Some(n) = nadir else { return false };
+                if !(HALF_COVERED.0..HALF_COVERED.1).contains(&shares[i]) {
+                    return false;
+                }
+                let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
+                let side = nadir_side((x, y), n);
+                let (sx, sy) = (i64::from(side.0), i64::from(side.1));
+                let clear =
+                    |dx: i64, dy: i64| share_at(x + dx, y + dy).is_none_or(|s| s <= HALF_COVERED.0);
+                // Along x: the neighbours toward the nadir, beside the cell and diagonally, are
+                // not covered, and the one beyond (away from the nadir) not mostly: a cell
+                // beyond read blocked may be the cell's own top leaning a cell or more, its
+                // face read as floor (L0028's row of shelves, read a row too far past its
+                // refusals).
+                let partial =
+                    |dx: i64, dy: i64| share_at(x + dx, y + dy).is_none_or(|s| s < HALF_COVERED.1);
+                // Along the other axis, a neighbour toward the nadir mostly covered may lean its
+                // top over the cell's far side along this one, diagonally (`across`).
+                let clear_x =
+                    sx != 0 && clear(sx, 0) && clear(sx, -1) && clear(sx, 1) && partial(-sx, 0);
+                let clear_y =
+                    sy != 0 && clear(0, sy) && clear(-1, sy) && clear(1, sy) && partial(0, -sy);
+                let across = [sy != 0 && !partial(0, sy), sx != 0 && !partial(sx, 0)];
+                (clear_x || clear_y) && {
+                    let bins = cover::bins(
+                        &classes,
+                        width,
+                        &floor_to_image,
+                        &image_to_floor,
+                        (x as u32, y as u32),
+                    );
+                    tops::faced(&bins, side, [clear_x, clear_y], across)
+                }
+            })
+            .collect()
+    };
+    // Cells whose window is mostly covered, and those whose own top covers them (`faced`);
+    // the cells that a neighbour's leaning top from them explains are free (see `cover`).
+    let sure: Vec<bool> = shares
+        .iter()
+        .zip(&faced)
+        .map(|(&s, &f)| s >= HALF_COVERED.1 || f)
+        .collect();
     let is_sure = |x: i64, y: i64| index(x, y).is_some_and(|k| sure[k]);
     // The fits, on all cores (each cell's alone: the result does not depend on the cores).
     let fits: Vec<Option<cover::Fit>> = {
@@ -748,20 +796,21 @@ fn read_inner(
                 }
             }
         }
-        own_top_decides(
-            leaned,
-            || {
-                let bins = cover::bins(
-                    &classes,
-                    width,
-                    &floor_to_image,
-                    &image_to_floor,
-                    (x as u32, y as u32),
-                );
-                tops::standing(&bins, side)
-            },
-            || colours(x, y).pale_top(&ring),
-        )
+        faced[i]
+            || own_top_decides(
+                leaned,
+                || {
+                    let bins = cover::bins(
+                        &classes,
+                        width,
+                        &floor_to_image,
+                        &image_to_floor,
+                        (x as u32, y as u32),
+                    );
+                    tops::standing(&bins, side)
+                },
+                || colours(x, y).pale_top(&ring),
+            )
     };
     let mut blocked = vec![false; cells];
     // Covered cells a neighbour's leaning top may cover almost whole.

@@ -117,6 +117,101 @@ pub fn standing(bins: &Bins, toward: (i32, i32)) -> bool {
     covered >= STANDING
 }
 
+/// The least share of the bins along a cell's far border (away from the nadir) that its own
+/// leaning top covers ([`faced`]).
+pub const FAR_EDGE: f64 = 0.8;
+
+/// How far (bins) the inner edge of a top's band may wander across the cell ([`faced`]).
+pub const EDGE_SPREAD: usize = 3;
+
+/// Whether a cell's cover is its own top, leaning away from the nadir, with its face toward
+/// the nadir not read as an obstacle (a face in the shelf's own shadow reads as floor in a
+/// shadow): along an axis on which the nadir lies to one side (`toward`, −1 or 1; see
+/// [`standing`]), at least [`FAR_EDGE`] of the bins along the cell's far border are covered,
+/// none along its near border, and [`STANDING`] bins in all, each line of bins across the
+/// cell covered from the far border inward to depths within [`EDGE_SPREAD`] of each other
+/// (a top's straight edge), and at most [`super::cover::MISFIT`] of the bins covered
+/// beyond (the face's noise, or its colour read as an obstacle's in places), while
+/// `clear[axis]`: the
+/// neighbours toward the nadir along that axis (beside it and diagonally) are not covered, so
+/// no top of theirs leans over the cell. A neighbour's top enters a cell across the border
+/// toward the nadir, never across the far one. When `across[axis]`, the neighbour toward the
+/// nadir along the other axis is mostly covered, and its top, leaning both ways, may reach
+/// the far side along this axis across the border they share: then no bin along that border
+/// may be covered either (K0038's free cell (8, 19), under the end of a pale top leaning over
+/// (7, 19), was read so at first).
+/// Since issue #29's twenty-fourth round: a shelf whose face is dark reads 40–70 % covered on
+/// its own cells, its top half over the cells beyond.
+pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2]) -> bool {
+    let last = BINS - 1;
+    let covered = |u: usize, v: usize| {
+        let k = v * BINS + u;
+        let (o, f) = (bins.obstacle[k], bins.floor[k]);
+        o + f > 0 && f64::from(o) >= COVERED * f64::from(o + f)
+    };
+    let count = (0..BINS)
+        .flat_map(|v| (0..BINS).map(move |u| (u, v)))
+        .filter(|&(u, v)| covered(u, v))
+        .count();
+    if count < STANDING {
+        return false;
+    }
+    [toward.0, toward.1]
+        .into_iter()
+        .enumerate()
+        .any(|(axis, side)| {
+            if side == 0 || !clear[axis] {
+                return false;
+            }
+            let ends = |side: i32| if side > 0 { (last, 0) } else { (0, last) };
+            let (near, far) = ends(side);
+            // The covered bins along the border at `at` on axis `axis`.
+            let line = |axis: usize, at: usize| {
+                (0..BINS)
+                    .filter(|&k| {
+                        if axis == 0 {
+                            covered(at, k)
+                        } else {
+                            covered(k, at)
+                        }
+                    })
+                    .count()
+            };
+            let other = 1 - axis;
+            let other_side = if other == 0 { toward.0 } else { toward.1 };
+            // Across the cell, the covered bins from the far border inward: a solid band whose
+            // inner edge is straight (a top's edge), not a speckle of noise or texture.
+            let bin = |along: usize, across: usize| {
+                if axis == 0 {
+                    covered(along, across)
+                } else {
+                    covered(across, along)
+                }
+            };
+            let inward = |k: usize| if far == 0 { k } else { last - k };
+            let mut depths = Vec::with_capacity(BINS);
+            let mut strays = 0;
+            for j in 0..BINS {
+                let depth = (0..BINS).take_while(|&k| bin(inward(k), j)).count();
+                strays += (depth..BINS).filter(|&k| bin(inward(k), j)).count();
+                if depth > 0 {
+                    depths.push(depth);
+                }
+            }
+            if strays as f64 > super::cover::MISFIT * (BINS * BINS) as f64 {
+                return false;
+            }
+            let (lo, hi) = (
+                depths.iter().copied().min().unwrap_or(0),
+                depths.iter().copied().max().unwrap_or(0),
+            );
+            line(axis, near) == 0
+                && line(axis, far) as f64 >= FAR_EDGE * BINS as f64
+                && hi - lo <= EDGE_SPREAD
+                && (!across[axis] || line(other, ends(other_side).0) == 0)
+        })
+}
+
 /// The mean colours of cell `(cx, cy)`'s window (see [`Window`]).
 pub fn window_colours(
     img: &RgbImage,
@@ -227,6 +322,66 @@ mod tests {
             &bins(|u, v| (4..=6).contains(&u) && (4..=6).contains(&v)),
             (0, 0)
         ));
+    }
+
+    #[test]
+    fn a_top_leaning_off_its_own_cell_over_its_face_is_its_own() {
+        // The nadir below: the top covers the cell's upper four rows of bins, its face (read
+        // as floor) the rest, down to the border toward the nadir.
+        let band = bins(|_, v| v <= 3);
+        let below = (0, 1);
+        assert!(faced(&band, below, [false, true], [false, false]));
+        // Unless a neighbour toward the nadir is covered (its top could lean over the cell),
+        // or the nadir lies level with the cell along that axis.
+        assert!(!faced(&band, below, [true, false], [false, false]));
+        assert!(!faced(&band, (0, 0), [true, true], [false, false]));
+        // Covered to the border toward the nadir: a neighbour's top, or the cell's own whole.
+        assert!(!faced(
+            &bins(|_, v| v >= 6),
+            below,
+            [false, true],
+            [false, false]
+        ));
+        assert!(!faced(
+            &bins(|_, _| true),
+            below,
+            [false, true],
+            [false, false]
+        ));
+        // Too little of the far border: a top's corner.
+        assert!(!faced(
+            &bins(|u, v| v <= 5 && u <= 5),
+            below,
+            [false, true],
+            [false, false]
+        ));
+        // A ragged band: U0034's free cell (3, 8), floor's texture read as an obstacle's.
+        let ragged = [3, 2, 1, 2, 2, 2, 2, 2, 3, 6];
+        assert!(!faced(
+            &bins(|u, v| v < ragged[u]),
+            below,
+            [false, true],
+            [false, false]
+        ));
+        // A few specks in the face are its noise; many are not.
+        let specks = bins(|u, v| v <= 3 || (v == 6 && u % 3 == 0));
+        assert!(faced(&specks, below, [false, true], [false, false]));
+        let many = bins(|u, v| v <= 3 || ((6..=7).contains(&v) && u % 2 == 0) || (v == 8 && u < 3));
+        assert!(!faced(&many, below, [false, true], [false, false]));
+    }
+
+    #[test]
+    fn a_top_leaning_diagonally_from_a_neighbour_along_the_other_axis_is_not() {
+        // The nadir below and to the right; the band along the cell's left border (the far
+        // one along x) also touches its bottom border, across which a covered neighbour below
+        // may lean its top.
+        let left = bins(|u, _| u <= 3);
+        let toward = (1, 1);
+        assert!(faced(&left, toward, [true, false], [false, false]));
+        assert!(!faced(&left, toward, [true, false], [true, false]));
+        // Clear of that border, it is the cell's own.
+        let short = bins(|u, v| u <= 3 && v <= 7);
+        assert!(faced(&short, toward, [true, false], [true, false]));
     }
 
     #[test]
