@@ -226,9 +226,14 @@ impl Classifier {
     /// is the floor under a mix of the sun's and the sky's light
     /// ([`super::pale::shade_explains`]; never when the view's shadows' colour is unknown).
     pub fn shaded(&self, balanced: [f64; 3]) -> bool {
+        self.shaded_with(balanced, self.lean_tint)
+    }
+
+    /// Like [`Classifier::shaded`], relit less saturated than `tint`.
+    pub fn shaded_with(&self, balanced: [f64; 3], tint: f64) -> bool {
         self.shade.is_some_and(|shade| {
             balanced.iter().all(|&c| c < super::pale::LEANING.0)
-                && super::pale::shade_explains(balanced, shade, self.lean_tint)
+                && super::pale::shade_explains(balanced, shade, tint)
         })
     }
     /// The mark (robot or goal) a pixel shows by its colour before white balance, if any:

@@ -268,6 +268,10 @@ pub struct Look {
     /// The saturation of the mean colour of its floor pixels between the first and third
     /// quartile of brightness (texture and specks left out).
     pub saturation: f64,
+    /// Whether that mean colour's tint is the floor's under a mix of the sun's light and the
+    /// shadows' ([`Classifier::shaded_with`] at [`TINTED`]): a shadow's soft rim or a faint
+    /// shadow under a coloured sky, not a tinted top.
+    pub shaded: bool,
     /// The pixels of a colour that cannot be told, and all the pixels judged (not near a mark).
     pub unsure: (usize, usize),
     /// Of its middle's floor pixels, those that leaned pale without making a pale square
@@ -288,7 +292,7 @@ impl Look {
             Some(b) if b > BRIGHTER => Some(format!(
                 "{b:.2} times as bright as the lit floor (its texture and uneven light make floor at most {BRIGHTER:.2} times as bright)"
             )),
-            Some(b) if b >= LIT && self.saturation > TINTED => Some(format!(
+            Some(b) if b >= LIT && self.saturation > TINTED && !self.shaded => Some(format!(
                 "lit ({b:.2} times as bright as the lit floor, no shadow) but tinted (saturation {:.2} after white balance on the floor, the lit floor's at most {TINTED:.2})",
                 self.saturation
             )),
@@ -374,6 +378,7 @@ pub fn look(
     let mut out = Look {
         bright: None,
         saturation: 0.0,
+        shaded: false,
         unsure: (0, 0),
         leaning: (0, 0),
         area: 0,
@@ -501,6 +506,7 @@ pub fn look(
     let max = mean[0].max(mean[1]).max(mean[2]);
     let min = mean[0].min(mean[1]).min(mean[2]);
     out.saturation = if max > 0.0 { (max - min) / max } else { 0.0 };
+    out.shaded = out.saturation > TINTED && classifier.shaded_with(mean, TINTED);
     out
 }
 
@@ -636,6 +642,7 @@ mod tests {
         Look {
             bright: Some(bright),
             saturation,
+            shaded: false,
             unsure: (0, 100),
             leaning: (0, 100),
             area: 400,
@@ -657,6 +664,7 @@ mod tests {
         let unsure = Look {
             bright: None,
             saturation: 0.0,
+            shaded: false,
             unsure: (70, 100),
             leaning: (0, 0),
             area: 400,
