@@ -661,6 +661,12 @@ mod tests {
     fn a_bright_a_lit_tinted_or_an_unsure_cell_does_not() {
         assert!(lit(1.8, 0.0).odd().unwrap().contains("1.80 times"));
         assert!(lit(0.95, 0.25).odd().unwrap().contains("tinted"));
+        // Tinted as the shadows' light tints the floor (a soft shadow's rim): floor.
+        let rim = Look {
+            shaded: true,
+            ..lit(0.95, 0.25)
+        };
+        assert_eq!(rim.odd(), None);
         let unsure = Look {
             bright: None,
             saturation: 0.0,
