@@ -399,8 +399,9 @@ FAMILIES = {
                              (0.18, 0.50, 0.38)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
-    # l: held out from issue #29's twenty-fourth round, rendered after its final reader (a
-    # floor pixel's tint told as the shadows' light) and not looked at until scored once.
+    # l: held out from issue #29's twenty-fourth round, rendered after its first rule (a floor
+    # pixel's tint told as the shadows' light) and not looked at until scored once with the
+    # round's final reader.
     # Rotated-box, puck and box-with-a-dome robots, ring, square and diamond goals, light
     # blue-grey, mid olive-grey and dark plum-grey floors tiled every half cell, pale sand and
     # dark blue-grey shelves (the latter bluish after white balance, as a shadow under a blue

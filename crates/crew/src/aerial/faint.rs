@@ -53,9 +53,9 @@ pub const CELLS: usize = 2;
 /// ... or this many cells that lean pale by this share: a longer top, of which the camera's
 /// noise or the sky's tint leaves a little more floor-like in each cell (issue #29's
 /// twenty-fourth round: K0009's top over five cells leaned pale by 0.92–0.97, each cell
-/// refused as a free cell unlike the floor). On families A–Z and a–e it turned no free cell
-/// and read N0017 and b0006, and V0036's top of six cells at 0.5–0.9, read free past its
-/// refusals, blocked.
+/// refused as a free cell unlike the floor). On families A–Z and a–e it read N0017 and b0006,
+/// and V0036's top of six cells, read free past its refusals before, blocked; the audit past
+/// the refusals reads no free cell blocked by it.
 pub const WIDE: (usize, f64) = (3, 0.85);
 /// How far (in cells, along each axis) a top's leaning pixels may lie from its cells.
 pub const REACH: f64 = 2.0;
