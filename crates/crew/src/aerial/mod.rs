@@ -688,6 +688,9 @@ fn read_inner(
         (x >= 0 && y >= 0 && x < i64::from(gw) && y < i64::from(gh))
             .then(|| (y * i64::from(gw) + x) as usize)
     };
+    // A cell's cover in bins on the floor (see `cover`).
+    let cell_bins =
+        |xy: (u32, u32)| cover::bins(&classes, width, &floor_to_image, &image_to_floor, xy);
     // Half-covered cells whose cover is their own top leaning away from the nadir, their face
     // read as floor (see `tops::faced`), on all cores.
     let faced: Vec<bool> = {
@@ -719,16 +722,13 @@ fn read_inner(
                 let clear_y =
                     sy != 0 && clear(0, sy) && clear(-1, sy) && clear(1, sy) && partial(0, -sy);
                 let across = [sy != 0 && !partial(0, sy), sx != 0 && !partial(sx, 0)];
-                (clear_x || clear_y) && {
-                    let bins = cover::bins(
-                        &classes,
-                        width,
-                        &floor_to_image,
-                        &image_to_floor,
-                        (x as u32, y as u32),
-                    );
-                    tops::faced(&bins, side, [clear_x, clear_y], across)
-                }
+                (clear_x || clear_y)
+                    && tops::faced(
+                        &cell_bins((x as u32, y as u32)),
+                        side,
+                        [clear_x, clear_y],
+                        across,
+                    )
             })
             .collect()
     };
@@ -759,7 +759,7 @@ fn read_inner(
                 if shares[i] >= HALF_COVERED.1 && !leaned_on {
                     return None;
                 }
-                let bins = cover::bins(&classes, width, &floor_to_image, &image_to_floor, (x, y));
+                let bins = cell_bins((x, y));
                 cover::fit(&bins, (x, y), n, &is_sure)
             })
             .collect()
@@ -799,16 +799,7 @@ fn read_inner(
         faced[i]
             || own_top_decides(
                 leaned,
-                || {
-                    let bins = cover::bins(
-                        &classes,
-                        width,
-                        &floor_to_image,
-                        &image_to_floor,
-                        (x as u32, y as u32),
-                    );
-                    tops::standing(&bins, side)
-                },
+                || tops::standing(&cell_bins((x as u32, y as u32)), side),
                 || colours(x, y).pale_top(&ring),
             )
     };
