@@ -138,8 +138,9 @@ pub const EDGE_SPREAD: usize = 3;
 /// toward the nadir, never across the far one. When `across[axis]`, the neighbour toward the
 /// nadir along the other axis is mostly covered, and its top, leaning both ways, may reach
 /// the far side along this axis across the border they share: then no bin along that border
-/// may be covered either (K0038's free cell (8, 19), under the end of a pale top leaning over
-/// (7, 19), was read so at first).
+/// may be covered, or the band must run across the whole cell (a top leaning off that
+/// neighbour covers the cell's part next to it; K0038's free cell (8, 19), under the end of a
+/// pale top leaning over (7, 19), was read blocked at first).
 /// Since issue #29's twenty-fourth round: a shelf whose face is dark reads 40–70 % covered on
 /// its own cells, its top half over the cells beyond.
 pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2]) -> bool {
@@ -208,7 +209,7 @@ pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2
             line(axis, near) == 0
                 && line(axis, far) as f64 >= FAR_EDGE * BINS as f64
                 && hi - lo <= EDGE_SPREAD
-                && (!across[axis] || line(other, ends(other_side).0) == 0)
+                && (!across[axis] || line(other, ends(other_side).0) == 0 || depths.len() == BINS)
         })
 }
 
@@ -372,16 +373,20 @@ mod tests {
 
     #[test]
     fn a_top_leaning_diagonally_from_a_neighbour_along_the_other_axis_is_not() {
-        // The nadir below and to the right; the band along the cell's left border (the far
-        // one along x) also touches its bottom border, across which a covered neighbour below
-        // may lean its top.
+        // The nadir above and to the right; a covered neighbour above may lean its top over the
+        // cell's upper part, and, leaning left too, along its left border (the far one along
+        // x): K0038's free cell (8, 19), its band ending short of the bottom border.
+        let toward = (1, -1);
+        let corner = bins(|u, v| u <= 3 && v <= 7);
+        assert!(faced(&corner, toward, [true, false], [false, false]));
+        assert!(!faced(&corner, toward, [true, false], [true, false]));
+        // The band across the whole cell, to the far border along y too: the cell's own top,
+        // a run's (e.g. Y0021's (0, 8), K0039's (20, 4)).
         let left = bins(|u, _| u <= 3);
-        let toward = (1, 1);
-        assert!(faced(&left, toward, [true, false], [false, false]));
-        assert!(!faced(&left, toward, [true, false], [true, false]));
-        // Clear of that border, it is the cell's own.
-        let short = bins(|u, v| u <= 3 && v <= 7);
-        assert!(faced(&short, toward, [true, false], [true, false]));
+        assert!(faced(&left, toward, [true, false], [true, false]));
+        // Clear of the border toward that neighbour, it is the cell's own too.
+        let clear = bins(|u, v| u <= 3 && v >= 2);
+        assert!(faced(&clear, toward, [true, false], [true, false]));
     }
 
     #[test]
