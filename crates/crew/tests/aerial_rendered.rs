@@ -206,6 +206,20 @@ fn a_shelf_whose_face_reads_as_floor_is_told_by_its_top_s_band() {
     assert_exact("O0011", &r, &truth);
 }
 
+/// A dark shelf of nearly the floor's hue reads as floor in a shadow, and its own shadow as
+/// cast by nothing; its cells keep a tint that no mix of the sun's light and the shadows' gives
+/// the floor, so, told by that shadow, they are read as its top (issue #29's twenty-fourth
+/// round). V0030's slate shelf over cells (0, 5)–(0, 8) was refused before.
+#[test]
+fn a_dark_top_of_another_hue_than_the_shadows_is_told_by_its_shadow() {
+    let (image, truth) = scene("V0030");
+    let r = read_aerial(&image, "V0030", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("V0030: {e}"));
+    assert_exact("V0030", &r, &truth);
+    let tops: Vec<(u32, u32)> = r.floor_tops.iter().map(|&c| r.grid.xy(c)).collect();
+    assert_eq!(tops, vec![(0, 5), (0, 6), (0, 7), (0, 8)]);
+}
+
 /// The audit reads past the cells' refusals and changes nothing else: on every committed
 /// fixture a view read exactly is audited to the same reading with no refusal, and a refused
 /// view gives the same refusal first (or the same robot's or goal's reason, which still

@@ -229,6 +229,16 @@ impl Classifier {
         self.shaded_with(balanced, self.lean_tint)
     }
 
+    /// The tint a colour after white balance keeps however the shadows' light mixes with the
+    /// sun's ([`super::pale::least_relit_saturation`]); its own saturation when the view's
+    /// shadows' colour is unknown.
+    pub fn unexplained_tint(&self, balanced: [f64; 3]) -> f64 {
+        self.shade.map_or_else(
+            || super::pale::saturation(balanced),
+            |shade| super::pale::least_relit_saturation(balanced, shade),
+        )
+    }
+
     /// Like [`Classifier::shaded`], relit less saturated than `tint`.
     pub fn shaded_with(&self, balanced: [f64; 3], tint: f64) -> bool {
         self.shade.is_some_and(|shade| {

@@ -272,6 +272,9 @@ pub struct Look {
     /// shadows' ([`Classifier::shaded_with`] at [`TINTED`]): a shadow's soft rim or a faint
     /// shadow under a coloured sky, not a tinted top.
     pub shaded: bool,
+    /// The tint of that mean colour that no mix of the sun's light and the shadows' explains
+    /// ([`Classifier::unexplained_tint`]): for [`Look::dark_unlike`].
+    pub unexplained: f64,
     /// The pixels of a colour that cannot be told, and all the pixels judged (not near a mark).
     pub unsure: (usize, usize),
     /// Of its middle's floor pixels, those that leaned pale without making a pale square
@@ -284,7 +287,22 @@ pub struct Look {
     pub bins: [shadows::Bin; shadows::BINS],
 }
 
+/// The least tint ([`Look::unexplained`]) of a dark free cell that the shadows' light does not
+/// explain, for it to be a candidate dark top ([`Look::dark_unlike`]).
+pub const DARK_TINT: f64 = 0.12;
+
 impl Look {
+    /// Whether the cell is darker than the lit floor (in a shadow, or a dark top lit by the
+    /// sun) with a tint that no mix of the sun's light and the shadows' gives the floor
+    /// ([`DARK_TINT`]): a shelf's dark top, of another hue than the shadows', read as floor in
+    /// a shadow. Not refused for it (a dark cell is not judged by its tint): it is only proposed
+    /// with the casterless shadow beside it ([`super::corroborated`]).
+    pub fn dark_unlike(&self) -> bool {
+        self.bright
+            .is_some_and(|b| (super::pale::SHADE_BRIGHT.0..LIT).contains(&b))
+            && self.unexplained >= DARK_TINT
+    }
+
     /// Why the cell does not look like the floor, if it does not.
     pub fn odd(&self) -> Option<String> {
         let (unsure, all) = self.unsure;
@@ -379,6 +397,7 @@ pub fn look(
         bright: None,
         saturation: 0.0,
         shaded: false,
+        unexplained: 0.0,
         unsure: (0, 0),
         leaning: (0, 0),
         area: 0,
@@ -507,6 +526,7 @@ pub fn look(
     let min = mean[0].min(mean[1]).min(mean[2]);
     out.saturation = if max > 0.0 { (max - min) / max } else { 0.0 };
     out.shaded = out.saturation > TINTED && classifier.shaded_with(mean, TINTED);
+    out.unexplained = classifier.unexplained_tint(mean);
     out
 }
 
@@ -643,11 +663,27 @@ mod tests {
             bright: Some(bright),
             saturation,
             shaded: false,
+            unexplained: 0.0,
             unsure: (0, 100),
             leaning: (0, 100),
             area: 400,
             bins: Default::default(),
         }
+    }
+
+    #[test]
+    fn a_dark_cell_of_a_tint_no_shadow_gives_may_be_a_dark_top() {
+        let dark = |bright: f64, unexplained: f64| Look {
+            unexplained,
+            ..lit(bright, unexplained)
+        };
+        assert!(dark(0.6, 0.15).dark_unlike());
+        // Lit, or darker than a shadow's floor: not a dark top's; of the shadows' tint: floor.
+        assert!(!dark(0.9, 0.15).dark_unlike());
+        assert!(!dark(0.2, 0.15).dark_unlike());
+        assert!(!dark(0.6, 0.05).dark_unlike());
+        // Never refused for it: a dark cell is not judged by its tint.
+        assert_eq!(dark(0.6, 0.15).odd(), None);
     }
 
     #[test]
@@ -671,6 +707,7 @@ mod tests {
             bright: None,
             saturation: 0.0,
             shaded: false,
+            unexplained: 0.0,
             unsure: (70, 100),
             leaning: (0, 0),
             area: 400,

@@ -1014,6 +1014,16 @@ fn read_inner(
     };
     let bins: Vec<Option<[shadows::Bin; shadows::BINS]>> =
         looks.iter().map(|l| l.as_ref().map(|l| l.bins)).collect();
+    // Each free cell's tint that the shadows' light does not explain, and whether it is a dark
+    // top's (for `corroborated`, below).
+    let unexplained: Vec<Option<(f64, bool)>> = looks
+        .iter()
+        .map(|l| {
+            l.as_ref()
+                .filter(|l| l.bright.is_some())
+                .map(|l| (l.unexplained, l.dark_unlike()))
+        })
+        .collect();
     drop(looks);
     let levels = looks::local_levels(&bright, (gw, gh));
     // The free floor's shadow bins and the sun's directions, found once for the far cells
@@ -1366,27 +1376,49 @@ fn read_inner(
         let unlike_all: Vec<usize> = odd_cells.iter().chain(&unlike_cells).copied().collect();
         let shadows_all: Vec<Vec<usize>> =
             shadow_regions.into_iter().map(|(_, bins)| bins).collect();
-        let tops = corroborated::shelves(&unlike_all, &shadows_all, &hidden_lines, (gw, gh));
-        let free_looks = || -> Vec<Option<(f64, f64, f64)>> {
-            (0..cells)
-                .map(|i| {
-                    let b = bright[i].filter(|_| grid.is_free(Cell(i as u32)) && !is_settled[i])?;
-                    Some((b, saturation[i], levels[i]))
-                })
-                .collect()
-        };
-        if !tops.is_empty() && corroborated::alone(&tops, &free_looks()) {
+        let free = |i: usize| grid.is_free(Cell(i as u32)) && !is_settled[i];
+        // The view read again with `tops` blocked, kept when it refuses nothing.
+        let again_with = |tops: &[usize]| -> Option<(Audited, f64)> {
             let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let mut again = config.clone();
             again.blocked_cells.extend(tops.iter().map(|&i| xy(i)));
-            if let Ok((mut read, lightly)) = read_inner(img, source, &again, audit, false) {
-                if read.doubts.is_empty() && lightly < corroborated::FREE_COVER {
-                    read.reading
-                        .settled
-                        .retain(|(c, _)| tops.binary_search(&(c.0 as usize)).is_err());
-                    read.reading.floor_tops = tops.iter().map(|&i| Cell(i as u32)).collect();
-                    return Ok((read, lightly));
-                }
+            let (mut read, lightly) = read_inner(img, source, &again, audit, false).ok()?;
+            if !read.doubts.is_empty() || lightly >= corroborated::FREE_COVER {
+                return None;
+            }
+            read.reading
+                .settled
+                .retain(|(c, _)| tops.binary_search(&(c.0 as usize)).is_err());
+            read.reading.floor_tops = tops.iter().map(|&i| Cell(i as u32)).collect();
+            Some((read, lightly))
+        };
+        let tops = corroborated::shelves(&unlike_all, &shadows_all, &hidden_lines, (gw, gh));
+        let free_looks: Vec<Option<(f64, f64, f64)>> = (0..cells)
+            .map(|i| {
+                let b = bright[i].filter(|_| free(i))?;
+                Some((b, saturation[i], levels[i]))
+            })
+            .collect();
+        if !tops.is_empty() && corroborated::alone(&tops, &free_looks) {
+            if let Some(read) = again_with(&tops) {
+                return Ok(read);
+            }
+        }
+        // Dark tops of another hue than the shadows' (see `looks::Look::dark_unlike`), told by
+        // the shadow nothing casts beside them, and alone by that tint on the free floor.
+        let dark_cells: Vec<usize> = (0..cells)
+            .filter(|&i| free(i) && unexplained[i].is_some_and(|(_, dark)| dark))
+            .collect();
+        let dark = corroborated::shelves(&dark_cells, &shadows_all, &[], (gw, gh));
+        let tints: Vec<Option<(f64, f64, f64)>> = (0..cells)
+            .map(|i| {
+                let (tint, _) = unexplained[i].filter(|_| free(i))?;
+                Some((0.0, tint, 0.0))
+            })
+            .collect();
+        if !dark.is_empty() && dark != tops && corroborated::alone(&dark, &tints) {
+            if let Some(read) = again_with(&dark) {
+                return Ok(read);
             }
         }
     }

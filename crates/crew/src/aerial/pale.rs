@@ -247,6 +247,21 @@ pub fn shade_explains(rgb: [f64; 3], shade: [f64; 3], tint: f64) -> bool {
     })
 }
 
+/// The least saturation a colour after white balance keeps, relit by any mix of the sun's light
+/// and the shadows' `shade` (a sun's share α of 0, 0.1, …, 1; see [`shade_explains`]): the
+/// tint that no shadow gives the floor. A shadow, or a soft one's rim, keeps little; a dark
+/// top of another hue than the shadows' keeps its own.
+pub fn least_relit_saturation(rgb: [f64; 3], shade: [f64; 3]) -> f64 {
+    (0..=SUN_SHARES)
+        .map(|k| {
+            let sun = k as f64 / SUN_SHARES as f64;
+            let relit: [f64; 3] =
+                std::array::from_fn(|c| rgb[c] / (sun + (1.0 - sun) * shade[c]).max(1e-6));
+            saturation(relit)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// The side in pixels of the squares for cells `cell_px` wide: at least 3.
 pub fn square_px(cell_px: f64) -> usize {
     (OPENING * cell_px).round().max(3.0) as usize
@@ -648,6 +663,24 @@ mod tests {
             PALE_SHADE
         );
         assert_eq!(pale_code(&classifier, rim), PALE);
+    }
+
+    #[test]
+    fn a_dark_top_keeps_a_tint_the_shadows_light_does_not_give() {
+        let sky = [0.55, 0.62, 0.75];
+        // The shadow itself, its rim, and the lit floor keep no tint.
+        assert!(least_relit_saturation(sky, sky) < 1e-9);
+        assert!(least_relit_saturation([0.775, 0.81, 0.875], sky) < 1e-9);
+        assert!(least_relit_saturation([1.0, 1.0, 1.0], sky) < 1e-9);
+        // A dark grey top lit by the sun, warmer than the shadows, keeps its own tint.
+        let top = [0.6, 0.56, 0.5];
+        assert!(
+            least_relit_saturation(top, sky) > 0.15,
+            "{}",
+            least_relit_saturation(top, sky)
+        );
+        // Under a grey sky the shadows explain no tint: a top's saturation is its own.
+        assert!((least_relit_saturation(top, [0.6; 3]) - saturation(top)).abs() < 1e-9);
     }
 
     #[test]
