@@ -427,6 +427,19 @@ FAMILIES = {
                              (0.22, 0.22, 0.24)),
               shelf_height=(0.3, 2.1), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # n: held out from issue #29's twenty-fourth round, rendered after its final reader (dark
+    # tops of another hue than the shadows', told by their shadow) and not looked at until
+    # scored once. Cylinder, rotated-box and puck robots, diamond, square and ring goals, light
+    # warm grey, mid blue-grey and dark olive floors tiled every half cell, charcoal-blue, dark
+    # brown, pale stone, teal and magenta shelves, from 0.3 to 2.0 high inset 0.06 cell, a sun
+    # 20-70 degrees up of strength 2.3-3.7, warmer and cooler light, and a camera from 45 to 165
+    # cells per 24 high.
+    "n": dict(robot_shapes=("cylinder", "rotbox", "puck"), goal_shapes=("diamond", "square", "ring"),
+              floors=((0.72, 0.68, 0.62), (0.46, 0.50, 0.56), (0.28, 0.28, 0.18)),
+              shelf_colours=((0.20, 0.24, 0.32), (0.30, 0.20, 0.14), (0.80, 0.78, 0.72), (0.12, 0.42, 0.44),
+                             (0.66, 0.16, 0.50)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
