@@ -440,6 +440,18 @@ FAMILIES = {
                              (0.66, 0.16, 0.50)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # o: held out from issue #29's twenty-fourth round, rendered after its final reader (a
+    # shadow's caster at least a quarter cell) and not looked at until scored once. Dome, box
+    # and box-with-a-dome robots, ring, cross and ellipse goals, light cool grey, mid sand and
+    # dark slate floors tiled every quarter cell, off-white, dark green, rust, dusty blue and
+    # dark plum shelves, from 0.3 to 2.0 high inset 0.05 cell, a sun 20-70 degrees up of
+    # strength 2.3-3.7, warmer and cooler light, and a camera from 45 to 165 cells per 24 high.
+    "o": dict(robot_shapes=("dome", "box", "boxdome"), goal_shapes=("ring", "cross", "ellipse"),
+              floors=((0.68, 0.70, 0.72), (0.62, 0.54, 0.40), (0.24, 0.26, 0.30)),
+              shelf_colours=((0.90, 0.88, 0.84), (0.10, 0.26, 0.14), (0.62, 0.28, 0.12), (0.44, 0.52, 0.66),
+                             (0.30, 0.14, 0.26)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
