@@ -452,6 +452,18 @@ FAMILIES = {
                              (0.30, 0.14, 0.26)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # p: held out from issue #29's twenty-fourth round, rendered after its final reader (one sun
+    # for three quarters of the shadows) and not looked at until scored once. Puck, cylinder and
+    # rotated-box robots, disc, cross and diamond goals, light beige, mid grey-green and dark
+    # warm-brown floors tiled every third of a cell, pale grey, dark brown-black, ochre, navy
+    # and salmon shelves, from 0.3 to 2.1 high inset 0.07 cell, a sun 20-70 degrees up of
+    # strength 2.3-3.7, warmer and cooler light, and a camera from 45 to 165 cells per 24 high.
+    "p": dict(robot_shapes=("puck", "cylinder", "rotbox"), goal_shapes=("disc", "cross", "diamond"),
+              floors=((0.76, 0.70, 0.60), (0.46, 0.52, 0.46), (0.30, 0.24, 0.20)),
+              shelf_colours=((0.78, 0.78, 0.76), (0.16, 0.13, 0.11), (0.80, 0.60, 0.20), (0.14, 0.18, 0.42),
+                             (0.88, 0.52, 0.44)),
+              shelf_height=(0.3, 2.1), tiles=1 / 3, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
