@@ -326,8 +326,10 @@ fn regions(inside: &[bool], (bw, bh): (usize, usize)) -> Vec<Vec<usize>> {
 pub const DIRECTIONS: usize = 64;
 /// How far (cells) a shadow may reach from its caster: a shelf 2 high under a sun 20° up.
 pub const REACH: f64 = 6.0;
-/// The share of the shadow's bins (sampled) that one direction must explain for the view to
-/// have one sun ([`Sunlit::unattached`]); with less (soft light, lamps), the check is not made.
+/// The share of the shadow's bins (sampled) that a direction must explain to be one the view's
+/// sun may shine from ([`Sunlit::suns`], for a run's far cells); with less (soft light,
+/// lamps), no direction is. Until issue #29's twenty-fourth round the check that every shadow
+/// lies behind its caster used it too (now [`ONE_SUN_BEHIND`]).
 pub const ONE_SUN: f64 = 0.85;
 /// The share of the shadow's bins that the sun's direction must explain for the check that
 /// every shadow lies behind its caster ([`Sunlit::unattached`]): less than [`ONE_SUN`], since
