@@ -239,12 +239,16 @@ const SUN_SHARES: usize = 10;
 /// than any relit floor where its tint is the sky's, and of another hue elsewhere.
 pub fn shade_explains(rgb: [f64; 3], shade: [f64; 3], tint: f64) -> bool {
     (0..SUN_SHARES).any(|k| {
-        let sun = k as f64 / SUN_SHARES as f64;
-        let relit: [f64; 3] =
-            std::array::from_fn(|c| rgb[c] / (sun + (1.0 - sun) * shade[c]).max(1e-6));
-        let (max, min) = extremes(relit);
+        let (max, min) = extremes(relit(rgb, shade, k));
         max < RELIT && !saturation_at_least(max, min, tint)
     })
+}
+
+/// `rgb` divided by the light of a sun's share `k` / [`SUN_SHARES`] of the lit floor's and the
+/// rest the shadows' `shade`.
+fn relit(rgb: [f64; 3], shade: [f64; 3], k: usize) -> [f64; 3] {
+    let sun = k as f64 / SUN_SHARES as f64;
+    std::array::from_fn(|c| rgb[c] / (sun + (1.0 - sun) * shade[c]).max(1e-6))
 }
 
 /// The least saturation a colour after white balance keeps, relit by any mix of the sun's light
@@ -253,12 +257,7 @@ pub fn shade_explains(rgb: [f64; 3], shade: [f64; 3], tint: f64) -> bool {
 /// top of another hue than the shadows' keeps its own.
 pub fn least_relit_saturation(rgb: [f64; 3], shade: [f64; 3]) -> f64 {
     (0..=SUN_SHARES)
-        .map(|k| {
-            let sun = k as f64 / SUN_SHARES as f64;
-            let relit: [f64; 3] =
-                std::array::from_fn(|c| rgb[c] / (sun + (1.0 - sun) * shade[c]).max(1e-6));
-            saturation(relit)
-        })
+        .map(|k| saturation(relit(rgb, shade, k)))
         .fold(f64::INFINITY, f64::min)
 }
 

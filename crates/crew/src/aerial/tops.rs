@@ -166,22 +166,8 @@ pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2
             }
             let ends = |side: i32| if side > 0 { (last, 0) } else { (0, last) };
             let (near, far) = ends(side);
-            // The covered bins along the border at `at` on axis `axis`.
-            let line = |axis: usize, at: usize| {
-                (0..BINS)
-                    .filter(|&k| {
-                        if axis == 0 {
-                            covered(at, k)
-                        } else {
-                            covered(k, at)
-                        }
-                    })
-                    .count()
-            };
-            let other = 1 - axis;
-            let other_side = if other == 0 { toward.0 } else { toward.1 };
-            // Across the cell, the covered bins from the far border inward: a solid band whose
-            // inner edge is straight (a top's edge), not a speckle of noise or texture.
+            let other_side = if axis == 0 { toward.1 } else { toward.0 };
+            // Whether the bin `along` this axis and `across` it is covered.
             let bin = |along: usize, across: usize| {
                 if axis == 0 {
                     covered(along, across)
@@ -189,6 +175,8 @@ pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2
                     covered(across, along)
                 }
             };
+            // Across the cell, the covered bins from the far border inward: a solid band whose
+            // inner edge is straight (a top's edge), not a speckle of noise or texture.
             let inward = |k: usize| if far == 0 { k } else { last - k };
             let mut depths = Vec::with_capacity(BINS);
             let mut strays = 0;
@@ -206,10 +194,13 @@ pub fn faced(bins: &Bins, toward: (i32, i32), clear: [bool; 2], across: [bool; 2
                 depths.iter().copied().min().unwrap_or(0),
                 depths.iter().copied().max().unwrap_or(0),
             );
-            line(axis, near) == 0
-                && line(axis, far) as f64 >= FAR_EDGE * BINS as f64
+            // Nothing along the near border; the far border covered (the lines with a depth);
+            // along the border toward the nadir on the other axis, nothing or the band whole.
+            let shared = ends(other_side).0;
+            (0..BINS).all(|j| !bin(near, j))
+                && depths.len() as f64 >= FAR_EDGE * BINS as f64
                 && hi - lo <= EDGE_SPREAD
-                && (!across[axis] || line(other, ends(other_side).0) == 0 || depths.len() == BINS)
+                && (!across[axis] || (0..BINS).all(|k| !bin(k, shared)) || depths.len() == BINS)
         })
 }
 
