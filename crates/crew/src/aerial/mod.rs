@@ -638,11 +638,15 @@ fn read_inner(
     let radius = pixels::denoise_radius(px);
     // A lit floor-coloured pixel leans pale from a saturation above the floor's own noise; one
     // whose tint the view's shadows' light explains is told apart (`pale::PALE_SHADE`).
-    let mut samples = pixels::floor_samples(img, &classifier, &image_to_floor, (gw, gh), radius);
-    let sampled = samples.lit_saturations.len() + samples.shaded.len();
-    let classifier = classifier
-        .with_lean_tint(pale::lean_tint(&mut samples.lit_saturations))
-        .with_shade(pale::shade(&mut samples.shaded, sampled));
+    // (The samples are let go here, before the passes over the pixels.)
+    let classifier = {
+        let mut samples =
+            pixels::floor_samples(img, &classifier, &image_to_floor, (gw, gh), radius);
+        let sampled = samples.lit_saturations.len() + samples.shaded.len();
+        classifier
+            .with_lean_tint(pale::lean_tint(&mut samples.lit_saturations))
+            .with_shade(pale::shade(&mut samples.shaded, sampled))
+    };
     let mut classes = pixels::classify(img, &classifier, &image_to_floor, (gw, gh), radius);
     let width = img.width() as usize;
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
