@@ -220,6 +220,18 @@ fn a_dark_top_of_another_hue_than_the_shadows_is_told_by_its_shadow() {
     assert_eq!(tops, vec![(0, 5), (0, 6), (0, 7), (0, 8)]);
 }
 
+/// A red robot standing against a dusty-rose shelf of its hue makes one blob with it, dull
+/// for the most part; the shelf's pixels become an obstacle's and the robot, as saturated as
+/// the view's other robots, stays a robot (`dull::VIVID`; issue #29's twenty-fifth round).
+/// a0030 lost two robots so and was refused ("19 goals but only 17 robots").
+#[test]
+fn a_robot_against_a_shelf_of_its_hue_is_read() {
+    let (image, truth) = scene("a0030");
+    let r = read_aerial(&image, "a0030", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("a0030: {e}"));
+    assert_exact("a0030", &r, &truth);
+}
+
 /// Two views of the held-out family n (issue #29's twenty-fourth round), each a dark brown shelf
 /// that reads as floor, were read wrongly, the shelf's cells free; both are refused now. In
 /// n0002 specks of the blue shadow's noise, read as an obstacle's colour, had passed for the

@@ -14,6 +14,11 @@
 //! Measured on families A-F and K-Z: of 6188 robots' blobs of at least 20 pixels, 3 (20 to 41
 //! pixels: robots mostly hidden, refused then as a robot lost) are under 0.7 times the typical
 //! saturation, the next 0.75; the dull shelves that were read as robots are 0.44 to 0.69.
+//! A robot standing against such a shelf makes one blob with it, dull for the most part: the
+//! blob's pieces of pixels at least [`VIVID`] times as saturated as the robots, each at least
+//! [`blobs::SMALL`] times the typical robot large, stay the robots', with the blob's pixels
+//! next to them (their rims); until issue #29's twenty-fifth round the robot was turned with
+//! the shelf (a0030, Y0011, p0037: refused as a robot lost, "more goals than robots").
 //! Goals are left as they are: their paint varies more, and a goal-coloured shelf is told by
 //! its shape ([`super::shelves`]).
 //!
@@ -25,6 +30,10 @@ use image::RgbImage;
 
 /// A blob at most this many times as saturated as the robots is a shelf's.
 pub const DULL: f64 = 0.7;
+
+/// A dull blob's pixels at least this many times as saturated as the robots may be a robot
+/// against the shelf ([`robots_within`]).
+pub const VIVID: f64 = 0.85;
 
 /// Turns the dull blobs of the robots' colour into obstacle blobs; returns how many.
 pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> usize {
@@ -50,17 +59,105 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> us
     let mut all: Vec<f64> = sized.iter().map(|s| s.1).collect();
     let mid = all.len() / 2;
     let typical = *all.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let robot_area = blobs::sort(
+        sized
+            .iter()
+            .filter(|s| s.1 >= DULL * typical)
+            .map(|s| s.0.clone())
+            .collect(),
+    )
+    .median_area;
     let mut turned = 0;
     for (b, s) in sized {
         if s < DULL * typical {
+            let vivid = |&(x, y): &(u32, u32)| {
+                super::pale::saturation(classifier.balanced(img.get_pixel(x, y).0))
+                    >= VIVID * typical
+            };
+            let kept = robots_within(b, vivid, width, robot_area);
             for &(x, y) in &b.pixels {
-                classes[y as usize * width + x as usize] = Class::Obstacle as u8;
+                let i = y as usize * width + x as usize;
+                if !kept.contains(&i) {
+                    classes[i] = Class::Obstacle as u8;
+                }
             }
             turned += 1;
         }
     }
     turned
 }
+
+/// The pixels of a dull blob that stay a robot's: the 8-connected pieces of its `vivid`
+/// pixels (as saturated as the robots) of at least [`blobs::SMALL`] times the typical robot's
+/// `area`, each with the blob's pixels next to it (its rim, blurred toward the shelf's
+/// colour): a robot standing against a shelf of its hue joins the shelf's blob (a0030,
+/// Y0011: red robots against dusty-rose shelves; issue #29's twenty-fifth round), and was
+/// turned with it. Pixel indices (row-major, `width` wide), sorted.
+fn robots_within(
+    b: &blobs::Blob,
+    vivid: impl Fn(&(u32, u32)) -> bool,
+    width: usize,
+    area: usize,
+) -> std::collections::BTreeSet<usize> {
+    let (x0, y0, x1, y1) = b.bbox;
+    let (w, h) = ((x1 - x0 + 3) as usize, (y1 - y0 + 3) as usize);
+    // A local map of the blob with a one-pixel margin: 1 vivid, 2 dull.
+    let mut local = vec![0u8; w * h];
+    let at = |x: u32, y: u32| (y - y0 + 1) as usize * w + (x - x0 + 1) as usize;
+    for p in &b.pixels {
+        local[at(p.0, p.1)] = if vivid(p) { 1 } else { 2 };
+    }
+    let mut kept = std::collections::BTreeSet::new();
+    let least = (blobs::SMALL * area as f64).max(blobs::MIN_AREA as f64);
+    let mut seen = vec![false; w * h];
+    let mut stack = Vec::new();
+    for start in 0..local.len() {
+        if local[start] != 1 || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(i) = stack.pop() {
+            piece.push(i);
+            let (x, y) = (i % w, i / w);
+            for (dx, dy) in NEIGHBOURS {
+                let j = (y as isize + dy) as usize * w + (x as isize + dx) as usize;
+                if local[j] == 1 && !seen[j] {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        if (piece.len() as f64) < least {
+            continue;
+        }
+        let global = |i: usize| (y0 as usize + i / w - 1) * width + x0 as usize + i % w - 1;
+        for &i in &piece {
+            kept.insert(global(i));
+            let (x, y) = (i % w, i / w);
+            for (dx, dy) in NEIGHBOURS {
+                let j = (y as isize + dy) as usize * w + (x as isize + dx) as usize;
+                if local[j] == 2 {
+                    kept.insert(global(j));
+                }
+            }
+        }
+    }
+    kept
+}
+
+/// The eight neighbours of a pixel.
+const NEIGHBOURS: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
 
 #[cfg(test)]
 mod tests {
@@ -91,6 +188,61 @@ mod tests {
         for x in [4, 14, 24] {
             assert_eq!(classes[10 * 60 + x], Class::Robot as u8);
         }
+    }
+
+    #[test]
+    fn a_robot_against_a_dull_shelf_stays_a_robot() {
+        // As above, with a fourth robot standing against the shelf: one blob of the robots'
+        // colour, dull for the most part.
+        let mut img = RgbImage::from_pixel(70, 20, Rgb([128, 128, 128]));
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let mut classes = vec![Class::Floor as u8; 70 * 20];
+        let mut put = |x0: u32, x1: u32, c: [u8; 3]| {
+            for y in 5..15u32 {
+                for x in x0..x1 {
+                    img.put_pixel(x, y, Rgb(c));
+                    classes[y as usize * 70 + x as usize] = Class::Robot as u8;
+                }
+            }
+        };
+        put(2, 8, [200, 20, 20]);
+        put(12, 18, [150, 15, 15]);
+        put(22, 28, [220, 40, 30]);
+        put(34, 56, [170, 110, 105]);
+        put(56, 62, [190, 25, 20]);
+        // Its rim, blurred toward the shelf's colour, stays the robot's.
+        for y in 5..15u32 {
+            img.put_pixel(56, y, Rgb([180, 70, 60]));
+        }
+        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        for x in 34..56 {
+            assert_eq!(classes[10 * 70 + x], Class::Obstacle as u8, "x = {x}");
+        }
+        for x in 56..62 {
+            assert_eq!(classes[10 * 70 + x], Class::Robot as u8, "x = {x}");
+        }
+        // A piece of the shelf as saturated as the robots, too small for a robot, is the
+        // shelf's.
+        let mut classes = vec![Class::Floor as u8; 70 * 20];
+        let mut img = RgbImage::from_pixel(70, 20, Rgb([128, 128, 128]));
+        for (x0, x1, c) in [
+            (2, 8, [200, 20, 20]),
+            (12, 18, [150, 15, 15]),
+            (22, 28, [220, 40, 30]),
+            (34, 56, [170, 110, 105]),
+        ] {
+            for y in 5..15u32 {
+                for x in x0..x1 {
+                    img.put_pixel(x, y, Rgb(c));
+                    classes[y as usize * 70 + x as usize] = Class::Robot as u8;
+                }
+            }
+        }
+        for (x, y) in [(40, 8), (41, 8), (40, 9)] {
+            img.put_pixel(x, y, Rgb([200, 20, 20]));
+        }
+        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(classes[8 * 70 + 40], Class::Obstacle as u8);
     }
 
     #[test]
