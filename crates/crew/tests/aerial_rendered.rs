@@ -232,6 +232,19 @@ fn a_robot_against_a_shelf_of_its_hue_is_read() {
     assert_exact("a0030", &r, &truth);
 }
 
+/// A terracotta shelf is as saturated as the red robots, its hue 20°–30° from theirs; read
+/// as the robots' colour, it made a robot-coloured blob whose pixels did not fill its cells,
+/// and U0032's cell (19, 2) was refused as 60 % covered. Such a blob, larger than a robot
+/// and of a hue more than `dull::HUE_APART` from the robots', is an obstacle's (issue #29's
+/// twenty-fifth round).
+#[test]
+fn a_shelf_of_a_hue_near_the_robots_is_read_as_a_shelf() {
+    let (image, truth) = scene("U0032");
+    let r = read_aerial(&image, "U0032", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("U0032: {e}"));
+    assert_exact("U0032", &r, &truth);
+}
+
 /// Two views of the held-out family n (issue #29's twenty-fourth round), each a dark brown shelf
 /// that reads as floor, were read wrongly, the shelf's cells free; both are refused now. In
 /// n0002 specks of the blue shadow's noise, read as an obstacle's colour, had passed for the

@@ -309,6 +309,13 @@ impl Classifier {
         s > 0.0 && mark.distance(hue) <= degrees
     }
 
+    /// The signed angle (−180 to 180 degrees) from the robots' hue to the hue of a colour
+    /// (before white balance) after white balance, and its saturation then.
+    pub fn hue_from_robots(&self, p: [u8; 3]) -> (f64, f64) {
+        let (hue, s) = hue_saturation(self.balanced(p));
+        (rem_euclid(hue - self.robot.0 + 180.0, 360.0) - 180.0, s)
+    }
+
     /// Whether a colour after white balance has a mark's hue (within a robot's or a goal's hue
     /// band, or the doubt beyond it): the glow a robot or goal spreads into the floor around it.
     pub fn of_a_marks_hue(&self, balanced: [f64; 3]) -> bool {
