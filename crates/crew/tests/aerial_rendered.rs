@@ -245,6 +245,18 @@ fn a_shelf_of_a_hue_near_the_robots_is_read_as_a_shelf() {
     assert_exact("U0032", &r, &truth);
 }
 
+/// A goal whose green, in N0013, sits just beyond the goals' hue band (157° after white
+/// balance, the band 120° ± 35°) read as a colour that cannot be told, and the view was
+/// refused; the view's other goals are at 154°, so it is told as theirs (`alike::HUE_NEAR`;
+/// issue #29's twenty-fifth round).
+#[test]
+fn a_goal_beyond_its_band_is_told_by_the_view_s_goals() {
+    let (image, truth) = scene("N0013");
+    let r = read_aerial(&image, "N0013", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("N0013: {e}"));
+    assert_exact("N0013", &r, &truth);
+}
+
 /// Two views of the held-out family n (issue #29's twenty-fourth round), each a dark brown shelf
 /// that reads as floor, were read wrongly, the shelf's cells free; both are refused now. In
 /// n0002 specks of the blue shadow's noise, read as an obstacle's colour, had passed for the

@@ -312,8 +312,19 @@ impl Classifier {
     /// The signed angle (−180 to 180 degrees) from the robots' hue to the hue of a colour
     /// (before white balance) after white balance, and its saturation then.
     pub fn hue_from_robots(&self, p: [u8; 3]) -> (f64, f64) {
+        self.hue_from(p, Class::Robot)
+    }
+
+    /// Like [`Classifier::hue_from_robots`], from the hue of the mark `class` (robot or
+    /// goal).
+    pub fn hue_from(&self, p: [u8; 3], class: Class) -> (f64, f64) {
         let (hue, s) = hue_saturation(self.balanced(p));
-        (rem_euclid(hue - self.robot.0 + 180.0, 360.0) - 180.0, s)
+        let mark = if class == Class::Robot {
+            self.robot
+        } else {
+            self.goal
+        };
+        (rem_euclid(hue - mark.0 + 180.0, 360.0) - 180.0, s)
     }
 
     /// Whether a colour after white balance has a mark's hue (within a robot's or a goal's hue

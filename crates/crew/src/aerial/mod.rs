@@ -61,6 +61,7 @@
 //! assert_eq!(seen.grid.xy(seen.goals[0].cell), (3, 1));
 //! ```
 
+pub mod alike;
 pub mod blobs;
 pub mod colour;
 pub mod corroborated;
@@ -659,6 +660,7 @@ fn read_inner(
     };
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
+    alike::settle(&mut classes, img, &classifier);
     faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {

@@ -1,0 +1,156 @@
+//! A colour that cannot be told, told by the view's own marks.
+//!
+//! The robots' and the goals' hue bands are wide (see [`super::colour`]): a view's paint,
+//! light and white balance put its marks anywhere in them, and a mark's pixels just beyond
+//! its band, with a doubt of [`super::colour`]'s `HUE_DOUBT` further, read as a colour that
+//! cannot be told. Within one view the marks of a kind are alike: their hue agrees within a
+//! few degrees (see [`super::dull`]). So an unsure blob no larger than [`blobs::ALIKE`]
+//! typical marks of a kind, whose median hue is within [`HUE_NEAR`] of that kind's typical
+//! hue in the view and whose median saturation is at least [`super::dull::DULL`] times
+//! theirs, is of that kind: a green goal in a bluish shadow, or the part of a goal whose
+//! paint sits at the band's edge (issue #29's twenty-fifth round; N0013 was refused, "a
+//! blob whose colour is neither the robots' nor the goals'", U0031 and H0001 as a goal's
+//! piece too small, or goals touching).
+//!
+//! A kind's typical hue and saturation are the medians over its blobs of about its typical
+//! area (within a factor [`blobs::ALIKE`] of [`blobs::sort`]'s), each blob one vote; a kind
+//! with fewer than [`LEAST_MARKS`] such blobs has none. It runs after [`super::enclosed`],
+//! on the unsure blobs that are left.
+//!
+//! Cost: O(pixels of the marks' colours and unsure pixels).
+
+use super::blobs;
+use super::colour::{Class, Classifier};
+use image::RgbImage;
+
+/// An unsure blob's median hue at most this many degrees from a kind's typical hue is of
+/// that kind (with the saturation and the size of its marks).
+pub const HUE_NEAR: f64 = 12.0;
+/// A kind's typical colour needs at least this many of its blobs of a typical area.
+pub const LEAST_MARKS: usize = 3;
+
+/// A kind's typical marks in one view: their area, and their median hue (from the kind's,
+/// signed) and saturation.
+#[derive(Clone, Copy, Debug)]
+struct Typical {
+    area: usize,
+    hue: f64,
+    saturation: f64,
+}
+
+/// The median of `values` (not empty).
+fn middle(values: &mut [f64]) -> f64 {
+    let mid = values.len() / 2;
+    *values.select_nth_unstable_by(mid, f64::total_cmp).1
+}
+
+/// A blob's median hue from the mark `class`'s and its median saturation.
+fn colour_of(b: &blobs::Blob, img: &RgbImage, classifier: &Classifier, class: Class) -> (f64, f64) {
+    let (mut hues, mut sats): (Vec<f64>, Vec<f64>) = b
+        .pixels
+        .iter()
+        .map(|&(x, y)| classifier.hue_from(img.get_pixel(x, y).0, class))
+        .unzip();
+    (middle(&mut hues), middle(&mut sats))
+}
+
+/// The typical marks of kind `class` (robot or goal), if the view has enough of them.
+fn typical(
+    classes: &mut [u8],
+    img: &RgbImage,
+    classifier: &Classifier,
+    class: Class,
+) -> Option<Typical> {
+    let found = blobs::find(classes, img.width() as usize, class as u8);
+    let area = blobs::sort(found.clone()).median_area;
+    let (mut hues, mut sats): (Vec<f64>, Vec<f64>) = found
+        .iter()
+        .filter(|b| b.area() * blobs::ALIKE >= area && b.area() <= blobs::ALIKE * area)
+        .map(|b| colour_of(b, img, classifier, class))
+        .unzip();
+    (area >= blobs::MIN_AREA && hues.len() >= LEAST_MARKS).then(|| Typical {
+        area,
+        hue: middle(&mut hues),
+        saturation: middle(&mut sats),
+    })
+}
+
+/// Gives each unsure blob like one kind's marks that kind; returns how many it settled.
+pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> usize {
+    let width = img.width() as usize;
+    let kinds: Vec<(Class, Typical)> = [Class::Robot, Class::Goal]
+        .into_iter()
+        .filter_map(|c| typical(classes, img, classifier, c).map(|t| (c, t)))
+        .collect();
+    if kinds.is_empty() {
+        return 0;
+    }
+    let mut settled = 0;
+    for b in blobs::find(classes, width, Class::Unsure as u8) {
+        let like = kinds.iter().find(|(class, t)| {
+            let (hue, saturation) = colour_of(&b, img, classifier, *class);
+            b.area() <= blobs::ALIKE * t.area
+                && (hue - t.hue).abs() <= HUE_NEAR
+                && saturation >= super::dull::DULL * t.saturation
+        });
+        if let Some(&(class, _)) = like {
+            for &(x, y) in &b.pixels {
+                classes[y as usize * width + x as usize] = class as u8;
+            }
+            settled += 1;
+        }
+    }
+    settled
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aerial::colour::Hue;
+    use image::Rgb;
+
+    /// A grey floor with square blobs of colour `c`, each `side` pixels, from column `x0` on.
+    fn put(img: &mut RgbImage, classes: &mut [u8], (x0, side): (u32, u32), c: [u8; 3]) {
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let width = img.width() as usize;
+        for y in 2..2 + side {
+            for x in x0..x0 + side {
+                img.put_pixel(x, y, Rgb(c));
+                classes[y as usize * width + x as usize] = classifier.classify(c) as u8;
+            }
+        }
+    }
+
+    #[test]
+    fn a_blob_like_the_view_s_goals_beyond_their_band_is_a_goal() {
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 120 * 30];
+        // Three goals of hue 150°, at their band's edge (120° ± 35°) ...
+        for x0 in [2, 12, 22] {
+            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
+        }
+        assert_eq!(classes[3 * 120 + 3], Class::Goal as u8);
+        // ... a fourth of hue 160° (in a bluish shadow), just beyond it: a colour that cannot
+        // be told ...
+        put(&mut img, &mut classes, (32, 6), [54, 180, 138]);
+        assert_eq!(classes[3 * 120 + 33], Class::Unsure as u8);
+        // ... a brown box of the same size, 28°, between the robots' red and another colour,
+        // and a shelf of 160°, twelve goals large.
+        put(&mut img, &mut classes, (42, 6), [180, 110, 50]);
+        put(&mut img, &mut classes, (52, 21), [54, 180, 138]);
+        assert_eq!(classes[3 * 120 + 43], Class::Unsure as u8);
+        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(classes[3 * 120 + 33], Class::Goal as u8);
+        assert_eq!(classes[3 * 120 + 43], Class::Unsure as u8);
+        assert_eq!(classes[3 * 120 + 53], Class::Unsure as u8);
+        // Two goals make no typical colour: nothing is settled.
+        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 120 * 30];
+        for x0 in [2, 12] {
+            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
+        }
+        put(&mut img, &mut classes, (32, 6), [54, 180, 138]);
+        assert_eq!(settle(&mut classes, &img, &classifier), 0);
+    }
+}
