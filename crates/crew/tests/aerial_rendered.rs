@@ -257,6 +257,18 @@ fn a_goal_beyond_its_band_is_told_by_the_view_s_goals() {
     assert_exact("N0013", &r, &truth);
 }
 
+/// b0019's dark floor has specks of green in its noise, one of 48 px: too large for noise,
+/// too small for a goal, and the view was refused for it. Its colour is unlike the view's
+/// goals (`alike::unlike_marks`), so it is set aside as no goal, and the view, with as many
+/// goals as robots, is read (issue #29's twenty-fifth round).
+#[test]
+fn a_piece_unlike_the_view_s_goals_is_set_aside() {
+    let (image, truth) = scene("b0019");
+    let r = read_aerial(&image, "b0019", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("b0019: {e}"));
+    assert_exact("b0019", &r, &truth);
+}
+
 /// Two views of the held-out family n (issue #29's twenty-fourth round), each a dark brown shelf
 /// that reads as floor, were read wrongly, the shelf's cells free; both are refused now. In
 /// n0002 specks of the blue shadow's noise, read as an obstacle's colour, had passed for the

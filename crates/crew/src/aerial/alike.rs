@@ -12,6 +12,13 @@
 //! blob whose colour is neither the robots' nor the goals'", U0031 and H0001 as a goal's
 //! piece too small, or goals touching).
 //!
+//! The other way round, a piece of a mark's colour too large for noise and too small for a
+//! mark whose colour is unlike the view's marks of its kind ([`unlike_marks`]: a shelf's
+//! shaded side or edge of a colour near the goals', the green specks of a dark floor's
+//! noise) is set aside as no mark, as a piece an obstacle leaves is (see
+//! `blobs::behind_obstacle`): the view is then read only if it has exactly as many goals as
+//! robots (M0017, b0019; they were refused for such a piece).
+//!
 //! A kind's typical hue and saturation are the medians over its blobs of about its typical
 //! area (within a factor [`blobs::ALIKE`] of [`blobs::sort`]'s), each blob one vote; a kind
 //! with fewer than [`LEAST_MARKS`] such blobs has none. It runs after [`super::enclosed`],
@@ -73,6 +80,29 @@ fn typical(
         hue: middle(&mut hues),
         saturation: middle(&mut sats),
     })
+}
+
+/// Whether a piece of the mark `class`'s colour is unlike the view's `marks` of that kind
+/// (each of a typical area, at least [`LEAST_MARKS`] of them): its median hue more than
+/// [`HUE_NEAR`] from their typical hue, or its median saturation under
+/// [`super::dull::DULL`] times theirs. False when there are too few marks to tell.
+pub fn unlike_marks(
+    piece: &blobs::Blob,
+    marks: &[blobs::Blob],
+    img: &RgbImage,
+    classifier: &Classifier,
+    class: Class,
+) -> bool {
+    if marks.len() < LEAST_MARKS {
+        return false;
+    }
+    let (mut hues, mut sats): (Vec<f64>, Vec<f64>) = marks
+        .iter()
+        .map(|b| colour_of(b, img, classifier, class))
+        .unzip();
+    let (hue, saturation) = (middle(&mut hues), middle(&mut sats));
+    let (h, s) = colour_of(piece, img, classifier, class);
+    (h - hue).abs() > HUE_NEAR || s < super::dull::DULL * saturation
 }
 
 /// Gives each unsure blob like one kind's marks that kind; returns how many it settled.
@@ -152,5 +182,30 @@ mod tests {
         }
         put(&mut img, &mut classes, (32, 6), [54, 180, 138]);
         assert_eq!(settle(&mut classes, &img, &classifier), 0);
+    }
+
+    #[test]
+    fn a_piece_unlike_the_view_s_marks_is_told() {
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 120 * 30];
+        for x0 in [2, 12, 22] {
+            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
+        }
+        // A piece of a goal's paint, a dark green shelf side (as saturated, 25° away) and a
+        // greyish green speck (half as saturated).
+        put(&mut img, &mut classes, (32, 3), [54, 180, 117]);
+        put(&mut img, &mut classes, (42, 3), [40, 100, 40]);
+        put(&mut img, &mut classes, (52, 3), [90, 150, 110]);
+        let goals = blobs::find(&mut classes, 120, Class::Goal as u8);
+        assert_eq!(goals.len(), 6);
+        let like = |i: usize, marks: &[blobs::Blob]| {
+            !unlike_marks(&goals[i], marks, &img, &classifier, Class::Goal)
+        };
+        assert!(like(3, &goals[..3]));
+        assert!(!like(4, &goals[..3]));
+        assert!(!like(5, &goals[..3]));
+        // Too few marks to tell: nothing is unlike them.
+        assert!(like(4, &goals[..2]));
     }
 }

@@ -294,13 +294,9 @@ pub fn behind_obstacle(
     (classes, width): (&[u8], usize),
     obstacle_least: usize,
 ) -> Vec<bool> {
-    const OBSTACLE: u8 = super::colour::Class::Obstacle as u8;
     let against: Vec<bool> = doubtful
         .iter()
-        .map(|b| {
-            ring_share(b, classes, width, OBSTACLE) >= AGAINST
-                && largest_around(b, classes, width, OBSTACLE, obstacle_least) >= obstacle_least
-        })
+        .map(|b| against_obstacle(b, (classes, width), obstacle_least))
         .collect();
     let reach = NEAR_MEDIANS * (median as f64).sqrt();
     let centres: Vec<Point> = doubtful.iter().map(Blob::centroid).collect();
@@ -319,6 +315,15 @@ pub fn behind_obstacle(
             }
         })
         .collect()
+}
+
+/// Whether a piece lies against an obstacle: at least [`AGAINST`] of the pixels around it
+/// are obstacle pixels, of a region of at least `obstacle_least` pixels (a shelf's top or
+/// side, not a mark's own stray shading).
+pub fn against_obstacle(b: &Blob, (classes, width): (&[u8], usize), obstacle_least: usize) -> bool {
+    const OBSTACLE: u8 = super::colour::Class::Obstacle as u8;
+    ring_share(b, classes, width, OBSTACLE) >= AGAINST
+        && largest_around(b, classes, width, OBSTACLE, obstacle_least) >= obstacle_least
 }
 
 /// A mark cut by an obstacle's edge (a piece of it shows beside the top leaning over the rest)

@@ -1572,12 +1572,28 @@ fn marks(
     // Pieces that only an obstacle's edge or a mark it hides leaves (see
     // `blobs::behind_obstacle`) are set aside; the first is refused later unless the view
     // then has exactly as many goals as robots (see `read_aerial_image`).
-    let behind = blobs::behind_obstacle(
+    let obstacle_least = (blobs::OBSTACLE_CELLS / (px_on_floor * px_on_floor)).ceil() as usize;
+    let mut behind = blobs::behind_obstacle(
         &sorted.doubtful,
         sorted.median_area,
         (classes, width),
-        (blobs::OBSTACLE_CELLS / (px_on_floor * px_on_floor)).ceil() as usize,
+        obstacle_least,
     );
+    // So are pieces against an obstacle whose colour is unlike the view's marks of the kind
+    // (see `alike::unlike_marks`): a shelf's edge or shaded side of a colour near the marks'.
+    {
+        let (img, classifier, class) = faint;
+        let median = sorted.median_area;
+        let typical: Vec<blobs::Blob> = sorted
+            .kept
+            .iter()
+            .filter(|b| b.area() * blobs::ALIKE >= median && b.area() <= blobs::ALIKE * median)
+            .cloned()
+            .collect();
+        for (b, aside) in sorted.doubtful.iter().zip(behind.iter_mut()) {
+            *aside = *aside || alike::unlike_marks(b, &typical, img, classifier, class);
+        }
+    }
     let set_aside = sorted
         .doubtful
         .iter()
