@@ -334,30 +334,27 @@ pub struct Doubt {
 ///   a free column under a tilted camera), and where the top ends in the free cell does not
 ///   tell which (the heights are not known).
 ///
-/// The top's lean is measured where it can be: beside the obstacle, its top overhangs the free
-/// cells on the side away from the nadir by (k − 1) times their distance from the nadir (plus
-/// an [`INSET`] allowance); without such a cell k is taken at [`MAX_K`]. The cell is in doubt
-/// when a top with that k, ending at the cell's inner border, would cover all but
-/// [`EVIDENCE`] of it; the direction away from the nadir along which it lies beyond the
-/// blocked cells is returned (a step in cells), with what the run's face tells. For
-/// [`Beyond::Free`], not when the cover runs on past the cell, over the free cells beyond,
-/// further than that top could reach ([`Past`]):
-/// the cell's own top is there (since issue #29's fourteenth round); nor when the run's face
-/// toward the nadir is too short for a top that leans over a free far cell ([`face`], since the
-/// sixteenth round).
+/// The top's lean is measured where it can be, beside the obstacle ([`lateral_lean`]); without
+/// a free cell there k is taken at [`MAX_K`]. The cell is in doubt when a top with that k,
+/// ending at the cell's inner border, would cover all of it but less than can show the floor
+/// ([`THIN`]); the direction away from the nadir along which it lies beyond the blocked cells
+/// is returned (a step in cells), with what the run's face tells. For [`Beyond::Free`], not
+/// when the cover runs on past the cell, over the free cells beyond, further than that top
+/// could reach ([`Past`]): the cell's own top is there (since issue #29's fourteenth round);
+/// nor when the run's face toward the nadir is too short for a top that leans over a free far
+/// cell ([`face`], since the sixteenth round).
 #[allow(clippy::too_many_arguments)]
 pub fn lean_doubt(
     img: &RgbImage,
     classes: &[u8],
     width: usize,
-    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    maps: (&Homography, &Homography),
     (gw, gh): (u32, u32),
     blocked: &[bool],
     nadir: Point,
     (x, y): (u32, u32),
     beyond: Beyond,
 ) -> Option<Doubt> {
-    let height = classes.len() / width.max(1);
     let (inside, is_blocked) = lookups(blocked, (gw, gh));
     let (xi, yi) = (i64::from(x), i64::from(y));
     for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
@@ -369,10 +366,10 @@ pub fn lean_doubt(
             continue;
         }
         // Along the outward axis: the cell's inner border and the nadir.
-        let (a, na, l, nl) = if dx != 0 {
-            (x, nadir.0, y, nadir.1)
+        let (a, na, nl) = if dx != 0 {
+            (x, nadir.0, nadir.1)
         } else {
-            (y, nadir.1, x, nadir.0)
+            (y, nadir.1, nadir.0)
         };
         let dir = (dx + dy) as f64;
         let inner = if dir > 0.0 {
@@ -383,76 +380,21 @@ pub fn lean_doubt(
         if (inner - na) * dir <= 0.0 {
             continue; // the edge faces the nadir: a top leans away from it
         }
-        // Across: the side away from the nadir, and its distance from the nadir.
-        let (side, d_lat) = if nl < f64::from(l) {
-            (1i64, f64::from(l) + 1.0 - nl)
-        } else if nl > f64::from(l) + 1.0 {
-            (-1, nl - f64::from(l))
-        } else {
-            (0, 0.0)
-        };
-        let mut overhangs = Vec::new();
-        if side != 0 {
-            let border = if side > 0 {
-                f64::from(l) + 1.0
-            } else {
-                f64::from(l)
-            };
-            let mut t = 1i64;
-            while is_blocked(xi - t * dx, yi - t * dy) {
-                let (rx, ry) = (xi - t * dx, yi - t * dy);
-                let (qx, qy) = if dx != 0 {
-                    (rx, ry + side)
-                } else {
-                    (rx + side, ry)
-                };
-                t += 1;
-                if !inside(qx, qy) || is_blocked(qx, qy) {
-                    continue;
-                }
-                let Some((x0, y0, x1, y1)) =
-                    floor_to_image.cell_box((qx as u32, qy as u32), width, height)
-                else {
-                    continue;
-                };
-                let (mut all, mut covered) = (0usize, 0usize);
-                for py in y0..y1 {
-                    for px in x0..x1 {
-                        let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5))
-                        else {
-                            continue;
-                        };
-                        if u.floor() as i64 != qx || v.floor() as i64 != qy {
-                            continue;
-                        }
-                        let across = if dx != 0 { v } else { u };
-                        if (across - border).abs() >= 0.5 {
-                            continue;
-                        }
-                        all += 1;
-                        let c = classes[py * width + px];
-                        if c == Class::Obstacle as u8 || c == Class::Unsure as u8 {
-                            covered += 1;
-                        }
-                    }
-                }
-                if all > 0 {
-                    overhangs.push(0.5 * covered as f64 / all as f64);
-                }
-            }
-        }
-        let k = if overhangs.is_empty() {
-            MAX_K
-        } else {
-            overhangs.sort_by(f64::total_cmp);
-            let w = overhangs[overhangs.len() / 2];
-            (1.0 + (w + INSET) / d_lat).min(MAX_K)
-        };
+        let k = lateral_lean(
+            classes,
+            width,
+            maps,
+            blocked,
+            (gw, gh),
+            nadir,
+            (xi, yi),
+            (dx, dy),
+        )
+        .map_or(MAX_K, |e| (1.0 + e).min(MAX_K));
         let reach = (k - 1.0) * (inner - na).abs();
-        if reach < 1.0 - EVIDENCE {
+        if reach < THIN {
             continue;
         }
-        let maps = (floor_to_image, image_to_floor);
         if beyond == Beyond::Free {
             let past = Past {
                 cell: (xi, yi),
@@ -462,7 +404,12 @@ pub fn lean_doubt(
             };
             if past
                 .cover(classes, width, maps, &is_blocked, inside)
-                .is_some_and(|o| 1.0 + o >= PAST_MARGIN * reach)
+                .is_some_and(|o| {
+                    // A top reaching short of the far cell's outer border ends in it: a free
+                    // cell shows no cover past it (but a seam's, or a shelf's glow on the floor
+                    // there), a blocked one its own top leaning about as far as the reach.
+                    1.0 + o >= PAST_MARGIN * reach && (reach >= 1.0 || o >= 0.5 * reach)
+                })
             {
                 continue; // its own top shows past the reach of the run's
             }
@@ -477,7 +424,7 @@ pub fn lean_doubt(
                 hidden_face: false,
             });
         }
-        let (run, px) = run_to((x, y), (dx, dy), nadir, floor_to_image, is_blocked);
+        let (run, px) = run_to((x, y), (dx, dy), nadir, maps.0, is_blocked);
         match face::judge(img, classes, maps, run, px) {
             face::Face::Own => continue, // the face toward the nadir shows how little the top leans
             face::Face::Hidden => {
@@ -494,6 +441,140 @@ pub fn lean_doubt(
         });
     }
     None
+}
+
+/// The lean of the top of the run of blocked cells (in `blocked`) behind cell `(x, y)`,
+/// stepping `(dx, dy)` away from the nadir: k − 1 (the top is scaled by k about the nadir), as
+/// measured beside the run. Beside the run, on the side away from the nadir, the top overhangs
+/// the free cells by (k − 1) times their distance from the nadir across the run, less the
+/// top's inset from the cells' border; on the near side the floor shows between the border and
+/// the base for that inset (and the near face's width when it reads as floor). The median over
+/// the run's cells of the two together, over that distance, is the lean: blur moves the cover's
+/// edges outward on both sides alike, so it cancels in the sum. Beside a blocked cell on the near
+/// side (whose top may lean into that gap) an [`INSET`] allowance stands for the gap. `None`
+/// when the run points at the nadir across (no side away from it) or no free cell lies beside
+/// it. Was the overhang plus [`INSET`] alone until issue #29's twenty-sixth round, which read
+/// far cells of runs pointing near the nadir in doubt (A0008's cyan shelf, 0.05 cell over its
+/// side 1.7 cells across from the nadir, took 0.09 for a lean of 0.007).
+#[allow(clippy::too_many_arguments)]
+pub fn lateral_lean(
+    classes: &[u8],
+    width: usize,
+    maps: (&Homography, &Homography),
+    blocked: &[bool],
+    (gw, gh): (u32, u32),
+    nadir: Point,
+    (xi, yi): (i64, i64),
+    (dx, dy): (i64, i64),
+) -> Option<f64> {
+    let (inside, is_blocked) = lookups(blocked, (gw, gh));
+    // Across the run: the cell's coordinate and the nadir's.
+    let (l, nl) = if dx != 0 {
+        (yi, nadir.1)
+    } else {
+        (xi, nadir.0)
+    };
+    let l = l as f64;
+    // The side away from the nadir, its distance from the nadir, and the far and near borders.
+    let (side, d_lat, border, near) = if nl < l {
+        (1i64, l + 1.0 - nl, l + 1.0, l)
+    } else if nl > l + 1.0 {
+        (-1, nl - l, l, l + 1.0)
+    } else {
+        return None;
+    };
+    let across = |cell: (i64, i64), at: f64| Band {
+        cell,
+        along_x: dx != 0,
+        border: at,
+    };
+    let mut overhangs = Vec::new();
+    let mut t = 1i64;
+    while is_blocked(xi - t * dx, yi - t * dy) {
+        let (rx, ry) = (xi - t * dx, yi - t * dy);
+        let (q, p) = if dx != 0 {
+            ((rx, ry + side), (rx, ry - side))
+        } else {
+            ((rx + side, ry), (rx - side, ry))
+        };
+        t += 1;
+        if !inside(q.0, q.1) || is_blocked(q.0, q.1) {
+            continue;
+        }
+        let Some(over) = across(q, border).covered(classes, width, maps) else {
+            continue;
+        };
+        let gap = if is_blocked(p.0, p.1) {
+            None
+        } else {
+            across((rx, ry), near)
+                .covered(classes, width, maps)
+                .map(|c| 0.5 * (1.0 - c))
+        };
+        overhangs.push(0.5 * over + gap.map_or(INSET, |g| g.min(INSET)));
+    }
+    if overhangs.is_empty() {
+        return None;
+    }
+    overhangs.sort_by(f64::total_cmp);
+    Some(overhangs[overhangs.len() / 2] / d_lat)
+}
+
+/// A lean measured beside a run ([`lateral_lean`]) reaching this far (cells) over the run's far
+/// cell leaves too little of the cell beyond it, past the blur (a tenth of a cell) and a painted
+/// line or tile seam along the outer border ([`super::looks::BORDER`]), to show the floor of a
+/// free cell: the cell is in doubt. Since issue #29's twenty-sixth round, when the lean became a
+/// measure rather than a bound (the free p0007 (7, 1), under the top of a salmon shelf leaning
+/// 0.8 cell over it, its fit misfit by blur, was read blocked).
+pub const THIN: f64 = 0.75;
+
+/// A band half a cell wide inside `cell`, along one of its borders: `border`, the floor
+/// coordinate across the run (v for a run along x, else u).
+struct Band {
+    cell: (i64, i64),
+    along_x: bool,
+    border: f64,
+}
+
+impl Band {
+    /// The share of the band's pixels read as obstacle (or unsure), of those read as floor or
+    /// obstacle; `None` when the band shows none.
+    fn covered(
+        &self,
+        classes: &[u8],
+        width: usize,
+        (floor_to_image, image_to_floor): (&Homography, &Homography),
+    ) -> Option<f64> {
+        let height = classes.len() / width.max(1);
+        let (qx, qy) = self.cell;
+        if qx < 0 || qy < 0 {
+            return None;
+        }
+        let (x0, y0, x1, y1) = floor_to_image.cell_box((qx as u32, qy as u32), width, height)?;
+        let (mut all, mut covered) = (0usize, 0usize);
+        for py in y0..y1 {
+            for px in x0..x1 {
+                let Some((u, v)) = image_to_floor.apply((px as f64 + 0.5, py as f64 + 0.5)) else {
+                    continue;
+                };
+                if u.floor() as i64 != qx || v.floor() as i64 != qy {
+                    continue;
+                }
+                let across = if self.along_x { v } else { u };
+                if (across - self.border).abs() >= 0.5 {
+                    continue;
+                }
+                let c = classes[py * width + px];
+                if c == Class::Obstacle as u8 || c == Class::Unsure as u8 {
+                    covered += 1;
+                    all += 1;
+                } else if c == Class::Floor as u8 {
+                    all += 1;
+                }
+            }
+        }
+        (all > 0).then(|| covered as f64 / all as f64)
+    }
 }
 
 /// What the faces toward the nadir tell of a covered cell (`(x, y)`, blocked in `blocked`)
@@ -982,6 +1063,84 @@ mod tests {
     }
 
     #[test]
+    fn the_lean_beside_a_run_is_measured_through_blur() {
+        // A floor of 10 × 4 cells of 50 px seen straight down, cells 2–4 of row 1 blocked, the
+        // nadir at (−20, 11): 10 cells across from the run's far side (row 0). A top inset 0.06
+        // cell and scaled by k = 1.02 overhangs row 0 by 0.02 × 10 − 0.06 = 0.14 cell and
+        // leaves 0.06 of floor along the near border; blur widens the cover by `blur` (a
+        // multiple of a pixel, 0.02 cell) on both sides.
+        let lean = |blur: f64, near_blocked: bool| {
+            let f2i = Homography::floor_to_image(
+                10.0,
+                4.0,
+                [(0.0, 0.0), (500.0, 0.0), (500.0, 200.0), (0.0, 200.0)],
+            )
+            .unwrap();
+            let i2f = f2i.inverse().unwrap();
+            let mut blocked = vec![false; 40];
+            for x in 2..5 {
+                blocked[10 + x] = true;
+            }
+            if near_blocked {
+                blocked[20 + 3] = true;
+            }
+            let mut classes = vec![Class::Floor as u8; 500 * 200];
+            for y in 0..200usize {
+                for x in 0..500usize {
+                    let (u, v) = ((x as f64 + 0.5) / 50.0, (y as f64 + 0.5) / 50.0);
+                    if (2.0..5.0).contains(&u) && (0.86 - blur..1.94 + blur).contains(&v) {
+                        classes[y * 500 + x] = Class::Obstacle as u8;
+                    }
+                }
+            }
+            lateral_lean(
+                &classes,
+                500,
+                (&f2i, &i2f),
+                &blocked,
+                (10, 4),
+                (-20.0, 11.0),
+                (5, 1),
+                (1, 0),
+            )
+            .unwrap()
+        };
+        for blur in [0.0, 0.04] {
+            let e = lean(blur, false);
+            assert!((e - 0.02).abs() < 1e-9, "blur {blur}: {e}");
+        }
+        // Blur wider than the inset fills the gap: the lean is overestimated, never less.
+        let e = lean(0.08, false);
+        assert!((e - 0.022).abs() < 1e-9, "{e}");
+        // A blocked cell on the near side may lean its top into the gap: the allowance stands
+        // for it there (the median of the run's three cells is unchanged by one).
+        assert!((lean(0.0, true) - 0.02).abs() < 1e-9);
+        // The nadir across from the run's middle: no side away from it.
+        let f2i = Homography::floor_to_image(
+            10.0,
+            4.0,
+            [(0.0, 0.0), (100.0, 0.0), (100.0, 40.0), (0.0, 40.0)],
+        )
+        .unwrap();
+        let i2f = f2i.inverse().unwrap();
+        let blocked: Vec<bool> = (0..40).map(|i| (12..15).contains(&i)).collect();
+        let classes = vec![Class::Floor as u8; 100 * 40];
+        assert_eq!(
+            lateral_lean(
+                &classes,
+                100,
+                (&f2i, &i2f),
+                &blocked,
+                (10, 4),
+                (-20.0, 1.5),
+                (5, 1),
+                (1, 0)
+            ),
+            None
+        );
+    }
+
+    #[test]
     fn an_edge_cell_behind_a_top_that_may_lean_over_it_is_in_doubt() {
         let doubt_at = |over: f64, nadir: Point, cell: (u32, u32)| {
             let (classes, f2i, i2f, blocked) = edge_floor(over);
@@ -999,12 +1158,18 @@ mod tests {
             .is_some()
         };
         let doubt = |over: f64, nadir: Point| doubt_at(over, nadir, (1, 3));
-        // No overhang beside the obstacle: k at most 1 + 0.1 / 1.5; from a nadir 2.5 cells
-        // from the edge cell its top leans 0.17 cell, from one 23 cells away 1.5 cells.
-        assert!(!doubt(2.0, (0.5, 0.5)));
-        assert!(doubt(2.0, (0.5, -20.0)));
-        // An overhang of 0.3 cell (k = 1.25 at most) from a nadir 4 cells away: a whole cell.
-        assert!(!doubt(2.0, (0.5, -1.0)));
+        // No overhang beside the obstacle, whose cover meets its cells' borders on both sides:
+        // its top does not lean, however far the nadir.
+        assert!(!doubt(2.0, (0.5, -20.0)));
+        // An overhang of 0.1 cell, 1.5 cells across from the nadir: k = 1 + 0.1 / 1.5; from a
+        // nadir 2.5 cells from the edge cell its top leans 0.17 cell, from one 23 cells away
+        // 1.5 cells.
+        assert!(!doubt(2.1, (0.5, 0.5)));
+        assert!(doubt(2.1, (0.5, -20.0)));
+        // From a nadir 4 cells away: an overhang of 0.25 cell (k = 1 + 1 / 6) leans a top 0.67
+        // cell, leaving a third of the edge cell to show the floor; one of 0.3 (k = 1.2), 0.8
+        // cell, too little of it ([`THIN`]).
+        assert!(!doubt(2.25, (0.5, -1.0)));
         assert!(doubt(2.3, (0.5, -1.0)));
         // The nadir beyond the edge: tops lean the other way.
         assert!(!doubt(2.3, (0.5, 9.0)));
@@ -1121,10 +1286,11 @@ mod tests {
     #[test]
     fn a_far_cell_whose_cover_runs_on_past_the_run_s_reach_is_no_doubt() {
         // A 4 × 8 floor of 10 px cells seen straight down, the nadir at (-1, -8): cells
-        // (1, 2)–(1, 4) blocked, their top overhanging cells (2, 2)–(2, 4) by 0.2 cell, so k is
-        // at most 1 + 0.3 / 3 and the run's top reaches 1.2 cells past the far cell (1, 4)'s
-        // inner border. Its cover runs on `past` cells past the far cell.
-        let doubt_beside = |past: f64, beside: bool| {
+        // (1, 2)–(1, 4) blocked, their top overhanging cells (2, 2)–(2, 4) by 0.3 cell and
+        // meeting the run's near border, so k = 1 + 0.3 / 3 and the run's top reaches 1.2 cells
+        // past the far cell (1, 4)'s inner border. Its cover runs on `past` cells past the far
+        // cell.
+        let doubt_over = |past: f64, beside: bool, over: f64| {
             let f2i = Homography::floor_to_image(
                 4.0,
                 8.0,
@@ -1141,7 +1307,7 @@ mod tests {
             for y in 0..80usize {
                 for x in 0..40usize {
                     let (u, v) = ((x as f64 + 0.5) / 10.0, (y as f64 + 0.5) / 10.0);
-                    let run = (1.0..2.2).contains(&u) && (2.0..5.0).contains(&v);
+                    let run = (1.0..2.0 + over).contains(&u) && (2.0..5.0).contains(&v);
                     let on = (1.0..2.0).contains(&u) && (5.0..5.0 + past).contains(&v);
                     if run || on {
                         classes[y * 40 + x] = Class::Obstacle as u8;
@@ -1160,6 +1326,7 @@ mod tests {
                 Beyond::Free,
             )
         };
+        let doubt_beside = |past: f64, beside: bool| doubt_over(past, beside, 0.3);
         let doubt = |past: f64| doubt_beside(past, false);
         // The cover ends 0.1 cell past the far cell: the run's top may end there, the far
         // cell free under it.
@@ -1172,6 +1339,14 @@ mod tests {
         // A blocked cell beside the free cell past it, toward the nadir, may lean its top
         // over it: the cover there tells nothing.
         assert_eq!(doubt_beside(0.8, true).map(|d| d.dir), Some((0, 1)));
+        // Overhanging by 0.2 cell (k = 1 + 0.2 / 3), the run's top reaches 0.8 cell over the
+        // far cell, too far for the rest to show the floor ([`THIN`]), and ends in it: a cover
+        // past it (a seam's, a glow's) is the far cell's own top only when it runs on about as
+        // far, at least half the reach.
+        assert_eq!(doubt_over(0.2, false, 0.2).map(|d| d.dir), Some((0, 1)));
+        assert_eq!(doubt_over(0.6, false, 0.2), None);
+        // Overhanging by 0.15 cell, 0.6 cell: the rest of a free far cell shows the floor.
+        assert_eq!(doubt_over(0.0, false, 0.15), None);
     }
 
     /// Bins of a cell whose part with fu (along u) in `covered_u` shows an obstacle.
