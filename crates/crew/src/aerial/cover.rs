@@ -27,7 +27,9 @@
 //! A k above [`MAX_K`] is not considered. A mostly covered cell with less such floor, but
 //! some ([`DOUBT`]), may be a free cell almost all under a top: refused, not blocked.
 //! Covered bins within [`BLEED`] of an edge shared with a blocked cell are not counted (a
-//! coloured penumbra or inter-reflection beside an obstacle's base). Anything else is left
+//! coloured penumbra or inter-reflection beside an obstacle's base), unless the cover runs on
+//! unbroken past them along most of that edge where no top leans ([`RUNS_ON`]): then it is the
+//! obstacle's own, the cell not free under a lean. Anything else is left
 //! to the window: blocked above 70 %, refused between 30 and 70 %.
 //!
 //! Limit: a free cell that a top covers whole (a lean of a cell or more) cannot be told from
@@ -64,6 +66,9 @@ pub const MAX_K: f64 = 1.25;
 pub const DOUBT: f64 = 0.03;
 /// Covered bins this close (cells) to an edge shared with a blocked cell are not counted.
 pub const BLEED: f64 = 0.2;
+/// ... but when the cover runs on unbroken from such an edge past [`BLEED`] where no top leans,
+/// along this share of the edge, it is the blocked cell's own (see [`fit`]): not a glow.
+pub const RUNS_ON: f64 = 0.7;
 /// A bin is covered at this share of obstacle pixels, floor at 1 minus it.
 const COVERED: f64 = 0.6;
 
@@ -221,18 +226,64 @@ pub fn fit(
                 (j as f64 + 0.5) / BINS as f64,
             );
             let p = (f64::from(cx) + fu, f64::from(cy) + fv);
+            let depths = [fu, 1.0 - fu, fv, 1.0 - fv];
+            let r = reach(p, nadir, own, sure);
             if share >= COVERED {
-                let bleed = [fu, 1.0 - fu, fv, 1.0 - fv]
+                let bleed = depths
                     .iter()
                     .zip(sides)
                     .any(|(&d, blocked)| blocked && d < BLEED);
                 if !bleed {
-                    covered.push(reach(p, nadir, own, sure));
+                    covered.push(r);
                 }
             } else if share <= 1.0 - COVERED {
-                floor.push((reach(p, nadir, own, sure), p));
+                floor.push((r, p));
             }
         }
+    }
+    // A blocked neighbour's cover running on into the cell, unbroken from the shared edge, past
+    // the bleed along half that edge or more where no top leans: the cell's own obstacle (its
+    // top, the rest read as floor: a dark top like a shadow, a face), not a glow (issue #29's
+    // twenty-sixth round: p0035's (18, 15), 0.35 of it covered along the edge of (19, 15), the
+    // rest of its dark brown top and its face read as floor, was read free as a cell with a
+    // glow 0.2 deep and 8 bins amiss). A tile's seam past the bleed is not unbroken from it.
+    let covered_bin = |i: usize, j: usize| {
+        let b = j * BINS + i;
+        let total = bins.obstacle[b] + bins.floor[b];
+        total > 0 && f64::from(bins.obstacle[b]) >= COVERED * f64::from(total)
+    };
+    let past = (BLEED * BINS as f64).round() as usize;
+    let runs_on = sides.iter().enumerate().any(|(side, &blocked)| {
+        // The bin `depth` bins from this side's edge, `along` it.
+        let at = |depth: usize, along: usize| match side {
+            0 => (depth, along),
+            1 => (BINS - 1 - depth, along),
+            2 => (along, depth),
+            _ => (along, BINS - 1 - depth),
+        };
+        let on = (0..BINS)
+            .filter(|&along| {
+                (0..=past).all(|depth| {
+                    let (i, j) = at(depth, along);
+                    covered_bin(i, j)
+                }) && {
+                    let (i, j) = at(past, along);
+                    let p = (
+                        f64::from(cx) + (i as f64 + 0.5) / BINS as f64,
+                        f64::from(cy) + (j as f64 + 0.5) / BINS as f64,
+                    );
+                    reach(p, nadir, own, sure).is_infinite()
+                }
+            })
+            .count();
+        blocked && on as f64 >= RUNS_ON * BINS as f64
+    });
+    if runs_on {
+        return Some(Fit {
+            k: 1.0,
+            misfit: 1.0,
+            evidence: floor_bins as f64 / seen as f64,
+        });
     }
     // The k with the fewest bins on the wrong side; the smallest such k.
     let mut candidates: Vec<f64> = covered
@@ -1462,5 +1513,39 @@ mod tests {
         // Without the blocked neighbour, the same strip is unexplained.
         let f = fit(&b, (3, 5), nadir, &|_, _| false).unwrap();
         assert!(!f.free(), "{f:?}");
+    }
+
+    #[test]
+    fn a_blocked_cell_s_cover_running_on_past_the_bleed_is_no_glow() {
+        // The nadir far to the left; cell (7, 9) blocked, to the right of (6, 9): its top leans
+        // away from (6, 9). Cover along their shared edge, `depth` deep over the rows `rows`,
+        // and a seam (a column of covered bins) at `seam` when given.
+        let nadir = (-30.0, 9.5);
+        let sure = |x: i64, y: i64| (x, y) == (7, 9);
+        let free = |depth: f64, rows: std::ops::Range<usize>, seam: Option<usize>| {
+            let mut b = Bins {
+                obstacle: [0; BINS * BINS],
+                floor: [4; BINS * BINS],
+            };
+            for j in 0..BINS {
+                for i in 0..BINS {
+                    let fu = (i as f64 + 0.5) / BINS as f64;
+                    if (rows.contains(&j) && fu > 1.0 - depth) || seam == Some(i) {
+                        (b.obstacle[j * BINS + i], b.floor[j * BINS + i]) = (4, 0);
+                    }
+                }
+            }
+            fit(&b, (6, 9), nadir, &sure).unwrap().free()
+        };
+        // A glow 0.2 deep along the whole edge: free.
+        assert!(free(0.2, 0..10, None));
+        // The cover running on 0.3 deep along the whole edge (10 bins amiss, within MISFIT),
+        // or along 0.8 of it (p0035's (18, 15)): not free.
+        assert!(!free(0.3, 0..10, None));
+        assert!(!free(0.3, 2..10, None));
+        // Along 0.6 of the edge, as a shadow's corner may be: free (6 bins amiss).
+        assert!(free(0.3, 4..10, None));
+        // A seam past the bleed, not joined to it: free (10 bins amiss).
+        assert!(free(0.1, 0..10, Some(7)));
     }
 }
