@@ -236,6 +236,20 @@ fn a_run_s_far_cell_is_told_by_the_lean_measured_beside_it() {
     }
 }
 
+/// A half-covered cell whose window's floor pixels are of its obstacle pixels' colour, not of
+/// the free floor's around it, is covered whole by a top read partly as floor
+/// (`tops::Window::top_read_as_floor`; issue #29's twenty-sixth round): a0021's cell (19, 2)
+/// and d0002's (7, 7), blocked, were refused 63 % and 42 % covered.
+#[test]
+fn a_top_read_partly_as_floor_is_told_by_its_colour() {
+    for name in ["a0021", "d0002"] {
+        let (image, truth) = scene(name);
+        let r = read_aerial(&image, name, &config(&truth, true))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_exact(name, &r, &truth);
+    }
+}
+
 /// A red robot standing against a dusty-rose shelf of its hue makes one blob with it, dull
 /// for the most part; the shelf's pixels become an obstacle's and the robot, as saturated as
 /// the view's other robots, stays a robot (`dull::VIVID`; issue #29's twenty-fifth round).

@@ -775,8 +775,10 @@ fn read_inner(
     // the nadir (whose top could lean over it), when what covers it stands on it (a block
     // inside the cell, away from the borders toward the nadir: cartons on a pale shelf's top);
     // see `tops` and `own_top_decides`.
-    let own_top = |i: usize| -> bool {
-        let Some(n) = nadir else { return false };
+    let own_top = |i: usize| -> (bool, bool) {
+        let Some(n) = nadir else {
+            return (false, false);
+        };
         let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
         let share_at = |x: i64, y: i64| index(x, y).map(|k| shares[k]);
         let side = nadir_side((x, y), n);
@@ -793,21 +795,27 @@ fn read_inner(
             )
         };
         let mut ring = Vec::with_capacity(8);
+        let mut ring_floor = Vec::with_capacity(8);
         for dy in -1..=1 {
             for dx in -1..=1 {
                 if (dx, dy) != (0, 0)
                     && share_at(x + dx, y + dy).is_some_and(|s| s <= HALF_COVERED.0)
                 {
-                    ring.extend(colours(x + dx, y + dy).lit_floor_saturation());
+                    let around = colours(x + dx, y + dy);
+                    ring.extend(around.lit_floor_saturation());
+                    ring_floor.extend(around.lit_floor());
                 }
             }
         }
-        faced[i]
+        let own = colours(x, y);
+        let top_floor = own.top_read_as_floor(&ring_floor);
+        let decided = faced[i]
             || own_top_decides(
                 leaned,
                 || tops::standing(&cell_bins((x as u32, y as u32)), side),
-                || colours(x, y).pale_top(&ring),
-            )
+                || own.pale_top(&ring),
+            );
+        (decided, top_floor)
     };
     let mut blocked = vec![false; cells];
     // Covered cells a neighbour's leaning top may cover almost whole.
@@ -826,11 +834,17 @@ fn read_inner(
         if leaning.is_some_and(|f| f.free()) {
             continue;
         }
-        if share >= HALF_COVERED.1 && leaning.is_some_and(|f| f.doubtful()) {
+        // A half-covered cell is its obstacle's when that stands on it (`own_top`), or when
+        // its window's floor pixels are a top's read as floor (`tops::Window::
+        // top_read_as_floor`): then the window is covered whole, and judged as a covered cell
+        // (a neighbour's top may cover it almost whole).
+        let half = share < HALF_COVERED.1;
+        let (own, top_floor) = if half { own_top(i) } else { (false, false) };
+        if (!half || top_floor) && leaning.is_some_and(|f| f.doubtful()) {
             // Judged once every cell's cover is known, by the faces toward the nadir and the
             // shadows (below).
             almost.push(i);
-        } else if share < HALF_COVERED.1 && !own_top(i) {
+        } else if half && !own && !top_floor {
             doubt!(at_pixel(
                 source,
                 cell_centre_px(i),

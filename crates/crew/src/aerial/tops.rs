@@ -10,6 +10,10 @@
 //!   nadir; a block in the middle of the cell does not reach that border.
 //! - [`Window::pale_top`]: the pixels read as floor are a paler shade of the obstacle pixels
 //!   beside them, as follows.
+//! - [`Window::top_read_as_floor`] (since issue #29's twenty-sixth round): the pixels read as
+//!   floor are of the obstacle pixels' colour, not the free floor's around the cell. Then the
+//!   whole window is the top's, and the cell is judged as a covered one (a neighbour's top may
+//!   still cover it almost whole: see [`super::cover`]), whatever its neighbours.
 //!
 //! The pixels of the window read as floor tell it apart from a free cell half under a
 //! shelf's edge: on a shelf's top they are lit (no shadow), clearly tinted after white
@@ -67,6 +71,14 @@ impl Window {
         (n >= MIN_PIXELS && bright >= LIT).then(|| hue_saturation(rgb).1)
     }
 
+    /// The floor pixels' mean colour, when they are lit and enough (a free neighbour's
+    /// measure for [`Window::top_read_as_floor`]'s ring).
+    pub fn lit_floor(&self) -> Option<[f64; 3]> {
+        let (rgb, n) = self.floor;
+        let bright = rgb[0].max(rgb[1]).max(rgb[2]);
+        (n >= MIN_PIXELS && bright >= LIT).then_some(rgb)
+    }
+
     /// Whether the floor pixels are a pale shade of the obstacle pixels (see the module's
     /// comment), against `ring`, the saturations of the lit free neighbours.
     pub fn pale_top(&self, ring: &[f64]) -> bool {
@@ -83,6 +95,56 @@ impl Window {
         let (ho, so) = hue_saturation(self.obstacle.0);
         let d = (hf - ho).rem_euclid(360.0);
         s >= TINT && s - median >= ABOVE_RING && so >= s && d.min(360.0 - d) <= SAME_HUE
+    }
+}
+
+/// How unlike two colours are: 100 times the log of their brightness ratio (the sum of the
+/// channels), plus 300 times the sum of the differences of their chromaticities (each channel
+/// over that sum). The lit floor and a shadow on it differ by about 40–70; two pixels' worth of
+/// one surface's noise by a few.
+pub fn unlike(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (la, lb) = (a[0] + a[1] + a[2], b[0] + b[1] + b[2]);
+    if la <= 0.0 || lb <= 0.0 {
+        return f64::INFINITY;
+    }
+    let chroma: f64 = (0..3).map(|c| (a[c] / la - b[c] / lb).abs()).sum();
+    100.0 * (la / lb).ln().abs() + 300.0 * chroma
+}
+
+/// The floor pixels of a top read as floor are at most this share as unlike the obstacle
+/// pixels beside them as they are unlike the free floor around the cell.
+pub const TOP_NOT_FLOOR: f64 = 0.2;
+/// ... and at least this unlike the free floor around ([`unlike`]).
+pub const FLOOR_APART: f64 = 15.0;
+
+impl Window {
+    /// Whether the window's floor pixels are the obstacle's, read as floor: lit (at least
+    /// [`LIT`] as bright as the free floor around), and of the colour of the window's obstacle
+    /// pixels rather than of `ring`, the mean colours of the floor pixels of the lit free
+    /// neighbours ([`TOP_NOT_FLOOR`], [`FLOOR_APART`]), and unlike each of those (a free
+    /// neighbour whose floor is of the top's colour may be the same top, all read as floor:
+    /// p0003's dark brown shelf). A top of nearly the floor's colour
+    /// (tan on sand, lilac on grey, grey on a darker grey) reads partly as floor where its
+    /// light or noise brings it near the floor's colour, yet those pixels keep the top's
+    /// colour, not the floor's; a free cell's floor pixels beside a shelf's edge keep the
+    /// floor's, a glow on the floor lies between the two (issue #29's twenty-sixth round).
+    pub fn top_read_as_floor(&self, ring: &[[f64; 3]]) -> bool {
+        let ((floor, nf), (obstacle, no)) = (self.floor, self.obstacle);
+        if nf < MIN_PIXELS || no < MIN_PIXELS || ring.len() < RING_MIN {
+            return false;
+        }
+        let channel = |c: usize| {
+            let mut v: Vec<f64> = ring.iter().map(|r| r[c]).collect();
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        let around = [channel(0), channel(1), channel(2)];
+        let bright = |c: [f64; 3]| c[0] + c[1] + c[2];
+        let apart = unlike(floor, around);
+        bright(floor) >= LIT * bright(around)
+            && apart >= FLOOR_APART
+            && unlike(floor, obstacle) <= TOP_NOT_FLOOR * apart
+            && ring.iter().all(|&r| unlike(floor, r) >= FLOOR_APART)
     }
 }
 
@@ -264,6 +326,47 @@ mod tests {
             obstacle: (obstacle, 100),
             floor: (floor, 100),
         }
+    }
+
+    #[test]
+    fn colours_are_unlike_by_brightness_and_chromaticity() {
+        let grey = [1.0, 1.0, 1.0];
+        assert_eq!(unlike(grey, grey), 0.0);
+        // A shadow at half the light: 100 ln 2.
+        assert!((unlike(grey, [0.5, 0.5, 0.5]) - 100.0 * 2f64.ln()).abs() < 1e-9);
+        // As bright, a tint: 300 times the chromaticities' differences.
+        let tan = [1.2, 1.0, 0.8];
+        assert!((unlike(grey, tan) - 300.0 * (0.4 / 3.0)).abs() < 1e-9);
+        assert_eq!(unlike(grey, tan), unlike(tan, grey));
+        assert!(unlike([0.0; 3], grey).is_infinite());
+    }
+
+    #[test]
+    fn a_top_read_as_floor_keeps_the_top_s_colour() {
+        // A tan top on a grey floor: its floor pixels tan, as its obstacle pixels.
+        let ring = [[1.0, 1.0, 1.0], [0.98, 1.0, 1.02], [1.02, 1.0, 0.98]];
+        let tan = [1.1, 0.98, 0.78];
+        let top = win([1.12, 0.98, 0.76], tan);
+        assert!(top.top_read_as_floor(&ring));
+        // A free cell beside a shelf's edge: its floor pixels grey.
+        assert!(!win([1.12, 0.98, 0.76], [1.0, 0.99, 0.98]).top_read_as_floor(&ring));
+        // A glow between the floor and the top.
+        assert!(!win([1.12, 0.98, 0.76], [1.05, 0.99, 0.88]).top_read_as_floor(&ring));
+        // A shadow of the obstacle's tint, darker than the lit floor.
+        assert!(!win([0.55, 0.5, 0.4], [0.55, 0.5, 0.4]).top_read_as_floor(&ring));
+        // A top nearly the floor's colour: too near to tell (FLOOR_APART).
+        assert!(!win([1.0, 1.0, 0.97], [1.0, 1.0, 0.97]).top_read_as_floor(&ring));
+        // A free neighbour whose floor is of the top's colour: it may be the same top.
+        let mut with_top = ring.to_vec();
+        with_top.push([1.1, 0.97, 0.78]);
+        assert!(!top.top_read_as_floor(&with_top));
+        // Too few free neighbours, or pixels, to judge.
+        assert!(!top.top_read_as_floor(&ring[..1]));
+        let few = Window {
+            obstacle: ([1.12, 0.98, 0.76], 5),
+            floor: (tan, 100),
+        };
+        assert!(!few.top_read_as_floor(&ring));
     }
 
     #[test]
