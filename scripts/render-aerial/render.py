@@ -464,6 +464,19 @@ FAMILIES = {
                              (0.88, 0.52, 0.44)),
               shelf_height=(0.3, 2.1), tiles=1 / 3, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # q: held out from issue #29's twenty-sixth round, rendered after its final reader (a run's
+    # lean measured beside it, a blocked cell's cover running on, a top read partly as floor)
+    # and not looked at until scored once. Box, dome and cylinder robots, square, ring and
+    # cross goals, mid grey-green, light warm stone and dark charcoal floors tiled every half
+    # cell, mustard, slate blue, brick, pale mint and dark olive shelves, from 0.3 to 2.2 high
+    # inset 0.06 cell, a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler light, and
+    # a camera from 45 to 165 cells per 24 high.
+    "q": dict(robot_shapes=("box", "dome", "cylinder"), goal_shapes=("square", "ring", "cross"),
+              floors=((0.56, 0.60, 0.54), (0.80, 0.76, 0.68), (0.20, 0.21, 0.23)),
+              shelf_colours=((0.75, 0.62, 0.18), (0.30, 0.38, 0.55), (0.60, 0.25, 0.18), (0.70, 0.80, 0.72),
+                             (0.25, 0.28, 0.12)),
+              shelf_height=(0.3, 2.2), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
