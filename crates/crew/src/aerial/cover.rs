@@ -714,6 +714,78 @@ fn points_away((x, y): (i64, i64), (dx, dy): (i64, i64), nadir: Point) -> bool {
     (inner - na) * (dx + dy) as f64 > 0.0
 }
 
+/// Whether free cell `(x, y)`, read as under the top of the run of blocked cells (in
+/// `blocked`) before it along an axis, toward the nadir, leaning at scale `k` (its fit), lacks
+/// the face that lean needs at the run's near end: a top scaled by k shows the run's face
+/// toward the nadir (k − 1) times the near border's distance from the nadir long, and when
+/// that is at least [`face::HIDDEN_FREE`] and the run's cover shows none, or a plain one half
+/// as long or less ([`face::judge_lean`]), the run does not stand as read: it may start a cell
+/// nearer, its face read as floor, and its top lean over the cell less than the fit says, or
+/// cover it as the run's own (issue #29's held-out q0018: a slate-blue shelf three cells long
+/// along the lean, read a cell short, its top read as leaning 0.88 cell over a free edge
+/// cell). Returns the step from the run to the cell, with the lean's reach over the cell and
+/// whether no face showed at all ([`face::Face::Hidden`]: then only when a face there would
+/// show, for the reader to judge with the sun and the view's other faces, as for a run's far
+/// cell).
+#[allow(clippy::too_many_arguments)]
+pub fn faceless_lean(
+    img: &RgbImage,
+    classes: &[u8],
+    maps: (&Homography, &Homography),
+    (gw, gh): (u32, u32),
+    blocked: &[bool],
+    nadir: Point,
+    (x, y): (u32, u32),
+    k: f64,
+) -> Option<Faceless> {
+    let (inside, is_blocked) = lookups(blocked, (gw, gh));
+    let (xi, yi) = (i64::from(x), i64::from(y));
+    for (dx, dy) in [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)] {
+        let (rx, ry) = (xi - dx, yi - dy);
+        if !inside(rx, ry) || !is_blocked(rx, ry) {
+            continue;
+        }
+        let (a, na) = if dx != 0 { (x, nadir.0) } else { (y, nadir.1) };
+        let dir = (dx + dy) as f64;
+        let inner = if dir > 0.0 {
+            f64::from(a)
+        } else {
+            f64::from(a) + 1.0
+        };
+        if (inner - na) * dir <= 0.0 {
+            continue; // the run lies beyond the cell from the nadir: its top leans away
+        }
+        let (run, px) = run_to((rx as u32, ry as u32), (dx, dy), nadir, maps.0, is_blocked);
+        let near = inner - dir * run.cells as f64;
+        let needed = (k - 1.0) * (near - na).abs();
+        if needed < face::HIDDEN_FREE {
+            continue;
+        }
+        let hidden = match face::judge_lean(img, classes, maps, run, px, needed) {
+            face::Face::Hidden => true,
+            face::Face::Own => false,
+            face::Face::Long | face::Face::Unknown => continue,
+        };
+        return Some(Faceless {
+            dir: (dx, dy),
+            reach: (k - 1.0) * (inner - na).abs(),
+            hidden,
+        });
+    }
+    None
+}
+
+/// A free cell under a lean whose run shows no face as long ([`faceless_lean`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Faceless {
+    /// The step from the run to the cell (away from the nadir).
+    pub dir: (i64, i64),
+    /// How far (cells) the lean reaches over the cell.
+    pub reach: f64,
+    /// No face showed at all (else a plain one, too short).
+    pub hidden: bool,
+}
+
 /// The run of blocked cells (`is_blocked`) ending at cell `(x, y)` along `(dx, dy)` (away from
 /// the nadir), for [`face::judge`], and the cell's size in pixels along the run there.
 fn run_to(
@@ -1111,6 +1183,59 @@ mod tests {
         let diagonal = |x: i64, y: i64| (x, y) == (2, 1);
         let k = reach((1.95, 0.9), (20.0, 10.0), (1, 0), &diagonal);
         assert!(k.is_finite() && k < 1.02, "{k}");
+    }
+
+    #[test]
+    fn a_long_lean_needs_its_face() {
+        // A floor of 10 × 4 cells of 10 px seen straight down, the nadir at (−20, 1.5); cells
+        // 2–4 of row 1 blocked, cell (5, 1) free under their top, fitted at k = 1.04: the top
+        // leans a cell over it (to u = 6) and shows the run's face toward the nadir
+        // 0.04 × 22 = 0.88 cell long. The face (shade 80) runs from u = 2 to `face_end`, the
+        // top (shade 160) on to u = 6.
+        let lacking = |face_end: f64, k: f64| {
+            let (img, classes, f2i, i2f, blocked) = floor_of_10x4(
+                20..60,
+                &[(10, 20)],
+                |u, _| if u < face_end { 80 } else { 160 },
+                &[12, 13, 14],
+            );
+            faceless_lean(
+                &img,
+                &classes,
+                (&f2i, &i2f),
+                (10, 4),
+                &blocked,
+                (-20.0, 1.5),
+                (5, 1),
+                k,
+            )
+        };
+        // The face shows as long as the lean makes: the lean stands.
+        assert_eq!(lacking(2.88, 1.04), None);
+        // No face: the run may stand a cell nearer.
+        let none = lacking(2.0, 1.04).unwrap();
+        assert!(none.hidden && none.dir == (1, 0), "{none:?}");
+        assert!((none.reach - 1.0).abs() < 1e-9);
+        // A plain face 0.4 cell long, under half what the lean makes.
+        let short = lacking(2.4, 1.04).unwrap();
+        assert!(!short.hidden, "{short:?}");
+        // A lean of k = 1.01 makes a face of 0.22 cell: too short to tell.
+        assert_eq!(lacking(2.0, 1.01), None);
+        // No blocked cell before the cell toward the nadir: no lean to judge.
+        let (img, classes, f2i, i2f, blocked) = floor_of_10x4(20..60, &[(10, 20)], |_, _| 160, &[]);
+        assert_eq!(
+            faceless_lean(
+                &img,
+                &classes,
+                (&f2i, &i2f),
+                (10, 4),
+                &blocked,
+                (-20.0, 1.5),
+                (5, 1),
+                1.03
+            ),
+            None
+        );
     }
 
     #[test]

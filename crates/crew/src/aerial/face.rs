@@ -137,7 +137,24 @@ pub fn judge(
     run: Run,
     px: f64,
 ) -> Face {
-    judged(img, classes, maps, run, px, false).unwrap_or(Face::Unknown)
+    judged(img, classes, maps, run, px, false, None).unwrap_or(Face::Unknown)
+}
+
+/// What the run's face toward the nadir tells of a lean of its top measured elsewhere (a free
+/// cell beyond its far cell, read as under that top): `needed`, the face's length that lean
+/// makes ((k − 1) times the near border's distance from the nadir). [`Face::Long`] when a face
+/// at least half that long shows; [`Face::Hidden`] when none shows, or [`Face::Own`] when a
+/// plain one shows at most half as long: the run's top does not lean so far from the run as
+/// read (since issue #29's twenty-sixth round).
+pub fn judge_lean(
+    img: &RgbImage,
+    classes: &[u8],
+    maps: (&Homography, &Homography),
+    run: Run,
+    px: f64,
+    needed: f64,
+) -> Face {
+    judged(img, classes, maps, run, px, false, Some(needed)).unwrap_or(Face::Unknown)
 }
 
 /// Whether the run's face toward the nadir shows plainly unlike its top, whatever its length
@@ -150,9 +167,10 @@ pub fn shows(
     run: Run,
     px: f64,
 ) -> bool {
-    judged(img, classes, maps, run, px, true) == Some(Face::Own)
+    judged(img, classes, maps, run, px, true, None) == Some(Face::Own)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn judged(
     img: &RgbImage,
     classes: &[u8],
@@ -160,6 +178,7 @@ fn judged(
     run: Run,
     px: f64,
     any_length: bool,
+    needed: Option<f64>,
 ) -> Option<Face> {
     if px.is_nan() || px < 1.0 {
         return None; // no cell size in pixels: no blur to tell a face from
@@ -196,9 +215,19 @@ fn judged(
         return None;
     }
     let (dn, de) = ((c0 - run.nadir).abs(), (e - run.nadir).abs());
-    let free = (de / (inner - run.nadir).abs() - 1.0) * dn;
-    let own = (de / (outer - run.nadir).abs() - 1.0) * dn;
-    if own < -0.05 || free <= 0.0 {
+    // The face a free far cell would need (or the one a lean measured elsewhere needs).
+    let free = match needed {
+        Some(f) => f,
+        None => {
+            let own = (de / (outer - run.nadir).abs() - 1.0) * dn;
+            let free = (de / (inner - run.nadir).abs() - 1.0) * dn;
+            if own < -0.05 {
+                return None;
+            }
+            free
+        }
+    };
+    if free <= 0.0 {
         return None;
     }
     let offset = |s: usize| (at(s) + dir * SLICE / 2.0 - c0) * dir;

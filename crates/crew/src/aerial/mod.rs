@@ -820,6 +820,8 @@ fn read_inner(
     let mut blocked = vec![false; cells];
     // Covered cells a neighbour's leaning top may cover almost whole.
     let mut almost: Vec<usize> = Vec::new();
+    // Free cells under a long lean whose run shows no face as long (`cover::faceless_lean`).
+    let mut faceless: Vec<(usize, cover::Faceless)> = Vec::new();
     for (i, b) in blocked.iter_mut().enumerate() {
         if let Some(given) = settled[i] {
             *b = given;
@@ -831,7 +833,16 @@ fn read_inner(
         }
         let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
         let leaning = fits[i];
-        if leaning.is_some_and(|f| f.free()) {
+        if let Some(fit) = leaning.filter(|f| f.free()) {
+            // Through corners (as for a run's far cell, below), a long lean needs its face:
+            // judged once the suns are known (below).
+            if let (Some(n), Some(_), true) = (nadir, config.corners, fit.k > 1.0) {
+                if let Some(lacking) =
+                    cover::faceless_lean(img, &classes, maps, (gw, gh), &sure, n, (x, y), fit.k)
+                {
+                    faceless.push((i, lacking));
+                }
+            }
             continue;
         }
         // A half-covered cell is its obstacle's when that stands on it (`own_top`), or when
@@ -1082,6 +1093,45 @@ fn read_inner(
                     face::BAND.1
                 ),
             ));
+        }
+    }
+    // A free cell under a long lean whose run shows no face as long: a plain face too short,
+    // or none where a face would show (the sun behind it, or the view's other faces that look
+    // that way plain), as for a run's far cell (below).
+    if !faceless.is_empty() {
+        let suns = sunlit
+            .as_ref()
+            .map(shadows::Sunlit::suns)
+            .unwrap_or_default();
+        for &(i, lacking) in &faceless {
+            let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
+            let (dx, dy) = lacking.dir;
+            let (rx, ry) = (x - dx, y - dy);
+            let would_show = || {
+                face::in_own_shadow(&suns, lacking.dir)
+                    || nadir.is_some_and(|n| {
+                        cover::face_shown(
+                            img,
+                            &classes,
+                            maps,
+                            (gw, gh),
+                            &blocked,
+                            n,
+                            lacking.dir,
+                            &[(ry * i64::from(gw) + rx) as usize],
+                        )
+                    })
+            };
+            if !lacking.hidden || would_show() {
+                doubt!(at_pixel(
+                    source,
+                    cell_centre_px(i),
+                    format!(
+                        "cell ({x}, {y}) would be free under the top of the obstacle on cell ({rx}, {ry}), leaning {:.2} cell over it, but that obstacle shows no face toward the camera as long as such a lean makes: it may stand a cell nearer, its face read as floor, and cell ({x}, {y}) be its own: cannot tell whether it is blocked",
+                        lacking.reach
+                    ),
+                ));
+            }
         }
     }
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
