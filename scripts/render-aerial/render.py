@@ -477,6 +477,19 @@ FAMILIES = {
                              (0.25, 0.28, 0.12)),
               shelf_height=(0.3, 2.2), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # r: held out from issue #29's twenty-sixth round, rendered after its last rule (a long lean
+    # needs its face, after q was scored) and not looked at until scored once. Rotated-box,
+    # box-with-a-dome and puck robots, ellipse, diamond and disc goals, light blue-grey, mid
+    # tan-brown and dark green-black floors tiled every quarter cell, teal, cream, maroon,
+    # steel blue and khaki shelves, from 0.3 to 2.1 high inset 0.05 cell, a sun 20-70 degrees
+    # up of strength 2.3-3.7, warmer and cooler light, and a camera from 45 to 165 cells per
+    # 24 high.
+    "r": dict(robot_shapes=("rotbox", "boxdome", "puck"), goal_shapes=("ellipse", "diamond", "disc"),
+              floors=((0.64, 0.66, 0.70), (0.52, 0.44, 0.36), (0.16, 0.18, 0.16)),
+              shelf_colours=((0.15, 0.50, 0.48), (0.88, 0.84, 0.70), (0.45, 0.12, 0.15), (0.40, 0.50, 0.65),
+                             (0.60, 0.56, 0.35)),
+              shelf_height=(0.3, 2.1), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
