@@ -242,7 +242,7 @@ pub fn fit(
         }
     }
     // A blocked neighbour's cover running on into the cell, unbroken from the shared edge, past
-    // the bleed along half that edge or more where no top leans: the cell's own obstacle (its
+    // the bleed along most of that edge ([`RUNS_ON`]) where no top leans: the cell's own obstacle (its
     // top, the rest read as floor: a dark top like a shadow, a face), not a glow (issue #29's
     // twenty-sixth round: p0035's (18, 15), 0.35 of it covered along the edge of (19, 15), the
     // rest of its dark brown top and its face read as floor, was read free as a cell with a
