@@ -124,9 +124,7 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> us
                 && saturation >= super::dull::DULL * t.saturation
         });
         if let Some(&(class, _)) = like {
-            for &(x, y) in &b.pixels {
-                classes[y as usize * width + x as usize] = class as u8;
-            }
+            b.paint(classes, width, class as u8);
             settled += 1;
         }
     }

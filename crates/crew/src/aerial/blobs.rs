@@ -30,7 +30,26 @@ pub struct Blob {
     pub bbox: (u32, u32, u32, u32),
 }
 
+/// The eight neighbours of a pixel.
+pub const NEIGHBOURS: [(i64, i64); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
 impl Blob {
+    /// Sets the class of every pixel of the blob in `classes` (rows of `width` pixels).
+    pub fn paint(&self, classes: &mut [u8], width: usize, class: u8) {
+        for &(x, y) in &self.pixels {
+            classes[y as usize * width + x as usize] = class;
+        }
+    }
+
     /// How elongated the blob is: the square root of the ratio of its pixels' second moments
     /// along their principal axes, each pixel a unit square (1 for a disc, a square or a
     /// single pixel, 2 for a bar twice as long as wide, its length for a line one pixel wide;
@@ -482,16 +501,7 @@ pub fn grow_faint(
     let mut pixels = piece.pixels.clone();
     while let Some(i) = stack.pop() {
         let (x, y) = (i % width, i / width);
-        for (dx, dy) in [
-            (-1i64, -1i64),
-            (0, -1),
-            (1, -1),
-            (-1, 0),
-            (1, 0),
-            (-1, 1),
-            (0, 1),
-            (1, 1),
-        ] {
+        for (dx, dy) in NEIGHBOURS {
             let (nx, ny) = (x as i64 + dx, y as i64 + dy);
             if nx < 0 || ny < 0 || nx >= width as i64 || ny >= height as i64 {
                 continue;

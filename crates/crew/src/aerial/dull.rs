@@ -155,8 +155,8 @@ fn robots_within(
         while let Some(i) = stack.pop() {
             piece.push(i);
             let (x, y) = (i % w, i / w);
-            for (dx, dy) in NEIGHBOURS {
-                let j = (y as isize + dy) as usize * w + (x as isize + dx) as usize;
+            for (dx, dy) in blobs::NEIGHBOURS {
+                let j = (y as i64 + dy) as usize * w + (x as i64 + dx) as usize;
                 if local[j] == 1 && !seen[j] {
                     seen[j] = true;
                     stack.push(j);
@@ -170,8 +170,8 @@ fn robots_within(
         for &i in &piece {
             kept.insert(global(i));
             let (x, y) = (i % w, i / w);
-            for (dx, dy) in NEIGHBOURS {
-                let j = (y as isize + dy) as usize * w + (x as isize + dx) as usize;
+            for (dx, dy) in blobs::NEIGHBOURS {
+                let j = (y as i64 + dy) as usize * w + (x as i64 + dx) as usize;
                 if local[j] == 2 {
                     kept.insert(global(j));
                 }
@@ -180,18 +180,6 @@ fn robots_within(
     }
     kept
 }
-
-/// The eight neighbours of a pixel.
-const NEIGHBOURS: [(isize, isize); 8] = [
-    (-1, -1),
-    (0, -1),
-    (1, -1),
-    (-1, 0),
-    (1, 0),
-    (-1, 1),
-    (0, 1),
-    (1, 1),
-];
 
 #[cfg(test)]
 mod tests {

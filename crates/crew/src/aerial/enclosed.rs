@@ -58,9 +58,7 @@ pub fn settle(classes: &mut [u8], width: usize) -> usize {
             continue;
         }
         let class = [Class::Robot, Class::Goal, Class::Obstacle][kind] as u8;
-        for &(x, y) in &blob.pixels {
-            classes[y as usize * width + x as usize] = class;
-        }
+        blob.paint(classes, width, class);
         settled += 1;
     }
     settled

@@ -1060,6 +1060,17 @@ fn read_inner(
     // The free floor's shadow bins and the sun's directions, found once for the far cells
     // and the shadows behind lit floor.
     let sunlit = shadows::Sunlit::new(&bins, &levels, (gw, gh));
+    // The sun's directions the view's shadows allow, found when first needed (the walk behind
+    // them is not cheap, and a view without corners needs none).
+    let suns_found = std::cell::OnceCell::new();
+    let suns = || -> &Vec<(f64, f64)> {
+        suns_found.get_or_init(|| {
+            sunlit
+                .as_ref()
+                .map(shadows::Sunlit::suns)
+                .unwrap_or_default()
+        })
+    };
     // A run of blocked cells whose cells toward the nadir show a band a little darker than the
     // lit floor, which no sun of the view's shadows casts: its base may be there, under a top
     // leaning a whole cell (see `face::shifted_run`). Only for a view through corners, as for
@@ -1067,10 +1078,7 @@ fn read_inner(
     // a large floor, where the floor's own shading makes such bands (the speed case's 200 × 150
     // floor had one).
     if let (Some(n), Some(_)) = (nadir, config.corners) {
-        let suns = sunlit
-            .as_ref()
-            .map(shadows::Sunlit::suns)
-            .unwrap_or_default();
+        let suns = suns();
         let side = |x: i64, y: i64| nadir_side((x, y), n);
         let found = face::shifted_run(
             &blocked,
@@ -1079,7 +1087,7 @@ fn read_inner(
             &levels,
             (gw, gh),
             side,
-            &suns,
+            suns,
         );
         if let Some(((x, y), (dx, dy))) = found {
             doubt!(at_pixel(
@@ -1099,16 +1107,13 @@ fn read_inner(
     // or none where a face would show (the sun behind it, or the view's other faces that look
     // that way plain), as for a run's far cell (below).
     if !faceless.is_empty() {
-        let suns = sunlit
-            .as_ref()
-            .map(shadows::Sunlit::suns)
-            .unwrap_or_default();
+        let suns = suns();
         for &(i, lacking) in &faceless {
             let (x, y) = ((i % gw as usize) as i64, (i / gw as usize) as i64);
             let (dx, dy) = lacking.dir;
             let (rx, ry) = (x - dx, y - dy);
             let would_show = || {
-                face::in_own_shadow(&suns, lacking.dir)
+                face::in_own_shadow(suns, lacking.dir)
                     || nadir.is_some_and(|n| {
                         cover::face_shown(
                             img,
@@ -1137,10 +1142,7 @@ fn read_inner(
     // The covered cells past a run of blocked cells (or on the floor's edge) that a leaning
     // top may cover whole, unless the shadow beside them shows the base reaching them.
     if !far_cells.is_empty() || !almost.is_empty() {
-        let suns = sunlit
-            .as_ref()
-            .map(shadows::Sunlit::suns)
-            .unwrap_or_default();
+        let suns = suns();
         let doubted: Vec<usize> = far_cells.iter().chain(&almost).map(|&(i, _)| i).collect();
         let almost_whole = almost.len();
         // Whether the view's other faces show, for each direction (−u, +u, −v, +v), found
@@ -1157,7 +1159,7 @@ fn read_inner(
             if far.dir != (0, 0)
                 && sunlit
                     .as_ref()
-                    .is_some_and(|s| s.base_reaches(&suns, (x, y), far.dir))
+                    .is_some_and(|s| s.base_reaches(suns, (x, y), far.dir))
             {
                 continue;
             }
@@ -1166,7 +1168,7 @@ fn read_inner(
             // another run pointing the same way shows its face plainly (faces that look one
             // way are lit alike in one view; see `face`).
             if far.hidden_face
-                && (face::in_own_shadow(&suns, far.dir)
+                && (face::in_own_shadow(suns, far.dir)
                     || *shown[side(far.dir)].get_or_insert_with(|| {
                         nadir.is_some_and(|n| {
                             cover::face_shown(

@@ -103,9 +103,7 @@ pub fn recover(
         if fills {
             continue;
         }
-        for &(x, y) in &blob.pixels {
-            classes[y as usize * width + x as usize] = mark as u8;
-        }
+        blob.paint(classes, width, mark as u8);
         turned += 1;
     }
     turned
