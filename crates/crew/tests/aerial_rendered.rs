@@ -250,6 +250,24 @@ fn a_top_read_partly_as_floor_is_told_by_its_colour() {
     }
 }
 
+/// A half-covered cell that a robot or a goal stands on is free (`under_marks`; issue #29's
+/// twenty-seventh round): l0005's cells (2, 8) and (6, 10), each under a faint goal on a dark
+/// floor whose rim read partly as an obstacle's, were refused as half covered. Read as free,
+/// and named so in the reading.
+#[test]
+fn a_half_covered_cell_under_a_mark_is_free() {
+    let (image, truth) = scene("l0005");
+    let r = read_aerial(&image, "l0005", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("l0005: {e}"));
+    assert_exact("l0005", &r, &truth);
+    let under: Vec<(u32, u32)> = r.under_marks.iter().map(|&c| r.grid.xy(c)).collect();
+    assert_eq!(under, vec![(2, 8), (6, 10)]);
+    assert!(
+        r.settled.is_empty(),
+        "the cells under marks are not the operator's"
+    );
+}
+
 /// A red robot standing against a dusty-rose shelf of its hue makes one blob with it, dull
 /// for the most part; the shelf's pixels become an obstacle's and the robot, as saturated as
 /// the view's other robots, stays a robot (`dull::VIVID`; issue #29's twenty-fifth round).

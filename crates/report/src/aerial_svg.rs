@@ -119,7 +119,8 @@ pub fn aerial_audit_svg(
     }
     s.push_str("</g>");
     // Cells the operator settled: a dashed orange outline inside the cell; cells read as a
-    // shelf of the floor's colour: a dotted magenta one.
+    // shelf of the floor's colour: a dotted magenta one; half-covered cells read as free
+    // under a mark: a dotted white one.
     let outlined = reading
         .settled
         .iter()
@@ -133,6 +134,14 @@ pub fn aerial_audit_svg(
                 "#ff40ff",
                 0.8,
                 "read as a shelf of the floor's colour (it does not look like the floor, and a shadow nothing else casts or a hidden painted line agrees)".to_string(),
+            )
+        }))
+        .chain(reading.under_marks.iter().map(|&c| {
+            (
+                c,
+                "#ffffff",
+                0.8,
+                "half covered, read as free: a robot or a goal stands on it".to_string(),
             )
         }));
     for (c, colour, dash, why) in outlined {

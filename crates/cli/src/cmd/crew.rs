@@ -323,7 +323,8 @@ fn refusals(n: usize) -> String {
 }
 
 /// ", 2 cells settled (dashed orange)" for a title, when the operator settled any, and ", 3
-/// cells a shelf of the floor's colour (dotted magenta)" when the reader read any.
+/// cells a shelf of the floor's colour (dotted magenta)" and ", 1 cell half covered but free
+/// under a robot or a goal (dotted white)" when the reader read any.
 fn settled_note(r: &mason_crew::aerial::AerialReading) -> String {
     let cells = |n: usize| {
         if n == 1 {
@@ -340,6 +341,12 @@ fn settled_note(r: &mason_crew::aerial::AerialReading) -> String {
         note += &format!(
             ", {} a shelf of the floor's colour (dotted magenta)",
             cells(r.floor_tops.len())
+        );
+    }
+    if !r.under_marks.is_empty() {
+        note += &format!(
+            ", {} half covered but free under a robot or a goal (dotted white)",
+            cells(r.under_marks.len())
         );
     }
     note
@@ -526,6 +533,7 @@ pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
             "free": settled(false),
         },
         "floor_tops": r.floor_tops.iter().map(|&c| xy(&r.grid, c)).collect::<Vec<_>>(),
+        "under_marks": r.under_marks.iter().map(|&c| xy(&r.grid, c)).collect::<Vec<_>>(),
     })
 }
 

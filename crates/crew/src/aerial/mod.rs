@@ -197,6 +197,9 @@ pub struct AerialReading {
     /// shadow that nothing else casts beside them or a painted line hidden between them
     /// ([`corroborated`]), row-major.
     pub floor_tops: Vec<Cell>,
+    /// Half-covered cells read as free because a robot or a goal stands on them (see
+    /// `under_marks`), row-major.
+    pub under_marks: Vec<Cell>,
 }
 
 impl AerialReading {
@@ -822,6 +825,9 @@ fn read_inner(
     let mut almost: Vec<usize> = Vec::new();
     // Free cells under a long lean whose run shows no face as long (`cover::faceless_lean`).
     let mut faceless: Vec<(usize, cover::Faceless)> = Vec::new();
+    // The half-covered cells that nothing above explains, with their refusals: judged once
+    // the robots and goals are read (a cell one stands on is free; see `under_marks`).
+    let mut half_covered: Vec<(usize, CrewError)> = Vec::new();
     for (i, b) in blocked.iter_mut().enumerate() {
         if let Some(given) = settled[i] {
             *b = given;
@@ -856,14 +862,17 @@ fn read_inner(
             // shadows (below).
             almost.push(i);
         } else if half && !own && !top_floor {
-            doubt!(at_pixel(
-                source,
-                cell_centre_px(i),
-                format!(
-                    "cell ({x}, {y}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over), and no neighbour's leaning top explains the cover: cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
-                    share * 100.0,
-                    HALF_COVERED.0 * 100.0,
-                    HALF_COVERED.1 * 100.0
+            half_covered.push((
+                i,
+                at_pixel(
+                    source,
+                    cell_centre_px(i),
+                    format!(
+                        "cell ({x}, {y}) is {:.0} % covered by an obstacle (in the window of the cell that no neighbour leans over), and no neighbour's leaning top explains the cover: cannot tell whether it is blocked ({:.0}–{:.0} % is refused)",
+                        share * 100.0,
+                        HALF_COVERED.0 * 100.0,
+                        HALF_COVERED.1 * 100.0
+                    ),
                 ),
             ));
         }
@@ -1267,7 +1276,15 @@ fn read_inner(
             })
             .collect()
     };
-    let grid = Grid::new(gw, gh, blocked);
+    // The marks are read with the half-covered cells free: a robot or a goal standing on one
+    // is not taken for a part of an obstacle there (see `on_shelf`).
+    let grid = {
+        let mut tentative = blocked.clone();
+        for &(i, _) in &half_covered {
+            tentative[i] = false;
+        }
+        Grid::new(gw, gh, tentative)
+    };
     let unsure = blobs::sort(blobs::find(&mut classes, width, Class::Unsure as u8));
     let ReadMarks {
         marks: robots,
@@ -1441,6 +1458,31 @@ fn read_inner(
             ));
         }
     }
+    // A half-covered cell a robot or a goal stands on is free: the view is read again with it
+    // settled so (see `under_marks`); any other is refused.
+    if !half_covered.is_empty() {
+        let cells: Vec<usize> = half_covered.iter().map(|h| h.0).collect();
+        let under = under_marks(&cells, &robots, &goals);
+        if under.is_empty() || !audit {
+            for (i, error) in half_covered {
+                if under.binary_search(&i).is_err() {
+                    doubt!(error);
+                }
+            }
+        }
+        if !under.is_empty() {
+            let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
+            let mut again = config.clone();
+            again.free_cells.extend(under.iter().map(|&i| xy(i)));
+            let (mut read, lightly) = read_inner(img, source, &again, audit, infer)?;
+            read.reading
+                .settled
+                .retain(|(c, _)| under.binary_search(&(c.0 as usize)).is_err());
+            read.reading.under_marks = under.iter().map(|&i| Cell(i as u32)).collect();
+            return Ok((read, lightly));
+        }
+    }
+    let grid = Grid::new(gw, gh, blocked);
     // Shelves of the floor's colour that two kinds of evidence tell: read again with them
     // blocked, and that reading kept when it refuses nothing (see `corroborated`).
     let told = !(not_floor.is_empty() && uncast.is_none() && unlike.is_none() && hidden.is_empty());
@@ -1524,6 +1566,7 @@ fn read_inner(
                     .filter_map(|(i, s)| s.map(|b| (Cell(i as u32), b)))
                     .collect(),
                 floor_tops: Vec::new(),
+                under_marks: Vec::new(),
             },
             doubts,
         },
@@ -2198,6 +2241,25 @@ fn on_shelf(
     !on.is_empty()
         && blocked as f64 >= ON_SHELF * on.len() as f64
         && blobs::ring_share(blob, classes, width, Class::Floor as u8) < FLOOR_AROUND
+}
+
+/// The cells of `half` (half-covered cells that nothing else explains) that a robot or a goal
+/// stands on, sorted. A mark stands on the floor (a robot's centre is taken where it stands, a
+/// goal is painted on it), so the cell under its centre is free whatever covers part of its
+/// window: a robot's blurred rim and its shadow on a dark floor, or a faint goal's pixels, read
+/// as an obstacle's (k0035, n0034 and G0012 were refused so; issue #29's twenty-seventh round).
+/// The marks are read with these cells free, so that a mark on one is not taken for a part of
+/// the obstacle there (see `on_shelf`); a mark's centre read in the wrong cell makes the view
+/// wrong whatever this decides.
+fn under_marks(half: &[usize], robots: &[Mark], goals: &[Mark]) -> Vec<usize> {
+    let mut under: Vec<usize> = half
+        .iter()
+        .copied()
+        .filter(|&i| robots.iter().chain(goals).any(|m| m.cell.0 as usize == i))
+        .collect();
+    under.sort_unstable();
+    under.dedup();
+    under
 }
 
 /// Whether a half-covered cell's own top covers it: `standing` (a cover inside the cell, away

@@ -738,6 +738,23 @@ fn a_mark_joined_to_a_shelf_s_rim_is_cut_from_it() {
 }
 
 #[test]
+fn a_half_covered_cell_a_mark_stands_on_is_free() {
+    // On a 4-wide grid: half-covered cells 1, 6, 9 and 14; a robot on cell 6, goals on cells
+    // 14 and 3 (not half covered), and a robot next to cell 9, on cell 10.
+    let mark = |cell: u32| Mark {
+        cell: Cell(cell),
+        floor: (f64::from(cell % 4) + 0.5, f64::from(cell / 4) + 0.5),
+        pixel: (0.0, 0.0),
+        area: 40,
+        confidence: 1.0,
+    };
+    let (robots, goals) = ([mark(6), mark(10)], [mark(14), mark(3)]);
+    assert_eq!(under_marks(&[14, 1, 6, 9], &robots, &goals), vec![6, 14]);
+    assert!(under_marks(&[1, 9], &robots, &goals).is_empty());
+    assert!(under_marks(&[], &robots, &goals).is_empty());
+}
+
+#[test]
 fn a_pale_top_decides_a_half_covered_cell_whatever_its_neighbours() {
     // A cover standing inside the cell counts only with no neighbour's top that may lean over
     // it; a pale top of the cell's own counts either way.
