@@ -490,6 +490,19 @@ FAMILIES = {
                              (0.60, 0.56, 0.35)),
               shelf_height=(0.3, 2.1), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # s: held out from issue #29's twenty-seventh round, rendered after its reader (a
+    # half-covered cell a mark stands on is free) and not looked at until scored once.
+    # Cylinder, rotated-box and dome robots, cross, disc and square goals, warm grey, pale sand
+    # and dark slate floors tiled every third of a cell, orange, pale grey-blue, forest green,
+    # plum and dark grey shelves, from 0.3 to 2.0 high inset 0.06 cell, a sun 20-70 degrees up
+    # of strength 2.3-3.7, warmer and cooler light, and a camera from 45 to 165 cells per 24
+    # high.
+    "s": dict(robot_shapes=("cylinder", "rotbox", "dome"), goal_shapes=("cross", "disc", "square"),
+              floors=((0.58, 0.55, 0.52), (0.82, 0.78, 0.66), (0.22, 0.24, 0.28)),
+              shelf_colours=((0.85, 0.45, 0.12), (0.66, 0.72, 0.80), (0.14, 0.32, 0.18), (0.42, 0.20, 0.40),
+                             (0.22, 0.22, 0.22)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 

@@ -268,6 +268,28 @@ fn a_half_covered_cell_under_a_mark_is_free() {
     );
 }
 
+/// A shelf of nearly the floor's look, read as floor with its shadow, makes so much of the
+/// view's shadows that no one direction explains them; the robots' shadows still tell the sun,
+/// and the shelf is a shadow behind lit floor (`sun::from_robots`; issue #29's twenty-seventh
+/// round): the held-out s0000 and s0019 were read wrongly, a slate shelf six and five cells
+/// long free.
+#[test]
+fn a_shelf_read_as_its_shadow_is_refused_by_the_robots_sun() {
+    for (name, cell) in [("s0000", (15, 9)), ("s0019", (3, 5))] {
+        let (image, truth) = scene(name);
+        let blocked = cells(&truth["blocked"]);
+        assert!(blocked.contains(&cell), "{name}: {cell:?} is the shelf's");
+        let e = read_aerial(&image, name, &config(&truth, true))
+            .err()
+            .unwrap_or_else(|| panic!("{name} was read"))
+            .to_string();
+        assert!(
+            e.contains("lies behind lit floor, not behind its caster"),
+            "{name}: {e}"
+        );
+    }
+}
+
 /// A red robot standing against a dusty-rose shelf of its hue makes one blob with it, dull
 /// for the most part; the shelf's pixels become an obstacle's and the robot, as saturated as
 /// the view's other robots, stays a robot (`dull::VIVID`; issue #29's twenty-fifth round).

@@ -78,6 +78,7 @@ pub mod pale;
 pub mod pixels;
 pub mod shadows;
 pub mod shelves;
+pub mod sun;
 pub mod tinted;
 pub mod tops;
 
@@ -1238,8 +1239,10 @@ fn read_inner(
             .first()
             .map(|&(u, _)| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
-                sunlit.as_ref()?.unattached(&is_settled).map(|u| {
-                    doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows give)")
+                let robots_sun =
+                    || sun::from_robots(&mut classes, img, &classifier, &image_to_floor);
+                sunlit.as_ref()?.unattached(&is_settled, robots_sun).map(|u| {
+                    doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows or the robots' give)")
                 })
             })
     };

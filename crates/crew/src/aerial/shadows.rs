@@ -381,6 +381,12 @@ fn attached(
 }
 
 /// Direction `k` of [`DIRECTIONS`] on the floor: a unit vector.
+/// The one of the [`DIRECTIONS`] nearest to `(x, y)`.
+fn direction_index((x, y): (f64, f64)) -> usize {
+    let step = std::f64::consts::TAU / DIRECTIONS as f64;
+    (y.atan2(x).rem_euclid(std::f64::consts::TAU) / step).round() as usize % DIRECTIONS
+}
+
 fn dir(k: usize) -> (f64, f64) {
     let a = (k % DIRECTIONS) as f64 * std::f64::consts::TAU / DIRECTIONS as f64;
     (a.cos(), a.sin())
@@ -517,9 +523,19 @@ impl<'a> Sunlit<'a> {
     /// is refused: its caster stands on floor read as free, a shelf of the floor's own look
     /// whose shadow touches another's (V0028's graphite shelf, whose shadow joined that of the
     /// pale shelf below it; issue #29's twelfth round).
-    pub fn unattached(&self, settled: &[bool]) -> Option<Uncast> {
+    ///
+    /// When no direction explains that many, the robots' shadows may still tell the sun
+    /// (`robots_sun`, a direction on the floor; see [`super::sun`]), and the walk goes toward it.
+    pub fn unattached(
+        &self,
+        settled: &[bool],
+        robots_sun: impl FnOnce() -> Option<(f64, f64)>,
+    ) -> Option<Uncast> {
         let (bw, bh) = self.size();
-        let best = self.sun_index()?;
+        let best = match self.sun_index() {
+            Some(best) => best,
+            None => direction_index(robots_sun()?),
+        };
         let (kinds, robot_near) = (&self.kinds, &self.robot_near);
         let at = |i: usize| (i % bw, i / bw);
         let mut loose = vec![false; bw * bh];
@@ -628,6 +644,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_direction_on_the_floor_is_its_nearest_of_the_directions() {
+        assert_eq!(direction_index((1.0, 0.0)), 0);
+        assert_eq!(direction_index((0.0, 1.0)), DIRECTIONS / 4);
+        assert_eq!(direction_index((-1.0, 0.0)), DIRECTIONS / 2);
+        assert_eq!(direction_index((0.0, -1.0)), 3 * DIRECTIONS / 4);
+        // Just below the +u axis: the last direction, not past it.
+        assert_eq!(direction_index((1.0, -0.001)), 0);
+        assert_eq!(direction_index((1.0, -0.1)), DIRECTIONS - 1);
+        let (x, y) = dir(direction_index((0.6, 0.8)));
+        assert!((x - 0.6).abs() < 0.05 && (y - 0.8).abs() < 0.05);
+    }
+
+    #[test]
     fn the_bins_beside_a_robots_bin_are_its_eight_neighbours() {
         // A 3 × 2 floor of lit bins (12 × 8 bins), cell (1, 1) blocked; robots' pixels in
         // bins (5, 3), (0, 0) and (11, 7), and in bin (8, 2) fewer than the share asked.
@@ -666,7 +695,7 @@ mod tests {
         levels: &[f64],
         floor: (u32, u32),
     ) -> Option<Uncast> {
-        Sunlit::new(cells, levels, floor)?.unattached(&[])
+        Sunlit::new(cells, levels, floor)?.unattached(&[], || None)
     }
 
     /// [`Sunlit::suns`] of a floor, none for a floor with no bins.
@@ -908,7 +937,15 @@ mod tests {
         let mut settled = vec![false; 144];
         settled[5 * 12 + 8] = true;
         let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
-        assert_eq!(sun.unattached(&settled), None);
+        assert_eq!(sun.unattached(&settled, || None), None);
+        // The shadows tell the sun here: the robots' shadows are not asked.
+        let asked = std::cell::Cell::new(false);
+        let robots = || {
+            asked.set(true);
+            None
+        };
+        assert_eq!(sun.unattached(&[], robots).unwrap().cell, (8, 5));
+        assert!(!asked.get());
     }
 
     #[test]
