@@ -290,6 +290,29 @@ fn a_shelf_read_as_its_shadow_is_refused_by_the_robots_sun() {
     }
 }
 
+/// Shadows of a low sun, tinted by a warm sky, read whole as tops of nearly the floor's colour
+/// on the floor's edges, lie where the shelves beside them cast their shadows, seen from the
+/// sun: they are refused (`shadows::Sunlit::casts_on`; issue #29's twenty-seventh round). The
+/// held-out s0005 was read wrongly, cells (0, 7)–(0, 9) and (0, 0)–(2, 0) blocked.
+#[test]
+fn a_top_where_a_shelf_casts_its_shadow_is_refused() {
+    let (image, truth) = scene("s0005");
+    let blocked = cells(&truth["blocked"]);
+    assert!(!blocked.contains(&(0, 8)) && !blocked.contains(&(1, 0)));
+    let e = read_aerial(&image, "s0005", &config(&truth, true))
+        .expect_err("s0005 was read")
+        .to_string();
+    assert!(
+        e.contains("cells (0, 7) (0, 8) (0, 9) read as the top of a shelf of nearly the floor's colour lie where the obstacle on cell"),
+        "{e}"
+    );
+    // Settled free by an operator, they read as the truth.
+    let mut settled = config(&truth, true);
+    settled.free_cells = vec![(0, 7), (0, 8), (0, 9), (0, 0), (1, 0), (2, 0)];
+    let r = read_aerial(&image, "s0005", &settled).unwrap_or_else(|e| panic!("s0005: {e}"));
+    assert_exact("s0005", &r, &truth);
+}
+
 /// A red robot standing against a dusty-rose shelf of its hue makes one blob with it, dull
 /// for the most part; the shelf's pixels become an obstacle's and the robot, as saturated as
 /// the view's other robots, stays a robot (`dull::VIVID`; issue #29's twenty-fifth round).

@@ -80,11 +80,25 @@ pub fn settle(
     classes: &mut [u8],
     leaned: &[u8],
     width: usize,
+    maps: (&Homography, &Homography),
+    floor: (u32, u32),
+) -> usize {
+    settle_tops(classes, leaned, width, maps, floor)
+        .iter()
+        .map(Vec::len)
+        .sum()
+}
+
+/// Like [`settle`], the cells of each top turned (row-major indices), top by top.
+pub fn settle_tops(
+    classes: &mut [u8],
+    leaned: &[u8],
+    width: usize,
     (floor_to_image, image_to_floor): (&Homography, &Homography),
     (gw, gh): (u32, u32),
-) -> usize {
+) -> Vec<Vec<usize>> {
     if width == 0 || !leaned.iter().any(|&l| l != NOT_LEANED) {
-        return 0;
+        return Vec::new();
     }
     let (w, h) = (gw as usize, gh as usize);
     let height = classes.len() / width;
@@ -206,7 +220,7 @@ pub fn settle(
         }
         groups.push(members);
     }
-    let mut turned = 0;
+    let mut turned: Vec<Vec<usize>> = Vec::new();
     // The cells around a group already counted (a flag per cell, cleared after each group:
     // linear in the ring, however large the group).
     let mut ring_seen: Vec<usize> = Vec::new();
@@ -351,7 +365,7 @@ pub fn settle(
             continue;
         }
         tops.extend(top);
-        turned += members.len();
+        turned.push(members.clone());
     }
     for i in tops {
         classes[i] = Class::Obstacle as u8;

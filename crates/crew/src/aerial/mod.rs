@@ -665,7 +665,7 @@ fn read_inner(
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
     alike::settle(&mut classes, img, &classifier);
-    faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
+    let faint_tops = faint::settle_tops(&mut classes, &leaned, width, maps, (gw, gh));
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
@@ -1246,6 +1246,36 @@ fn read_inner(
                 })
             })
     };
+    // A top of nearly the floor's colour read whole where another's shadow falls, seen from
+    // the sun, may be that shadow (see `shadows::Sunlit::casts_on`): each such top.
+    let faint_shadows: Vec<CrewError> = match sunlit.as_ref() {
+        Some(sunlit) if !faint_tops.is_empty() => {
+            let robots_sun = || sun::from_robots(&mut classes, img, &classifier, &image_to_floor);
+            match sunlit.sun(robots_sun) {
+                Some(sun) => faint_tops
+                    .iter()
+                    .filter(|top| top.iter().all(|&c| !is_settled[c]))
+                    .filter_map(|top| Some((top, sunlit.casts_on(top, sun)?)))
+                    .map(|(top, (x, y))| {
+                        let named: Vec<String> = top
+                            .iter()
+                            .map(|&c| format!("({}, {})", c % gw as usize, c / gw as usize))
+                            .collect();
+                        at_pixel(
+                            source,
+                            cell_centre_px(top[0]),
+                            format!(
+                                "cells {} read as the top of a shelf of nearly the floor's colour lie where the obstacle on cell ({x}, {y}) casts its shadow, seen from the sun: they may be that shadow: cannot tell whether they are blocked",
+                                named.join(" ")
+                            ),
+                        )
+                    })
+                    .collect(),
+                None => Vec::new(),
+            }
+        }
+        _ => Vec::new(),
+    };
     // On a floor with painted lines, every line between free cells must show (see
     // `painted`): a shelf of the floor's colour with hardly a shadow hides them.
     let hidden_lines: Vec<[(u32, u32); 2]>;
@@ -1541,6 +1571,7 @@ fn read_inner(
     }
     for e in not_floor
         .into_iter()
+        .chain(faint_shadows)
         .chain(uncast)
         .chain(unlike)
         .chain(hidden)

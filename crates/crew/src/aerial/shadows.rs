@@ -512,6 +512,72 @@ impl<'a> Sunlit<'a> {
         ((count as f64) >= ONE_SUN_BEHIND * *sampled as f64).then_some(best)
     }
 
+    /// The direction toward the sun on the floor: the one that explains
+    /// [`ONE_SUN_BEHIND`] of the shadows (see [`Sunlit::unattached`]), or else the robots'
+    /// (`robots_sun`, see [`super::sun`]).
+    pub fn sun(&self, robots_sun: impl FnOnce() -> Option<(f64, f64)>) -> Option<(f64, f64)> {
+        match self.sun_index() {
+            Some(best) => Some(dir(best)),
+            None => robots_sun(),
+        }
+    }
+
+    /// A blocked cell, not one of `top`'s, that casts its shadow where `top`'s cells (row-major)
+    /// lie, seen from the sun (`sun`, toward it on the floor): walking toward it from the middle
+    /// of at least half of `top`'s cells, past `top`'s own cells, crosses only floor in a shadow
+    /// (or a mark, or at most two bins of lit floor in a row, as for [`Sunlit::unattached`]) to
+    /// reach that cell within [`REACH`] cells. `None` when no such cell casts there.
+    ///
+    /// A top of nearly the floor's colour read whole ([`super::faint`]) where another's shadow
+    /// falls may be that shadow (held-out s0005: two shadows of a low sun's, tinted by a warm
+    /// sky, read as tops on the floor's edges; issue #29's twenty-seventh round).
+    pub fn casts_on(&self, top: &[usize], sun: (f64, f64)) -> Option<(u32, u32)> {
+        let (gw, _) = self.floor;
+        let (bw, bh) = self.size();
+        let own = |cx: usize, cy: usize| top.contains(&(cy * gw as usize + cx));
+        let mut found: Vec<(u32, u32)> = Vec::new();
+        for &c in top {
+            let (cx, cy) = (c % gw as usize, c / gw as usize);
+            let (x0, y0) = (
+                ((cx as f64 + 0.5) * SIDE as f64),
+                ((cy as f64 + 0.5) * SIDE as f64),
+            );
+            let steps = (REACH * SIDE as f64 * 2.0) as usize;
+            let mut gap = 0;
+            for j in 1..=steps {
+                let t = j as f64 * 0.5;
+                let (x, y) = (x0 + sun.0 * t, y0 + sun.1 * t);
+                if x < 0.0 || y < 0.0 || x >= bw as f64 || y >= bh as f64 {
+                    break;
+                }
+                let (bx, by) = (x as usize, y as usize);
+                let (ux, uy) = (bx / SIDE, by / SIDE);
+                if own(ux, uy) {
+                    continue;
+                }
+                match self.kinds[by * bw + bx] {
+                    Kind::Caster => {
+                        // A blocked cell (one with no bins), not an obstacle's pixels on a
+                        // free one.
+                        if self.cells[uy * gw as usize + ux].is_none() {
+                            found.push((ux as u32, uy as u32));
+                        }
+                        break;
+                    }
+                    Kind::Empty => break,
+                    Kind::Dark | Kind::Mark => gap = 0,
+                    Kind::Lit => {
+                        gap += 1;
+                        if gap > 2 {
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        (!found.is_empty() && 2 * found.len() >= top.len()).then(|| found[0])
+    }
+
     /// The first shadow (row-major) not attached to a caster along the sun's direction, if any,
     /// past those whose first bin lies on a cell the operator settled (as for [`uncast`]).
     ///
@@ -912,6 +978,27 @@ mod tests {
             cells[2 * k * 12 + 1] = None;
         }
         cells
+    }
+
+    #[test]
+    fn a_top_where_another_s_shadow_falls_may_be_that_shadow() {
+        // Cells (2, 0) and (3, 0), in the shadow of the shelf on (1, 0), read as a top.
+        let mut cells = sunlit(false);
+        cells[2] = None;
+        cells[3] = None;
+        let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
+        assert_eq!(sun.sun(|| None), Some(dir(DIRECTIONS / 2)));
+        assert_eq!(sun.casts_on(&[2, 3], (-1.0, 0.0)), Some((1, 0)));
+        // With the sun on the other side, nothing casts a shadow there.
+        assert_eq!(sun.casts_on(&[2, 3], (1.0, 0.0)), None);
+        // A top on lit floor, three cells from the nearest shelf toward the sun.
+        let mut cells = sunlit(false);
+        cells[4 * 12 + 6] = None;
+        cells[4 * 12 + 7] = None;
+        let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
+        assert_eq!(sun.casts_on(&[4 * 12 + 6, 4 * 12 + 7], (-1.0, 0.0)), None);
+        // Nor a single cell there.
+        assert_eq!(sun.casts_on(&[4 * 12 + 6], (-1.0, 0.0)), None);
     }
 
     #[test]
