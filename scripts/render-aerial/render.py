@@ -503,6 +503,19 @@ FAMILIES = {
                              (0.22, 0.22, 0.22)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # t: held out from issue #29's twenty-seventh round, rendered after its final reader (the
+    # robots' shadows tell the sun; a top where another's shadow falls may be that shadow)
+    # and not looked at until scored once. Puck, box-with-a-dome and box robots, ring, diamond
+    # and ellipse goals, mid blue-grey, light warm beige and dark brown-grey floors tiled every
+    # half cell, red-brown, light grey, teal blue, sand and dark navy shelves, from 0.3 to 2.1
+    # high inset 0.05 cell, a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler
+    # light, and a camera from 45 to 165 cells per 24 high.
+    "t": dict(robot_shapes=("puck", "boxdome", "box"), goal_shapes=("ring", "diamond", "ellipse"),
+              floors=((0.48, 0.52, 0.58), (0.78, 0.72, 0.62), (0.26, 0.23, 0.21)),
+              shelf_colours=((0.50, 0.20, 0.12), (0.80, 0.80, 0.78), (0.12, 0.40, 0.50), (0.72, 0.64, 0.45),
+                             (0.10, 0.12, 0.25)),
+              shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
