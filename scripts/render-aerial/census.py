@@ -43,12 +43,14 @@ KINDS = [
     ("more goals than robots", r"give --spare-goals"),
     ("a robot taken for a shelf", r"stand against the shelf"),
     ("a run whose base may be a cell nearer", r"its face showing there"),
+    ("a top where another's shadow falls", r"casts its shadow, seen from the sun"),
 ]
 
 
 # The kinds whose reason names a cell the reading doubts (not a mark's cell).
 CELL_KINDS = {name for name, _ in KINDS[:7]} | {"a cell showing no floor", "a painted line that does not show",
-                                                "a run whose base may be a cell nearer"}
+                                                "a run whose base may be a cell nearer",
+                                                "a top where another's shadow falls"}
 
 
 def kind_of(reason):

@@ -516,6 +516,27 @@ FAMILIES = {
                              (0.10, 0.12, 0.25)),
               shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # u and v: held out from issue #29's twenty-seventh round, rendered after its final reader,
+    # with t, and not looked at until scored once. u: cylinder, puck and dome robots, disc,
+    # square and cross goals, light cool grey, mid olive-grey and dark blue-black floors tiled
+    # every quarter cell, brick red, pale lilac, mid green, light tan and charcoal shelves from
+    # 0.3 to 2.2 high inset 0.06 cell. v: rotated-box, box and box-with-a-dome robots, ellipse,
+    # ring and diamond goals, pale cream, mid warm taupe and dark teal-grey floors tiled every
+    # third of a cell, deep blue, off-white, rust, grey-green and plum shelves from 0.3 to 1.9
+    # high inset 0.07 cell. Both: a sun 20-70 degrees up of strength 2.3-3.7, warmer and
+    # cooler light, and a camera from 45 to 165 cells per 24 high.
+    "u": dict(robot_shapes=("cylinder", "puck", "dome"), goal_shapes=("disc", "square", "cross"),
+              floors=((0.70, 0.72, 0.74), (0.50, 0.50, 0.40), (0.14, 0.15, 0.20)),
+              shelf_colours=((0.55, 0.18, 0.14), (0.78, 0.72, 0.86), (0.25, 0.50, 0.25), (0.80, 0.70, 0.55),
+                             (0.18, 0.18, 0.20)),
+              shelf_height=(0.3, 2.2), tiles=0.25, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    "v": dict(robot_shapes=("rotbox", "box", "boxdome"), goal_shapes=("ellipse", "ring", "diamond"),
+              floors=((0.86, 0.82, 0.70), (0.52, 0.46, 0.40), (0.20, 0.26, 0.26)),
+              shelf_colours=((0.10, 0.18, 0.50), (0.90, 0.88, 0.84), (0.60, 0.30, 0.12), (0.45, 0.52, 0.42),
+                             (0.40, 0.18, 0.36)),
+              shelf_height=(0.3, 1.9), tiles=1 / 3, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 

@@ -25,7 +25,7 @@ from collections import Counter
 CELL = re.compile(r"\((\d+), (\d+)\)")
 # The refusals about cells (a robot's or a goal's names a cell too, but settles nothing).
 CELL_REFUSAL = re.compile(
-    r"cannot tell whether it is blocked|look like the floor|a shadow on free floor|painted line between"
+    r"cannot tell whether (it is|they are) blocked|look like the floor|a shadow on free floor|painted line between"
     r"|cannot tell where it stands"
 )
 

@@ -1247,7 +1247,9 @@ fn read_inner(
             })
     };
     // A top of nearly the floor's colour read whole where another's shadow falls, seen from
-    // the sun, may be that shadow (see `shadows::Sunlit::casts_on`): each such top.
+    // the sun, may be that shadow (see `shadows::Sunlit::casts_on`): each such top, when it is
+    // darker than the lit floor (`pale::LIT`), as a shadow is (v0015's pale top, 1.03 times
+    // as bright as the lit floor, lies where the rest of its shelf would cast a shadow).
     let faint_shadows: Vec<CrewError> = match sunlit.as_ref() {
         Some(sunlit) if !faint_tops.is_empty() => {
             let robots_sun = || sun::from_robots(&mut classes, img, &classifier, &image_to_floor);
@@ -1255,6 +1257,10 @@ fn read_inner(
                 Some(sun) => faint_tops
                     .iter()
                     .filter(|top| top.iter().all(|&c| !is_settled[c]))
+                    .filter(|top| {
+                        middle_brightness(img, &classifier, maps, (gw, gh), top)
+                            .is_some_and(|b| b < pale::LIT)
+                    })
                     .filter_map(|top| Some((top, sunlit.casts_on(top, sun)?)))
                     .map(|(top, (x, y))| {
                         let named: Vec<String> = top
@@ -2275,6 +2281,43 @@ fn on_shelf(
     !on.is_empty()
         && blocked as f64 >= ON_SHELF * on.len() as f64
         && blobs::ring_share(blob, classes, width, Class::Floor as u8) < FLOOR_AROUND
+}
+
+/// The median brightness (the mean of the channels after white balance, 1 for the lit floor)
+/// of the pixels of `cells`' middles (0.2–0.8 of a cell along each axis), row-major indices;
+/// `None` for no pixel.
+fn middle_brightness(
+    img: &RgbImage,
+    classifier: &Classifier,
+    (floor_to_image, image_to_floor): (&Homography, &Homography),
+    (gw, _): (u32, u32),
+    cells: &[usize],
+) -> Option<f64> {
+    let (width, height) = (img.width() as usize, img.height() as usize);
+    let mut values: Vec<f64> = Vec::new();
+    for &c in cells {
+        let (cx, cy) = ((c % gw as usize) as u32, (c / gw as usize) as u32);
+        let Some((x0, y0, x1, y1)) = floor_to_image.cell_box((cx, cy), width, height) else {
+            continue;
+        };
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let Some((u, v)) = image_to_floor.apply((x as f64 + 0.5, y as f64 + 0.5)) else {
+                    continue;
+                };
+                let (fu, fv) = (u - f64::from(cx), v - f64::from(cy));
+                if (0.2..=0.8).contains(&fu) && (0.2..=0.8).contains(&fv) {
+                    let b = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
+                    values.push((b[0] + b[1] + b[2]) / 3.0);
+                }
+            }
+        }
+    }
+    if values.is_empty() {
+        return None;
+    }
+    let mid = values.len() / 2;
+    Some(*values.select_nth_unstable_by(mid, f64::total_cmp).1)
 }
 
 /// The cells of `half` (half-covered cells that nothing else explains) that a robot or a goal

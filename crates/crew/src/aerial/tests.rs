@@ -738,6 +738,30 @@ fn a_mark_joined_to_a_shelf_s_rim_is_cut_from_it() {
 }
 
 #[test]
+fn a_cells_middle_brightness_is_its_middle_s_against_the_lit_floor() {
+    // A 6 × 4 floor of 20 px cells, grey 150; cell (2, 1) darker (90) but for its rim, and
+    // cell (4, 2) darker only along its border (its middle lit).
+    let i2f = six_by_four();
+    let f2i = i2f.inverse().unwrap();
+    let mut img = RgbImage::from_pixel(120, 80, Rgb([150, 150, 150]));
+    for y in 0..80u32 {
+        for x in 0..120u32 {
+            let (cx, cy, fx, fy) = (x / 20, y / 20, x % 20, y % 20);
+            let rim = !(2..18).contains(&fx) || !(2..18).contains(&fy);
+            if ((cx, cy) == (2, 1) && !rim) || ((cx, cy) == (4, 2) && rim) {
+                img.put_pixel(x, y, Rgb([90, 90, 90]));
+            }
+        }
+    }
+    let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
+    let at = |cells: &[usize]| middle_brightness(&img, &classifier, (&f2i, &i2f), (6, 4), cells);
+    assert!((at(&[8]).unwrap() - 0.6).abs() < 1e-9);
+    assert!((at(&[2 * 6 + 4]).unwrap() - 1.0).abs() < 1e-9);
+    assert!((at(&[0, 1]).unwrap() - 1.0).abs() < 1e-9);
+    assert!(at(&[]).is_none());
+}
+
+#[test]
 fn a_half_covered_cell_a_mark_stands_on_is_free() {
     // On a 4-wide grid: half-covered cells 1, 6, 9 and 14; a robot on cell 6, goals on cells
     // 14 and 3 (not half covered), and a robot next to cell 9, on cell 10.
