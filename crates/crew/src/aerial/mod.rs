@@ -1072,6 +1072,13 @@ fn read_inner(
     let sunlit = shadows::Sunlit::new(&bins, &levels, (gw, gh));
     // The sun's directions the view's shadows allow, found when first needed (the walk behind
     // them is not cheap, and a view without corners needs none).
+    // The sun's direction told by the robots' own shadows (see `sun`), found when first
+    // needed (for the shadows behind lit floor and the tops where a shadow falls, below).
+    let robots_sun_found = std::cell::OnceCell::new();
+    let robots_sun = || -> Option<(f64, f64)> {
+        *robots_sun_found
+            .get_or_init(|| sun::from_robots(&classes, img, &classifier, &image_to_floor))
+    };
     let suns_found = std::cell::OnceCell::new();
     let suns = || -> &Vec<(f64, f64)> {
         suns_found.get_or_init(|| {
@@ -1239,8 +1246,6 @@ fn read_inner(
             .first()
             .map(|&(u, _)| doubt(u, "no obstacle or robot in the image casts"))
             .or_else(|| {
-                let robots_sun =
-                    || sun::from_robots(&mut classes, img, &classifier, &image_to_floor);
                 sunlit.as_ref()?.unattached(&is_settled, robots_sun).map(|u| {
                     doubt(u, "lies behind lit floor, not behind its caster, seen from the sun (whose direction the view's other shadows or the robots' give)")
                 })
@@ -1252,7 +1257,6 @@ fn read_inner(
     // as bright as the lit floor, lies where the rest of its shelf would cast a shadow).
     let faint_shadows: Vec<CrewError> = match sunlit.as_ref() {
         Some(sunlit) if !faint_tops.is_empty() => {
-            let robots_sun = || sun::from_robots(&mut classes, img, &classifier, &image_to_floor);
             match sunlit.sun(robots_sun) {
                 Some(sun) => faint_tops
                     .iter()

@@ -42,20 +42,26 @@ pub const AGREE: f64 = 0.6;
 pub const SPREAD: f64 = std::f64::consts::PI / 6.0;
 
 /// The direction on the floor (cells, unit length) from the robots toward the sun, if their
-/// shadows agree on one (see the module's docs). `classes` is restored as it was.
+/// shadows agree on one (see the module's docs).
 pub fn from_robots(
-    classes: &mut [u8],
+    classes: &[u8],
     img: &RgbImage,
     classifier: &Classifier,
     image_to_floor: &Homography,
 ) -> Option<(f64, f64)> {
     let width = img.width() as usize;
     let height = img.height() as usize;
-    let found = blobs::find(classes, width, Class::Robot as u8);
-    let median = blobs::sort(found.clone()).median_area;
-    if median < blobs::MIN_AREA {
+    let found = robot_blobs(classes, width);
+    let mut areas: Vec<usize> = found
+        .iter()
+        .map(blobs::Blob::area)
+        .filter(|&a| a >= blobs::MIN_AREA)
+        .collect();
+    if areas.is_empty() {
         return None;
     }
+    let mid = areas.len() / 2;
+    let median = *areas.select_nth_unstable(mid).1;
     let brightness = |x: usize, y: usize| {
         let b = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
         (b[0] + b[1] + b[2]) / 3.0
@@ -104,6 +110,43 @@ pub fn from_robots(
         }
     }
     agreed(&votes).map(|(x, y)| (-x, -y))
+}
+
+/// The 8-connected blobs of robot pixels, without marking `classes`.
+fn robot_blobs(classes: &[u8], width: usize) -> Vec<blobs::Blob> {
+    let robot = Class::Robot as u8;
+    let height = classes.len() / width.max(1);
+    let mut seen = vec![false; classes.len()];
+    let mut out = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..classes.len() {
+        if classes[start] != robot || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let mut pixels = Vec::new();
+        let mut bbox = (u32::MAX, u32::MAX, 0, 0);
+        while let Some(i) = stack.pop() {
+            let (x, y) = ((i % width) as u32, (i / width) as u32);
+            pixels.push((x, y));
+            bbox = (bbox.0.min(x), bbox.1.min(y), bbox.2.max(x), bbox.3.max(y));
+            for (dx, dy) in blobs::NEIGHBOURS {
+                let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
+                if nx < 0 || ny < 0 || nx >= width as i64 || ny >= height as i64 {
+                    continue;
+                }
+                let j = ny as usize * width + nx as usize;
+                if classes[j] == robot && !seen[j] {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        pixels.sort_unstable_by_key(|&(x, y)| (y, x));
+        out.push(blobs::Blob { pixels, bbox });
+    }
+    out
 }
 
 /// The mean of unit `votes` when at least [`VOTES`] of them and [`AGREE`] of them lie within
@@ -166,13 +209,11 @@ mod tests {
     #[test]
     fn robots_shadows_tell_the_sun() {
         // Every shadow 5 px right and 3 px down: the sun lies up and to the left.
-        let (img, mut classes) = view(&ROBOTS, |_| (5.0, 3.0));
-        let before = classes.clone();
+        let (img, classes) = view(&ROBOTS, |_| (5.0, 3.0));
         let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
-        let (x, y) = from_robots(&mut classes, &img, &classifier, &identity()).unwrap();
+        let (x, y) = from_robots(&classes, &img, &classifier, &identity()).unwrap();
         let (ex, ey) = (-5.0 / 34f64.sqrt(), -3.0 / 34f64.sqrt());
         assert!((x - ex).abs() < 0.05 && (y - ey).abs() < 0.05, "({x}, {y})");
-        assert_eq!(classes, before);
     }
 
     #[test]
@@ -180,13 +221,13 @@ mod tests {
         let classifier = Classifier::new([150.0; 3], Hue::RED, Hue::GREEN);
         // Each robot's shadow another way (four lamps).
         let ways = [(5.0, 0.0), (-5.0, 0.0), (0.0, 5.0), (0.0, -5.0)];
-        let (img, mut classes) = view(&ROBOTS, |k| ways[k]);
-        assert!(from_robots(&mut classes, &img, &classifier, &identity()).is_none());
+        let (img, classes) = view(&ROBOTS, |k| ways[k]);
+        assert!(from_robots(&classes, &img, &classifier, &identity()).is_none());
         // Two robots only.
-        let (img, mut classes) = view(&ROBOTS[..2], |_| (5.0, 3.0));
-        assert!(from_robots(&mut classes, &img, &classifier, &identity()).is_none());
+        let (img, classes) = view(&ROBOTS[..2], |_| (5.0, 3.0));
+        assert!(from_robots(&classes, &img, &classifier, &identity()).is_none());
         // No shadows (light from straight above).
-        let (img, mut classes) = view(&ROBOTS, |_| (0.0, 0.0));
-        assert!(from_robots(&mut classes, &img, &classifier, &identity()).is_none());
+        let (img, classes) = view(&ROBOTS, |_| (0.0, 0.0));
+        assert!(from_robots(&classes, &img, &classifier, &identity()).is_none());
     }
 }
