@@ -537,6 +537,19 @@ FAMILIES = {
                              (0.40, 0.18, 0.36)),
               shelf_height=(0.3, 1.9), tiles=1 / 3, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # w: held out from issue #29's twenty-seventh round, rendered after its last reader change
+    # (a top where a shadow falls refused only when darker than the lit floor) and not looked
+    # at until scored once. Dome, rotated-box and cylinder robots, square, ellipse and cross
+    # goals, mid grey, light sandstone and dark olive-black floors tiled every half cell,
+    # saffron, light blue, burgundy, stone grey and dark green shelves from 0.3 to 2.0 high
+    # inset 0.05 cell, a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler light,
+    # and a camera from 45 to 165 cells per 24 high.
+    "w": dict(robot_shapes=("dome", "rotbox", "cylinder"), goal_shapes=("square", "ellipse", "cross"),
+              floors=((0.55, 0.55, 0.55), (0.80, 0.70, 0.56), (0.17, 0.19, 0.13)),
+              shelf_colours=((0.90, 0.62, 0.10), (0.55, 0.70, 0.88), (0.42, 0.08, 0.16), (0.62, 0.60, 0.56),
+                             (0.10, 0.28, 0.14)),
+              shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
