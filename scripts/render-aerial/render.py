@@ -550,6 +550,27 @@ FAMILIES = {
                              (0.10, 0.28, 0.14)),
               shelf_height=(0.3, 2.0), tiles=0.5, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # x and y: held out from issue #29's twenty-seventh round, rendered after w with the same
+    # reader and not looked at until scored once. x: puck, box and dome robots, diamond, disc
+    # and ring goals, light grey-green, mid brown and dark slate-blue floors tiled every third
+    # of a cell, mustard, pale pink, navy, light olive and graphite shelves from 0.3 to 2.2 high
+    # inset 0.06 cell. y: box-with-a-dome, cylinder and rotated-box robots, cross, square and
+    # ellipse goals, off-white, mid cool grey and dark umber floors tiled every quarter cell,
+    # teal, tan, dark red, pale blue-grey and dark olive shelves from 0.3 to 2.0 high inset
+    # 0.05 cell. Both: a sun 20-70 degrees up of strength 2.3-3.7, warmer and cooler light,
+    # and a camera from 45 to 165 cells per 24 high.
+    "x": dict(robot_shapes=("puck", "box", "dome"), goal_shapes=("diamond", "disc", "ring"),
+              floors=((0.66, 0.70, 0.62), (0.45, 0.36, 0.28), (0.18, 0.20, 0.27)),
+              shelf_colours=((0.78, 0.64, 0.16), (0.88, 0.70, 0.72), (0.10, 0.14, 0.35), (0.60, 0.62, 0.40),
+                             (0.24, 0.24, 0.26)),
+              shelf_height=(0.3, 2.2), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    "y": dict(robot_shapes=("boxdome", "cylinder", "rotbox"), goal_shapes=("cross", "square", "ellipse"),
+              floors=((0.88, 0.86, 0.80), (0.50, 0.52, 0.55), (0.24, 0.18, 0.13)),
+              shelf_colours=((0.10, 0.45, 0.45), (0.70, 0.58, 0.42), (0.40, 0.06, 0.08), (0.66, 0.72, 0.76),
+                             (0.22, 0.26, 0.10)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
 }
 
 
