@@ -1070,8 +1070,6 @@ fn read_inner(
     // The free floor's shadow bins and the sun's directions, found once for the far cells
     // and the shadows behind lit floor.
     let sunlit = shadows::Sunlit::new(&bins, &levels, (gw, gh));
-    // The sun's directions the view's shadows allow, found when first needed (the walk behind
-    // them is not cheap, and a view without corners needs none).
     // The sun's direction told by the robots' own shadows (see `sun`), found when first
     // needed (for the shadows behind lit floor and the tops where a shadow falls, below).
     let robots_sun_found = std::cell::OnceCell::new();
@@ -1079,6 +1077,8 @@ fn read_inner(
         *robots_sun_found
             .get_or_init(|| sun::from_robots(&classes, img, &classifier, &image_to_floor))
     };
+    // The sun's directions the view's shadows allow, found when first needed (the walk behind
+    // them is not cheap, and a view without corners needs none).
     let suns_found = std::cell::OnceCell::new();
     let suns = || -> &Vec<(f64, f64)> {
         suns_found.get_or_init(|| {
@@ -2328,7 +2328,9 @@ fn middle_brightness(
 /// stands on, sorted. A mark stands on the floor (a robot's centre is taken where it stands, a
 /// goal is painted on it), so the cell under its centre is free whatever covers part of its
 /// window: a robot's blurred rim and its shadow on a dark floor, or a faint goal's pixels, read
-/// as an obstacle's (k0035, n0034 and G0012 were refused so; issue #29's twenty-seventh round).
+/// as an obstacle's (l0005's two faint goals on a dark floor; k0035, n0034 and G0012 were
+/// first refused so too, and are refused now for other reasons; issue #29's twenty-seventh
+/// round).
 /// The marks are read with these cells free, so that a mark on one is not taken for a part of
 /// the obstacle there (see `on_shelf`); a mark's centre read in the wrong cell makes the view
 /// wrong whatever this decides.

@@ -380,13 +380,13 @@ fn attached(
     true
 }
 
-/// Direction `k` of [`DIRECTIONS`] on the floor: a unit vector.
 /// The one of the [`DIRECTIONS`] nearest to `(x, y)`.
 fn direction_index((x, y): (f64, f64)) -> usize {
     let step = std::f64::consts::TAU / DIRECTIONS as f64;
     (y.atan2(x).rem_euclid(std::f64::consts::TAU) / step).round() as usize % DIRECTIONS
 }
 
+/// Direction `k` of [`DIRECTIONS`] on the floor: a unit vector.
 fn dir(k: usize) -> (f64, f64) {
     let a = (k % DIRECTIONS) as f64 * std::f64::consts::TAU / DIRECTIONS as f64;
     (a.cos(), a.sin())
@@ -529,7 +529,7 @@ impl<'a> Sunlit<'a> {
     /// reach that cell within [`REACH`] cells. `None` when no such cell casts there.
     ///
     /// A top of nearly the floor's colour read whole ([`super::faint`]) where another's shadow
-    /// falls may be that shadow (held-out s0005: two shadows of a low sun's, tinted by a warm
+    /// falls may be that shadow (held-out s0005: two shadows of a low sun, tinted by a warm
     /// sky, read as tops on the floor's edges; issue #29's twenty-seventh round).
     pub fn casts_on(&self, top: &[usize], sun: (f64, f64)) -> Option<(u32, u32)> {
         let (gw, _) = self.floor;
@@ -539,8 +539,8 @@ impl<'a> Sunlit<'a> {
         for &c in top {
             let (cx, cy) = (c % gw as usize, c / gw as usize);
             let (x0, y0) = (
-                ((cx as f64 + 0.5) * SIDE as f64),
-                ((cy as f64 + 0.5) * SIDE as f64),
+                (cx as f64 + 0.5) * SIDE as f64,
+                (cy as f64 + 0.5) * SIDE as f64,
             );
             let steps = (REACH * SIDE as f64 * 2.0) as usize;
             let mut gap = 0;
