@@ -17,7 +17,8 @@
 //! votes lie within [`SPREAD`] of their mean direction, the sun lies opposite that mean. A
 //! clear majority, not all: a robot beside a shelf or another robot may take their shadow for
 //! its own (in s0019, 14 of 20 votes lay within 30° of their mean, the others scattered).
-//! A robot in a shelf's shadow sees no shadow of its own and does not vote.
+//! A robot in a shelf's shadow sees no shadow of its own and does not vote. The same sun tells
+//! where a shelf casts its shadow over a top read whole ([`super::shadows::Sunlit::casts_on`]).
 //!
 //! Cost: O(pixels within [`AROUND`] radii of the robots), once, only when the shadows alone do
 //! not tell the sun.
