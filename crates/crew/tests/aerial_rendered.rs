@@ -292,8 +292,9 @@ fn a_shelf_read_as_its_shadow_is_refused_by_the_robots_sun() {
 
 /// Shadows of a low sun, tinted by a warm sky, read whole as tops of nearly the floor's colour
 /// on the floor's edges, lie where the shelves beside them cast their shadows, seen from the
-/// sun: they are refused (`shadows::Sunlit::casts_on`; issue #29's twenty-seventh round). The
-/// held-out s0005 was read wrongly, cells (0, 7)–(0, 9) and (0, 0)–(2, 0) blocked.
+/// sun, past the shadow's faint floor and its tinted pixels between: they are refused
+/// (`shadows::Sunlit::casts_on`; issue #29's twenty-seventh round). The held-out s0005 was read
+/// wrongly, cells (0, 7)–(0, 9) and (0, 0)–(2, 0) blocked.
 #[test]
 fn a_top_where_a_shelf_casts_its_shadow_is_refused() {
     let (image, truth) = scene("s0005");
@@ -303,8 +304,17 @@ fn a_top_where_a_shelf_casts_its_shadow_is_refused() {
         .expect_err("s0005 was read")
         .to_string();
     assert!(
-        e.contains("cells (0, 7) (0, 8) (0, 9) read as the top of a shelf of nearly the floor's colour lie where the obstacle on cell"),
+        e.contains("cells (0, 0) (1, 0) (2, 0) read as the top of a shelf of nearly the floor's colour lie where the obstacle on cell (0, 2) casts its shadow"),
         "{e}"
+    );
+    // Audited, both tops are named, and nothing else.
+    let audited = mason_crew::aerial::audit_aerial(&image, "s0005", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("s0005: {e}"));
+    let doubts: Vec<String> = audited.doubts.iter().map(|d| d.to_string()).collect();
+    assert_eq!(doubts.len(), 2, "{doubts:?}");
+    assert!(
+        doubts[1].contains("cells (0, 7) (0, 8) (0, 9) read as the top"),
+        "{doubts:?}"
     );
     // Settled free by an operator, they read as the truth.
     let mut settled = config(&truth, true);

@@ -556,16 +556,19 @@ impl<'a> Sunlit<'a> {
                     continue;
                 }
                 match self.kinds[by * bw + bx] {
-                    Kind::Caster => {
-                        // A blocked cell (one with no bins), not an obstacle's pixels on a
-                        // free one.
-                        if self.cells[uy * gw as usize + ux].is_none() {
-                            found.push((ux as u32, uy as u32));
-                        }
+                    // A blocked cell (one with no bins).
+                    Kind::Caster if self.cells[uy * gw as usize + ux].is_none() => {
+                        found.push((ux as u32, uy as u32));
                         break;
                     }
+                    // An obstacle's colour on a free cell: the shadow's own tinted floor, as
+                    // the top's, or a top leaning over it.
+                    Kind::Caster => gap = 0,
                     Kind::Empty => break,
                     Kind::Dark | Kind::Mark => gap = 0,
+                    // Floor lit but darker than a lit top can be (`pale::LIT`) is a faint
+                    // shadow's, as the top's own is.
+                    Kind::Lit if self.faint_shadow(bx, by) => gap = 0,
                     Kind::Lit => {
                         gap += 1;
                         if gap > 2 {
@@ -576,6 +579,17 @@ impl<'a> Sunlit<'a> {
             }
         }
         (!found.is_empty() && 2 * found.len() >= top.len()).then(|| found[0])
+    }
+
+    /// Whether bin `(bx, by)`'s floor is darker than [`super::pale::LIT`] times the lit floor.
+    fn faint_shadow(&self, bx: usize, by: usize) -> bool {
+        let (gw, _) = self.floor;
+        let cell = (by / SIDE) * gw as usize + bx / SIDE;
+        self.cells.get(cell).copied().flatten().is_some_and(|bins| {
+            let b = bins[(by % SIDE) * SIDE + bx % SIDE];
+            let n = b.dark + b.lit;
+            n > 0 && f64::from(b.brightness) / 1000.0 / f64::from(n) < super::pale::LIT
+        })
     }
 
     /// The first shadow (row-major) not attached to a caster along the sun's direction, if any,
@@ -781,21 +795,23 @@ mod tests {
         Sunlit::new(cells, levels, floor).is_some_and(|s| s.base_reaches(suns, cell, dir))
     }
 
+    /// Nine floor pixels as bright as the lit floor.
     const LIT: Bin = Bin {
         dark: 0,
         lit: 9,
         solid: 0,
         mark: 0,
         robot: 0,
-        brightness: 0,
+        brightness: 9000,
     };
+    /// Seven floor pixels in a shadow (half as bright) and two lit.
     const DARKENED: Bin = Bin {
         dark: 7,
         lit: 2,
         solid: 0,
         mark: 0,
         robot: 0,
-        brightness: 0,
+        brightness: 5500,
     };
     const ROBOT: Bin = Bin {
         dark: 1,
@@ -999,6 +1015,39 @@ mod tests {
         assert_eq!(sun.casts_on(&[4 * 12 + 6, 4 * 12 + 7], (-1.0, 0.0)), None);
         // Nor a single cell there.
         assert_eq!(sun.casts_on(&[4 * 12 + 6], (-1.0, 0.0)), None);
+        // Lit floor a little darker than a lit top (a faint shadow's), or an obstacle's colour
+        // on a free cell (the shadow's tinted pixels), between the top and the shelf: still its
+        // shadow. Cells (4, 0) and (5, 0) read as a top, cell (3, 0) between.
+        for between in [
+            Bin {
+                brightness: 9 * 850,
+                ..LIT
+            },
+            Bin {
+                solid: 9,
+                lit: 0,
+                brightness: 0,
+                ..LIT
+            },
+        ] {
+            let mut cells = sunlit(false);
+            cells[3] = Some([between; BINS]);
+            cells[4] = None;
+            cells[5] = None;
+            let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
+            assert_eq!(
+                sun.casts_on(&[4, 5], (-1.0, 0.0)),
+                Some((1, 0)),
+                "{between:?}"
+            );
+        }
+        // As lit as the floor, three bins and more: not.
+        let mut cells = sunlit(false);
+        cells[3] = Some([LIT; BINS]);
+        cells[4] = None;
+        cells[5] = None;
+        let sun = Sunlit::new(&cells, &[], (12, 12)).unwrap();
+        assert_eq!(sun.casts_on(&[4, 5], (-1.0, 0.0)), None);
     }
 
     #[test]
