@@ -74,23 +74,9 @@ pub const THICK: f64 = 0.5;
 pub const MIN_PIXELS: u32 = 12;
 
 /// Turns the tops of nearly the floor's colour into obstacle pixels (see the module's
-/// comment); `leaned` tells the pixels that leaned pale ([`super::pale::settle`]), either way. Returns how
-/// many cells such tops stand on.
+/// comment); `leaned` tells the pixels that leaned pale ([`super::pale::settle`]), either way.
+/// Returns the cells of each top turned (row-major indices), top by top.
 pub fn settle(
-    classes: &mut [u8],
-    leaned: &[u8],
-    width: usize,
-    maps: (&Homography, &Homography),
-    floor: (u32, u32),
-) -> usize {
-    settle_tops(classes, leaned, width, maps, floor)
-        .iter()
-        .map(Vec::len)
-        .sum()
-}
-
-/// Like [`settle`], the cells of each top turned (row-major indices), top by top.
-pub fn settle_tops(
     classes: &mut [u8],
     leaned: &[u8],
     width: usize,
@@ -393,6 +379,11 @@ mod tests {
         )
     }
 
+    /// How many cells the tops stand on.
+    fn cells(tops: Vec<Vec<usize>>) -> usize {
+        tops.iter().map(Vec::len).sum()
+    }
+
     /// The pixels of the box `(x0, y0)`–`(x1, y1)` (ends excluded) marked in `leaned`.
     fn lean(leaned: &mut [u8], (x0, y0, x1, y1): (usize, usize, usize, usize)) {
         for y in y0..y1 {
@@ -408,7 +399,13 @@ mod tests {
         let mut leaned = vec![NOT_LEANED; classes.len()];
         // Cells (1, 1) and (2, 1), and a strip 3 px deep of their top leaning below them.
         lean(&mut leaned, (11, 11, 29, 22));
-        let turned = settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3));
+        let turned = cells(settle(
+            &mut classes,
+            &leaned,
+            60,
+            (&to_image, &to_floor),
+            (6, 3),
+        ));
         assert_eq!(turned, 2);
         assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
         assert_eq!(classes[21 * 60 + 20], Class::Obstacle as u8, "its lean too");
@@ -428,7 +425,13 @@ mod tests {
             lean(&mut leaned, (0, 10 * k, 60, 10 * k + 1));
         }
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             2
         );
         assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
@@ -441,7 +444,13 @@ mod tests {
         let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 19, 19));
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
         assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
@@ -455,7 +464,13 @@ mod tests {
         lean(&mut leaned, (11, 11, 29, 16));
         lean(&mut leaned, (11, 17, 29, 19));
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
     }
@@ -474,22 +489,22 @@ mod tests {
             leaned
         };
         let (to_image, to_floor, mut classes) = floor();
-        let turned = settle(
+        let turned = cells(settle(
             &mut classes,
             &leaned_cells(2),
             60,
             (&to_image, &to_floor),
             (6, 3),
-        );
+        ));
         assert_eq!(turned, 0, "two cells");
         assert_eq!(
-            settle(
+            cells(settle(
                 &mut classes,
                 &leaned_cells(3),
                 60,
                 (&to_image, &to_floor),
                 (6, 3)
-            ),
+            )),
             3
         );
         assert_eq!(classes[15 * 60 + 35], Class::Obstacle as u8);
@@ -505,7 +520,13 @@ mod tests {
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (11, 19, 60, 23));
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
         assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
@@ -520,7 +541,13 @@ mod tests {
         lean(&mut leaned, (29, 11, 39, 16));
         lean(&mut leaned, (29, 17, 39, 19));
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             3
         );
         assert_eq!(classes[14 * 60 + 34], Class::Obstacle as u8);
@@ -534,7 +561,13 @@ mod tests {
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (21, 1, 29, 11));
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
     }
@@ -552,7 +585,13 @@ mod tests {
             }
         }
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
     }
@@ -569,7 +608,13 @@ mod tests {
             }
         }
         assert_eq!(
-            settle(&mut classes, &leaned, 60, (&to_image, &to_floor), (6, 3)),
+            cells(settle(
+                &mut classes,
+                &leaned,
+                60,
+                (&to_image, &to_floor),
+                (6, 3)
+            )),
             0
         );
     }

@@ -665,7 +665,7 @@ fn read_inner(
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
     alike::settle(&mut classes, img, &classifier);
-    let faint_tops = faint::settle_tops(&mut classes, &leaned, width, maps, (gw, gh));
+    let faint_tops = faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image
@@ -1120,6 +1120,13 @@ fn read_inner(
             ));
         }
     }
+    // Whether the view's runs that look way `dir` show their faces toward the nadir plainly,
+    // the cells `skip` left out (see `cover::face_shown`).
+    let faces_shown = |dir: (i64, i64), skip: &[usize]| {
+        nadir.is_some_and(|n| {
+            cover::face_shown(img, &classes, maps, (gw, gh), &blocked, n, dir, skip)
+        })
+    };
     // A free cell under a long lean whose run shows no face as long: a plain face too short,
     // or none where a face would show (the sun behind it, or the view's other faces that look
     // that way plain), as for a run's far cell (below).
@@ -1131,18 +1138,7 @@ fn read_inner(
             let (rx, ry) = (x - dx, y - dy);
             let would_show = || {
                 face::in_own_shadow(suns, lacking.dir)
-                    || nadir.is_some_and(|n| {
-                        cover::face_shown(
-                            img,
-                            &classes,
-                            maps,
-                            (gw, gh),
-                            &blocked,
-                            n,
-                            lacking.dir,
-                            &[(ry * i64::from(gw) + rx) as usize],
-                        )
-                    })
+                    || faces_shown(lacking.dir, &[(ry * i64::from(gw) + rx) as usize])
             };
             if !lacking.hidden || would_show() {
                 doubt!(at_pixel(
@@ -1186,20 +1182,7 @@ fn read_inner(
             // way are lit alike in one view; see `face`).
             if far.hidden_face
                 && (face::in_own_shadow(suns, far.dir)
-                    || *shown[side(far.dir)].get_or_insert_with(|| {
-                        nadir.is_some_and(|n| {
-                            cover::face_shown(
-                                img,
-                                &classes,
-                                maps,
-                                (gw, gh),
-                                &blocked,
-                                n,
-                                far.dir,
-                                &doubted,
-                            )
-                        })
-                    }))
+                    || *shown[side(far.dir)].get_or_insert_with(|| faces_shown(far.dir, &doubted)))
             {
                 continue;
             }

@@ -52,17 +52,13 @@ pub fn from_robots(
 ) -> Option<(f64, f64)> {
     let width = img.width() as usize;
     let height = img.height() as usize;
-    let found = robot_blobs(classes, width);
-    let mut areas: Vec<usize> = found
-        .iter()
-        .map(blobs::Blob::area)
-        .filter(|&a| a >= blobs::MIN_AREA)
-        .collect();
-    if areas.is_empty() {
+    // `blobs::find` marks the classes while it walks them: on a copy (made only when the
+    // shadows alone do not tell the sun), the view's classes stay as they are.
+    let found = blobs::find(&mut classes.to_vec(), width, Class::Robot as u8);
+    let median = blobs::sort(found.clone()).median_area;
+    if median < blobs::MIN_AREA {
         return None;
     }
-    let mid = areas.len() / 2;
-    let median = *areas.select_nth_unstable(mid).1;
     let brightness = |x: usize, y: usize| {
         let b = classifier.balanced(img.get_pixel(x as u32, y as u32).0);
         (b[0] + b[1] + b[2]) / 3.0
@@ -111,43 +107,6 @@ pub fn from_robots(
         }
     }
     agreed(&votes).map(|(x, y)| (-x, -y))
-}
-
-/// The 8-connected blobs of robot pixels, without marking `classes`.
-fn robot_blobs(classes: &[u8], width: usize) -> Vec<blobs::Blob> {
-    let robot = Class::Robot as u8;
-    let height = classes.len() / width.max(1);
-    let mut seen = vec![false; classes.len()];
-    let mut out = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..classes.len() {
-        if classes[start] != robot || seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        stack.push(start);
-        let mut pixels = Vec::new();
-        let mut bbox = (u32::MAX, u32::MAX, 0, 0);
-        while let Some(i) = stack.pop() {
-            let (x, y) = ((i % width) as u32, (i / width) as u32);
-            pixels.push((x, y));
-            bbox = (bbox.0.min(x), bbox.1.min(y), bbox.2.max(x), bbox.3.max(y));
-            for (dx, dy) in blobs::NEIGHBOURS {
-                let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
-                if nx < 0 || ny < 0 || nx >= width as i64 || ny >= height as i64 {
-                    continue;
-                }
-                let j = ny as usize * width + nx as usize;
-                if classes[j] == robot && !seen[j] {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        pixels.sort_unstable_by_key(|&(x, y)| (y, x));
-        out.push(blobs::Blob { pixels, bbox });
-    }
-    out
 }
 
 /// The mean of unit `votes` when at least [`VOTES`] of them and [`AGREE`] of them lie within
