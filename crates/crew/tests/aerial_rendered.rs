@@ -290,6 +290,22 @@ fn a_shelf_read_as_its_shadow_is_refused_by_the_robots_sun() {
     }
 }
 
+/// On a dark floor whose pale painted lines raise the floor's median, the cells' middles are
+/// a little darker than that median: judged against the lit floor around them (down to
+/// `shadows::DIM`), not against the median, they are lit floor, not shadows that nothing casts
+/// (issue #29's twenty-eighth round). j0001 (a dark green-grey floor with white lines) and
+/// v0020 were refused so ("a shadow on free floor ... that no obstacle or robot in the image
+/// casts").
+#[test]
+fn a_dim_floor_between_pale_lines_is_not_a_shadow() {
+    for name in ["j0001", "v0020"] {
+        let (image, truth) = scene(name);
+        let r = read_aerial(&image, name, &config(&truth, true))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_exact(name, &r, &truth);
+    }
+}
+
 /// Shadows of a low sun, tinted by a warm sky, read whole as tops of nearly the floor's colour
 /// on the floor's edges, lie where the shelves beside them cast their shadows, seen from the
 /// sun, past the shadow's faint floor and its tinted pixels between: they are refused

@@ -29,10 +29,18 @@ pub const BINS: usize = SIDE * SIDE;
 /// the sRGB curve (under a weak, low sun); the floor's stains and uneven light seldom go below.
 pub const DARK: f64 = 0.8;
 /// The lit floor around a cell this many times as bright as the lit floor's median, or more,
-/// is a pool of light (a lamp's): its shadows are judged against it. Below, the floor's
-/// stains and texture (a tenth either way) would pass for shadows against the light around
-/// them, and shadows are judged against the median.
+/// is a pool of light (a lamp's): its shadows are judged against it. Below, down to the
+/// median, the floor's stains and texture (a tenth either way) would pass for shadows against
+/// the light around them, and shadows are judged against the median (under it, see [`DIM`]).
 pub const POOL: f64 = 1.2;
+/// The lit floor around a cell darker than the lit floor's median (the cells' middles of a
+/// dark floor whose pale painted lines raise the median, a dim corner) is judged against that
+/// level down to this one: a bin there is in a shadow under [`DARK`] times the level, not
+/// under [`DARK`] (C0000's and j0001's dark floors with white lines, their cells' middles
+/// 0.9–1.0 of the median, read as shadows with no caster; issue #29's twenty-eighth round).
+/// Lower, the level may be a large shadow's own (the upper quartile of the cells around
+/// it), which must not hide it.
+pub const DIM: f64 = 0.9;
 /// Floor pixels nearer than this to a cell's border (in cells) are not judged: painted lines
 /// lie there (up to 0.09 cell wide, and blurred).
 pub const LINE: f64 = 0.1;
@@ -78,11 +86,13 @@ pub enum Kind {
 impl Bin {
     /// What most of the bin shows, where the lit floor around it is `level` times as bright as
     /// the lit floor's median: from [`POOL`] on (a lamp's pool of light), its floor is in a
-    /// shadow when its mean brightness is under [`DARK`] times `level`.
+    /// shadow when its mean brightness is under [`DARK`] times `level`; under 1 (a dim floor),
+    /// under [`DARK`] times `level` or [`DIM`], whichever is more.
     pub fn kind_in(&self, level: f64) -> Kind {
         let floor = self.dark + self.lit;
         match self.kind() {
-            Kind::Dark | Kind::Lit if level >= POOL => {
+            Kind::Dark | Kind::Lit if !(1.0..POOL).contains(&level) => {
+                let level = level.max(DIM);
                 let mean = f64::from(self.brightness) / 1000.0 / f64::from(floor);
                 if mean < DARK * level {
                     Kind::Dark
@@ -868,7 +878,7 @@ mod tests {
     }
 
     #[test]
-    fn in_a_pool_of_light_a_bin_is_dark_against_the_floor_around_it() {
+    fn in_a_pool_of_light_or_on_a_dim_floor_a_bin_is_dark_against_the_floor_around_it() {
         // Nine pixels at 0.9: lit against the lit floor's median, dark under a lamp whose
         // floor is 1.4 (0.9 < 0.8 × 1.4); where the light is 1.15, under [`POOL`], judged
         // against the median (lit).
@@ -880,8 +890,25 @@ mod tests {
         assert_eq!(bin.kind_in(1.0), Kind::Lit);
         assert_eq!(bin.kind_in(1.4), Kind::Dark);
         assert_eq!(bin.kind_in(1.15), Kind::Lit);
-        // A dimmer area (level under 1) is judged as before: a darkened bin stays dark.
+        // A darkened bin stays dark however dim the floor around it.
         assert_eq!(DARKENED.kind_in(0.7), Kind::Dark);
+        // Nine pixels at 0.75: dark against the median, lit against a dim floor at 0.92 (a dark
+        // floor's cells between pale painted lines), and against a floor dimmer still no darker
+        // than [`DIM`] allows (0.75 ≥ 0.8 × 0.9): its level may be a shadow's own.
+        let dim = Bin {
+            dark: 9,
+            brightness: 9 * 750,
+            ..Bin::default()
+        };
+        assert_eq!(dim.kind_in(1.0), Kind::Dark);
+        assert_eq!(dim.kind_in(0.92), Kind::Lit);
+        assert_eq!(dim.kind_in(0.5), Kind::Lit);
+        let deeper = Bin {
+            dark: 9,
+            brightness: 9 * 700,
+            ..Bin::default()
+        };
+        assert_eq!(deeper.kind_in(0.5), Kind::Dark);
         // Casters and marks do not change with the light.
         let shelf = Bin {
             solid: 9,
