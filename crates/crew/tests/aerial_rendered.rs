@@ -306,6 +306,19 @@ fn a_dim_floor_between_pale_lines_is_not_a_shadow() {
     }
 }
 
+/// A capsule robot 1.5 cells long lying along the way from the nadir leans as the view's other
+/// robots do (`blobs::view_lean`), not by its own length (issue #29's twenty-eighth round):
+/// I0004 (Blender, straight down) put that robot 0.3 cell toward the nadir, 0.08 cell from a
+/// cell's border, and was refused.
+#[test]
+fn a_long_robot_leans_as_the_others_do() {
+    let (image, truth) = scene("I0004");
+    let r = read_aerial(&image, "I0004", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("I0004: {e}"));
+    assert_exact("I0004", &r, &truth);
+    assert!(r.robots.iter().any(|m| r.grid.xy(m.cell) == (7, 6)));
+}
+
 /// Shadows of a low sun, tinted by a warm sky, read whole as tops of nearly the floor's colour
 /// on the floor's edges, lie where the shelves beside them cast their shadows, seen from the
 /// sun, past the shadow's faint floor and its tinted pixels between: they are refused

@@ -1090,12 +1090,30 @@ fn split_into(blob: &Blob, median: usize, n: usize) -> Option<Vec<Blob>> {
 /// Where a standing object's footprint centre is on the floor, from its blob and the nadir
 /// (see the module's comment). `px` is one pixel's size on the floor, in cells.
 pub fn standing_centre(floor_points: &[Point], nadir: Option<Point>, px: f64) -> Point {
+    standing_centre_scaled(floor_points, nadir, px, None)
+}
+
+/// A standing object's blob on the floor as seen from the nadir.
+struct Leaning {
+    centroid: Point,
+    /// The unit way from the nadir to the centroid.
+    way: Point,
+    /// The centroid's distance from the nadir.
+    dist: f64,
+    /// The blob's length along the way less its width across it: its lean, for a footprint
+    /// as long as wide.
+    own: f64,
+}
+
+/// The blob measured from the nadir; `Err` with its centroid when nothing leans (no nadir, or
+/// the nadir inside the footprint).
+fn leaning(floor_points: &[Point], nadir: Option<Point>, px: f64) -> Result<Leaning, Point> {
     let n = floor_points.len().max(1) as f64;
     let centroid = floor_points
         .iter()
         .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
     let Some(nadir) = nadir.filter(|_| !floor_points.is_empty()) else {
-        return centroid;
+        return Err(centroid);
     };
     let (dx, dy) = (centroid.0 - nadir.0, centroid.1 - nadir.1);
     let dist = (dx * dx + dy * dy).sqrt();
@@ -1116,12 +1134,70 @@ pub fn standing_centre(floor_points: &[Point], nadir: Option<Point>, px: f64) ->
     let (length, width) = (extent(&mut along), extent(&mut across));
     // Under the camera (the nadir inside the footprint) nothing leans: the centroid it is.
     if dist < width {
-        return centroid;
+        return Err(centroid);
     }
-    // The blob is the footprint swept away from the nadir: longer than wide by the lean, and
-    // its centroid half the lean beyond the footprint's centre.
-    let lean = (length - width).max(0.0);
-    (centroid.0 - lean / 2.0 * ux, centroid.1 - lean / 2.0 * uy)
+    Ok(Leaning {
+        centroid,
+        way: (ux, uy),
+        dist,
+        own: (length - width).max(0.0),
+    })
+}
+
+/// The lean of a standing object's blob per cell of its distance from the nadir, as
+/// [`standing_centre`] measures it; `None` without a nadir or under the camera.
+pub fn lean_per_distance(floor_points: &[Point], nadir: Option<Point>, px: f64) -> Option<f64> {
+    leaning(floor_points, nadir, px)
+        .ok()
+        .map(|l| l.own / l.dist)
+}
+
+/// A robot's lean may be this many times the view's (see [`view_lean`]), or this share of it.
+pub const LEAN_SPREAD: f64 = 2.0;
+
+/// The view's lean per cell of distance from the nadir: the median of its robots' (each
+/// [`lean_per_distance`]), given at least three that lean. A top of height z under a camera
+/// at height H is its base scaled by H / (H − z) about the nadir, so robots of one height
+/// lean by one factor of their distance: a robot longer than wide along the way from the
+/// nadir (a capsule, a box turned that way) is not taken to lean by its length, nor one
+/// longer across it to stand upright.
+pub fn view_lean(robots: &[Vec<Point>], nadir: Option<Point>, px: f64) -> Option<f64> {
+    let mut r: Vec<f64> = robots
+        .iter()
+        .filter_map(|pts| lean_per_distance(pts, nadir, px))
+        .collect();
+    if r.len() < 3 {
+        return None;
+    }
+    let mid = r.len() / 2;
+    Some(*r.select_nth_unstable_by(mid, f64::total_cmp).1)
+}
+
+/// [`standing_centre`], with the lean held within [`LEAN_SPREAD`] times (or that share of)
+/// `view` times the distance from the nadir when the view's lean is given ([`view_lean`]).
+/// The blob is the footprint swept away from the nadir: its centroid lies half the lean
+/// beyond the footprint's centre.
+pub fn standing_centre_scaled(
+    floor_points: &[Point],
+    nadir: Option<Point>,
+    px: f64,
+    view: Option<f64>,
+) -> Point {
+    match leaning(floor_points, nadir, px) {
+        Err(centroid) => centroid,
+        Ok(l) => {
+            let lean = match view {
+                Some(k) if k.is_finite() && k >= 0.0 => l
+                    .own
+                    .clamp(k * l.dist / LEAN_SPREAD, LEAN_SPREAD * k * l.dist),
+                _ => l.own,
+            };
+            (
+                l.centroid.0 - lean / 2.0 * l.way.0,
+                l.centroid.1 - lean / 2.0 * l.way.1,
+            )
+        }
+    }
 }
 
 /// The share of a blob's pixels at each end left out of its extents (stray pixels). Not
@@ -1322,6 +1398,48 @@ mod tests {
         let naive = standing_centre(&pts, None, 0.01);
         let naive_err = ((naive.0 - centre.0).powi(2) + (naive.1 - centre.1).powi(2)).sqrt();
         assert!(naive_err > 3.0 * err, "{naive:?} vs {got:?}");
+    }
+
+    /// A robot 1.4 cells long and 0.5 wide lying along the way from the nadir, its top 1.004
+    /// times as far from the nadir as its base (a lean of 0.04 cell): its own blob, longer
+    /// than wide, reads as a lean of most of a cell, and its centre 0.45 cell toward the
+    /// nadir. With the view's lean per distance from the nadir (the other robots', 0.004),
+    /// it stands where it is (the I0004 capsules; issue #29's twenty-eighth round).
+    #[test]
+    fn a_long_robot_leans_as_the_others_do() {
+        let (nadir, centre, k) = ((0.0, 5.5), (10.5, 5.5), 1.004);
+        let (half_long, half_wide) = (0.7, 0.25);
+        let mut seen = std::collections::BTreeSet::new();
+        let mut pts = Vec::new();
+        for step in 0..=10 {
+            let s = 1.0 + (k - 1.0) * f64::from(step) / 10.0;
+            let c = (
+                nadir.0 + (centre.0 - nadir.0) * s,
+                nadir.1 + (centre.1 - nadir.1) * s,
+            );
+            let mut y = c.1 - half_wide * s;
+            while y <= c.1 + half_wide * s {
+                let mut x = c.0 - half_long * s;
+                while x <= c.0 + half_long * s {
+                    let key = ((x * 50.0).round() as i64, (y * 50.0).round() as i64);
+                    if seen.insert(key) {
+                        pts.push((key.0 as f64 / 50.0, key.1 as f64 / 50.0));
+                    }
+                    x += 0.01;
+                }
+                y += 0.01;
+            }
+        }
+        let off = |p: Point| ((p.0 - centre.0).powi(2) + (p.1 - centre.1).powi(2)).sqrt();
+        let own = standing_centre(&pts, Some(nadir), 0.01);
+        assert!(off(own) > 0.3, "{own:?}");
+        let ratio = lean_per_distance(&pts, Some(nadir), 0.01).unwrap();
+        assert!(ratio > 0.05, "{ratio}");
+        let scaled = standing_centre_scaled(&pts, Some(nadir), 0.01, Some(0.004));
+        assert!(off(scaled) < 0.05, "{scaled:?}");
+        // Without the view's lean, or under the camera, as before.
+        assert_eq!(standing_centre_scaled(&pts, Some(nadir), 0.01, None), own);
+        assert_eq!(lean_per_distance(&pts, None, 0.01), None);
     }
 
     /// A robot of radius 0.3 at (8.5, 3.5), seen from a nadir at (2, 3.5), with a few stray

@@ -1802,10 +1802,19 @@ fn marks(
         }
     }
     let mut out = Vec::with_capacity(sorted.kept.len());
+    // The view's lean per distance from the nadir, its robots' (see `blobs::view_lean`).
+    let view = nadir.and_then(|_| {
+        let robots: Vec<Vec<Point>> = sorted
+            .kept
+            .iter()
+            .map(|b| blobs::on_floor(b, image_to_floor))
+            .collect();
+        blobs::view_lean(&robots, nadir, px_on_floor)
+    });
     for b in sorted.kept {
         let on_floor = blobs::on_floor(&b, image_to_floor);
         let centre = match nadir {
-            Some(_) => blobs::standing_centre(&on_floor, nadir, px_on_floor),
+            Some(_) => blobs::standing_centre_scaled(&on_floor, nadir, px_on_floor, view),
             None => blobs::standing_centre(&on_floor, None, px_on_floor),
         };
         let pixel = b.centroid();
