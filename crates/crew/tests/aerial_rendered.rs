@@ -319,6 +319,24 @@ fn a_long_robot_leans_as_the_others_do() {
     assert!(r.robots.iter().any(|m| r.grid.xy(m.cell) == (7, 6)));
 }
 
+/// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
+/// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
+/// again balanced on the cells' middles, it is read exactly, and the reading says so (issue
+/// #29's twenty-eighth round).
+#[test]
+fn a_floor_tinted_by_its_lines_is_balanced_on_the_cells_middles() {
+    let (image, truth) = scene("d0009");
+    let r = read_aerial(&image, "d0009", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("d0009: {e}"));
+    assert_exact("d0009", &r, &truth);
+    assert!(r.balanced_on_middles);
+    // A view that reads balanced on the whole floor keeps that balance.
+    let (image, truth) = scene("j0001");
+    let r = read_aerial(&image, "j0001", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("j0001: {e}"));
+    assert!(!r.balanced_on_middles);
+}
+
 /// Shadows of a low sun, tinted by a warm sky, read whole as tops of nearly the floor's colour
 /// on the floor's edges, lie where the shelves beside them cast their shadows, seen from the
 /// sun, past the shadow's faint floor and its tinted pixels between: they are refused

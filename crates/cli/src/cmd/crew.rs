@@ -349,6 +349,9 @@ fn settled_note(r: &mason_crew::aerial::AerialReading) -> String {
             cells(r.under_marks.len())
         );
     }
+    if r.balanced_on_middles {
+        note += ", white balance on the cells' middles (painted lines tint the floor's)";
+    }
     note
 }
 
@@ -534,6 +537,7 @@ pub fn reading_json(r: &mason_crew::aerial::AerialReading) -> Value {
         },
         "floor_tops": r.floor_tops.iter().map(|&c| xy(&r.grid, c)).collect::<Vec<_>>(),
         "under_marks": r.under_marks.iter().map(|&c| xy(&r.grid, c)).collect::<Vec<_>>(),
+        "white_balance": if r.balanced_on_middles { "cell middles" } else { "floor" },
     })
 }
 

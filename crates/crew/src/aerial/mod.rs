@@ -201,6 +201,10 @@ pub struct AerialReading {
     /// Half-covered cells read as free because a robot or a goal stands on them (see
     /// `under_marks`), row-major.
     pub under_marks: Vec<Cell>,
+    /// The white balance was the cells' middles' (their painted lines tint the whole floor's
+    /// colour, and the view balanced on the whole floor was refused; see `read`), not the
+    /// whole floor's.
+    pub balanced_on_middles: bool,
 }
 
 impl AerialReading {
@@ -321,31 +325,78 @@ pub fn is_pixel_map(img: &RgbImage) -> bool {
     true
 }
 
-/// The floor's median colour, from every 4th pixel of every 4th row inside the floor, each
-/// row of samples shifted by one pixel from the one before (so that the samples do not fall
-/// on painted lines every 4th pixel apart, whatever the cell size).
-fn floor_colour(img: &RgbImage, image_to_floor: &Homography, (w, h): (f64, f64)) -> [f64; 3] {
+/// Which floor pixels give the white balance: the whole floor's, or the cells' middles' alone
+/// (without painted lines; see [`read`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Balance {
+    Whole,
+    Middles,
+}
+
+/// The middle of a cell along each axis that [`Balance::Middles`] samples: painted lines lie
+/// along the borders.
+const MIDDLES: (f64, f64) = (0.2, 0.8);
+
+/// The floor's colour: each channel's median over every 4th pixel of every 4th row inside the
+/// floor, each row of samples shifted by one pixel from the one before (so that the samples
+/// do not fall on painted lines every 4th pixel apart, whatever the cell size): over the
+/// whole floor, and over the cells' middles alone ([`MIDDLES`]), that one scaled to the whole
+/// floor's brightness (the sum of its channels: the reader's levels of light are the whole
+/// floor's). `None` for the middles when none is sampled.
+fn floor_colours(
+    img: &RgbImage,
+    image_to_floor: &Homography,
+    (w, h): (f64, f64),
+) -> ([f64; 3], Option<[f64; 3]>) {
     let mut chans: [Vec<u8>; 3] = Default::default();
+    let mut mids: [Vec<u8>; 3] = Default::default();
     for y in (0..img.height()).step_by(4) {
         for x in ((y / 4) % 4..img.width()).step_by(4) {
-            let inside = image_to_floor
+            let Some((u, v)) = image_to_floor
                 .apply((f64::from(x) + 0.5, f64::from(y) + 0.5))
-                .is_some_and(|(u, v)| u >= 0.0 && v >= 0.0 && u < w && v < h);
-            if inside {
-                let p = img.get_pixel(x, y).0;
-                for c in 0..3 {
-                    chans[c].push(p[c]);
+                .filter(|&(u, v)| u >= 0.0 && v >= 0.0 && u < w && v < h)
+            else {
+                continue;
+            };
+            let p = img.get_pixel(x, y).0;
+            let middle = (MIDDLES.0..MIDDLES.1).contains(&u.fract())
+                && (MIDDLES.0..MIDDLES.1).contains(&v.fract());
+            for c in 0..3 {
+                chans[c].push(p[c]);
+                if middle {
+                    mids[c].push(p[c]);
                 }
             }
         }
     }
-    chans.map(|mut v| {
+    let median = |mut v: Vec<u8>| {
         if v.is_empty() {
             return 128.0;
         }
         let mid = v.len() / 2;
         f64::from(*v.select_nth_unstable(mid).1)
-    })
+    };
+    let all = chans.map(median);
+    let middles = (!mids[0].is_empty())
+        .then(|| mids.map(median))
+        .and_then(|m| {
+            let (sa, sm) = (all.iter().sum::<f64>(), m.iter().sum::<f64>());
+            (sm > 0.0).then(|| m.map(|c| c * sa / sm))
+        });
+    (all, middles)
+}
+
+/// How far (the largest share of a channel) the cells' middles' colour lies from the whole
+/// floor's for [`read`] to try it: painted lines of another colour than the floor's tint the
+/// whole floor's median.
+pub const MIDDLES_APART: f64 = 0.03;
+
+/// Whether the cells' middles' colour lies [`MIDDLES_APART`] or more from the whole floor's.
+fn middles_apart(all: [f64; 3], middles: [f64; 3]) -> bool {
+    (0..3)
+        .map(|c| (middles[c] / all[c].max(1.0) - 1.0).abs())
+        .fold(0.0, f64::max)
+        >= MIDDLES_APART
 }
 
 /// The image's corners as the floor's.
@@ -584,13 +635,47 @@ pub fn audit_aerial_image(
 }
 
 /// The reader: with `audit`, past the cells' refusals (see [`audit_aerial`]).
+///
+/// The white balance is the whole floor's. On a floor whose painted lines tint that (the
+/// cells' middles' colour [`MIDDLES_APART`] or more from it), a view refused so, or audited
+/// with refusals, is read again balanced on the cells' middles, and that reading is taken
+/// when it refuses nothing (since issue #29's twenty-eighth round: white lines on an olive or
+/// navy floor turned its cells' floor yellowish or bluish, half covered or tinted).
 fn read(
     img: &RgbImage,
     source: &str,
     config: &AerialConfig,
     audit: bool,
 ) -> Result<Audited, CrewError> {
-    read_inner(img, source, config, audit, true).map(|(audited, _)| audited)
+    let first = read_inner(img, source, config, audit, true, Balance::Whole);
+    let clean = |r: &Result<(Audited, f64), CrewError>| {
+        r.as_ref()
+            .is_ok_and(|(audited, _)| audited.doubts.is_empty())
+    };
+    if !clean(&first) && lines_tint(img, config, source) {
+        let second = read_inner(img, source, config, audit, true, Balance::Middles);
+        if clean(&second) {
+            return second.map(|(audited, _)| audited);
+        }
+    }
+    first.map(|(audited, _)| audited)
+}
+
+/// Whether the view's painted lines tint the whole floor's colour ([`middles_apart`]).
+fn lines_tint(img: &RgbImage, config: &AerialConfig, source: &str) -> bool {
+    let Ok(((gw, gh), corners, _)) = grid_and_floor(img, config, source) else {
+        return false;
+    };
+    let (fw, fh) = (f64::from(gw), f64::from(gh));
+    let Some(image_to_floor) =
+        Homography::floor_to_image(fw, fh, corners).and_then(|h| h.inverse())
+    else {
+        return false;
+    };
+    match floor_colours(img, &image_to_floor, (fw, fh)) {
+        (all, Some(middles)) => middles_apart(all, middles),
+        _ => false,
+    }
 }
 
 /// The reader; with `infer`, the shelves of the floor's colour that two kinds of evidence
@@ -601,6 +686,7 @@ fn read_inner(
     config: &AerialConfig,
     audit: bool,
     infer: bool,
+    balance: Balance,
 ) -> Result<(Audited, f64), CrewError> {
     let mut doubts: Vec<CrewError> = Vec::new();
     // A cell's refusal: at once, or, auditing, listed.
@@ -633,11 +719,11 @@ fn read_inner(
     let image_to_floor = floor_to_image
         .inverse()
         .ok_or_else(|| whole(source, "the corners do not define a floor (singular)"))?;
-    let classifier = Classifier::new(
-        floor_colour(img, &image_to_floor, (fw, fh)),
-        config.robot_colour,
-        config.goal_colour,
-    );
+    let floor = match floor_colours(img, &image_to_floor, (fw, fh)) {
+        (_, Some(middles)) if balance == Balance::Middles => middles,
+        (all, _) => all,
+    };
+    let classifier = Classifier::new(floor, config.robot_colour, config.goal_colour);
     let nadir = floor_to_image.nadir((f64::from(img.width()) / 2.0, f64::from(img.height()) / 2.0));
     let px = cell_size_px(&floor_to_image, (fw, fh));
     let radius = pixels::denoise_radius(px);
@@ -1500,7 +1586,7 @@ fn read_inner(
             let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let mut again = config.clone();
             again.free_cells.extend(under.iter().map(|&i| xy(i)));
-            let (mut read, lightly) = read_inner(img, source, &again, audit, infer)?;
+            let (mut read, lightly) = read_inner(img, source, &again, audit, infer, balance)?;
             read.reading
                 .settled
                 .retain(|(c, _)| under.binary_search(&(c.0 as usize)).is_err());
@@ -1522,7 +1608,8 @@ fn read_inner(
             let xy = |i: usize| ((i % gw as usize) as u32, (i / gw as usize) as u32);
             let mut again = config.clone();
             again.blocked_cells.extend(tops.iter().map(|&i| xy(i)));
-            let (mut read, lightly) = read_inner(img, source, &again, audit, false).ok()?;
+            let (mut read, lightly) =
+                read_inner(img, source, &again, audit, false, balance).ok()?;
             if !read.doubts.is_empty() || lightly >= corroborated::FREE_COVER {
                 return None;
             }
@@ -1594,6 +1681,7 @@ fn read_inner(
                     .collect(),
                 floor_tops: Vec::new(),
                 under_marks: Vec::new(),
+                balanced_on_middles: balance == Balance::Middles,
             },
             doubts,
         },

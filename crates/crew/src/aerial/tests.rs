@@ -1109,3 +1109,40 @@ fn a_shelf_of_the_floor_s_colour_is_told_by_its_look_and_its_shadow() {
     let r = read_aerial(&png(&img), "v.png", &grid(8, 5)).unwrap();
     assert!(r.grid.is_free(Cell(38)));
 }
+
+/// A navy floor with white lines four pixels wide along the borders of its 10 px cells (a
+/// blurred line on a small view): the whole floor's median is the lines', the cells' middles' is the navy (scaled to the
+/// whole floor's brightness), 3 % or more apart; without lines the two are one.
+#[test]
+fn painted_lines_tint_the_whole_floor_s_colour_not_the_cells_middles() {
+    let (navy, white) = (Rgb([40u8, 48, 60]), Rgb([230u8, 230, 225]));
+    let lined = RgbImage::from_fn(80, 80, |x, y| {
+        if x % 10 < 2 || x % 10 >= 8 || y % 10 < 2 || y % 10 >= 8 {
+            white
+        } else {
+            navy
+        }
+    });
+    let f2i = Homography::floor_to_image(
+        8.0,
+        8.0,
+        [(0.0, 0.0), (80.0, 0.0), (80.0, 80.0), (0.0, 80.0)],
+    )
+    .unwrap();
+    let i2f = f2i.inverse().unwrap();
+    let (all, middles) = floor_colours(&lined, &i2f, (8.0, 8.0));
+    let middles = middles.unwrap();
+    // The middles' hue is the navy's: its channels in the navy's ratios.
+    assert!(
+        (middles[2] / middles[0] - 60.0 / 40.0).abs() < 1e-9,
+        "{middles:?}"
+    );
+    assert!(
+        ((middles.iter().sum::<f64>()) - all.iter().sum::<f64>()).abs() < 1e-9,
+        "{all:?} {middles:?}"
+    );
+    assert!(middles_apart(all, middles), "{all:?} {middles:?}");
+    let plain = RgbImage::from_pixel(80, 80, navy);
+    let (all, middles) = floor_colours(&plain, &i2f, (8.0, 8.0));
+    assert!(!middles_apart(all, middles.unwrap()));
+}
