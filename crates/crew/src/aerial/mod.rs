@@ -1890,17 +1890,14 @@ fn marks(
         }
     }
     let mut out = Vec::with_capacity(sorted.kept.len());
+    let on_floors: Vec<Vec<Point>> = sorted
+        .kept
+        .iter()
+        .map(|b| blobs::on_floor(b, image_to_floor))
+        .collect();
     // The view's lean per distance from the nadir, its robots' (see `blobs::view_lean`).
-    let view = nadir.and_then(|_| {
-        let robots: Vec<Vec<Point>> = sorted
-            .kept
-            .iter()
-            .map(|b| blobs::on_floor(b, image_to_floor))
-            .collect();
-        blobs::view_lean(&robots, nadir, px_on_floor)
-    });
-    for b in sorted.kept {
-        let on_floor = blobs::on_floor(&b, image_to_floor);
+    let view = nadir.and_then(|_| blobs::view_lean(&on_floors, nadir, px_on_floor));
+    for (b, on_floor) in sorted.kept.into_iter().zip(on_floors) {
         let centre = match nadir {
             Some(_) => blobs::standing_centre_scaled(&on_floor, nadir, px_on_floor, view),
             None => blobs::standing_centre(&on_floor, None, px_on_floor),
