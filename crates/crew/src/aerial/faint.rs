@@ -380,8 +380,12 @@ mod tests {
     }
 
     /// How many cells the tops stand on.
-    fn cells(tops: Vec<Vec<usize>>) -> usize {
-        tops.iter().map(Vec::len).sum()
+    /// How many cells of the 6 × 3 floor `settle` turns into tops.
+    fn turned(classes: &mut [u8], leaned: &[u8], maps: (&Homography, &Homography)) -> usize {
+        settle(classes, leaned, 60, maps, (6, 3))
+            .iter()
+            .map(Vec::len)
+            .sum()
     }
 
     /// The pixels of the box `(x0, y0)`–`(x1, y1)` (ends excluded) marked in `leaned`.
@@ -399,14 +403,8 @@ mod tests {
         let mut leaned = vec![NOT_LEANED; classes.len()];
         // Cells (1, 1) and (2, 1), and a strip 3 px deep of their top leaning below them.
         lean(&mut leaned, (11, 11, 29, 22));
-        let turned = cells(settle(
-            &mut classes,
-            &leaned,
-            60,
-            (&to_image, &to_floor),
-            (6, 3),
-        ));
-        assert_eq!(turned, 2);
+        let n = turned(&mut classes, &leaned, (&to_image, &to_floor));
+        assert_eq!(n, 2);
         assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
         assert_eq!(classes[21 * 60 + 20], Class::Obstacle as u8, "its lean too");
         assert_eq!(classes[5 * 60 + 5], Class::Floor as u8);
@@ -424,16 +422,7 @@ mod tests {
         for k in 0..3 {
             lean(&mut leaned, (0, 10 * k, 60, 10 * k + 1));
         }
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            2
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 2);
         assert_eq!(classes[15 * 60 + 15], Class::Obstacle as u8);
         assert_eq!(classes[10 * 60 + 45], Class::Floor as u8, "a line");
     }
@@ -443,16 +432,7 @@ mod tests {
         let (to_image, to_floor, mut classes) = floor();
         let mut leaned = vec![NOT_LEANED; classes.len()];
         lean(&mut leaned, (11, 11, 19, 19));
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
         assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
     }
 
@@ -463,16 +443,7 @@ mod tests {
         // Two cells' middles (rows 12–17) leaning but for one row of each: 5 of 6 rows.
         lean(&mut leaned, (11, 11, 29, 16));
         lean(&mut leaned, (11, 17, 29, 19));
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
     }
 
     #[test]
@@ -489,22 +460,10 @@ mod tests {
             leaned
         };
         let (to_image, to_floor, mut classes) = floor();
-        let turned = cells(settle(
-            &mut classes,
-            &leaned_cells(2),
-            60,
-            (&to_image, &to_floor),
-            (6, 3),
-        ));
-        assert_eq!(turned, 0, "two cells");
+        let n = turned(&mut classes, &leaned_cells(2), (&to_image, &to_floor));
+        assert_eq!(n, 0, "two cells");
         assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned_cells(3),
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
+            turned(&mut classes, &leaned_cells(3), (&to_image, &to_floor)),
             3
         );
         assert_eq!(classes[15 * 60 + 35], Class::Obstacle as u8);
@@ -519,16 +478,7 @@ mod tests {
         // away: a pool of light, not a top.
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (11, 19, 60, 23));
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
         assert_eq!(classes[15 * 60 + 15], Class::Floor as u8);
     }
 
@@ -540,16 +490,7 @@ mod tests {
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (29, 11, 39, 16));
         lean(&mut leaned, (29, 17, 39, 19));
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            3
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 3);
         assert_eq!(classes[14 * 60 + 34], Class::Obstacle as u8);
     }
 
@@ -560,16 +501,7 @@ mod tests {
         // Cells (1, 1), (2, 1) and (2, 0): an L, as a band of light winds.
         lean(&mut leaned, (11, 11, 29, 19));
         lean(&mut leaned, (21, 1, 29, 11));
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
     }
 
     #[test]
@@ -584,16 +516,7 @@ mod tests {
                 leaned[y * 60 + x] = super::super::pale::LEANED;
             }
         }
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
     }
 
     #[test]
@@ -607,15 +530,6 @@ mod tests {
                 classes[y * 60 + x] = Class::Goal as u8;
             }
         }
-        assert_eq!(
-            cells(settle(
-                &mut classes,
-                &leaned,
-                60,
-                (&to_image, &to_floor),
-                (6, 3)
-            )),
-            0
-        );
+        assert_eq!(turned(&mut classes, &leaned, (&to_image, &to_floor)), 0);
     }
 }
