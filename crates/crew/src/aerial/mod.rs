@@ -1896,12 +1896,10 @@ fn marks(
         .map(|b| blobs::on_floor(b, image_to_floor))
         .collect();
     // The view's lean per distance from the nadir, its robots' (see `blobs::view_lean`).
-    let view = nadir.and_then(|_| blobs::view_lean(&on_floors, nadir, px_on_floor));
+    let view = blobs::view_lean(&on_floors, nadir, px_on_floor);
     for (b, on_floor) in sorted.kept.into_iter().zip(on_floors) {
-        let centre = match nadir {
-            Some(_) => blobs::standing_centre_scaled(&on_floor, nadir, px_on_floor, view),
-            None => blobs::standing_centre(&on_floor, None, px_on_floor),
-        };
+        // Without a nadir (goals, flat) the centroid.
+        let centre = blobs::standing_centre_scaled(&on_floor, nadir, px_on_floor, view);
         let pixel = b.centroid();
         let (u, v) = centre;
         let cell = (u >= 0.0 && v >= 0.0)
