@@ -582,6 +582,17 @@ FAMILIES = {
                              (0.30, 0.28, 0.26)),
               shelf_height=(0.3, 2.1), tiles=0.5, shelf_inset=0.07, warm=0.3, camera_height=(45, 165),
               sun_elevation=(20, 70), sun_power=(2.3, 3.7)),
+    # 0 (a digit: the letters are used up): held out after issue #29's twenty-ninth round's
+    # painted lines (lined.rs). Box and puck robots, square, ring and diamond goals, dark warm
+    # brown, pale grey-blue and olive-grey floors tiled every third of a cell, teal, mustard,
+    # off-white, maroon and slate shelves from 0.3 to 2.0 high inset 0.05 cell, a sun 25-75
+    # degrees up of strength 2.2-3.6, and a camera from 45 to 165 cells per 24 high.
+    "0": dict(robot_shapes=("box", "puck"), goal_shapes=("square", "ring", "diamond"),
+              floors=((0.30, 0.24, 0.20), (0.68, 0.72, 0.78), (0.48, 0.50, 0.40)),
+              shelf_colours=((0.15, 0.50, 0.55), (0.75, 0.60, 0.15), (0.85, 0.85, 0.82), (0.45, 0.12, 0.15),
+                             (0.35, 0.40, 0.48)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
+              sun_elevation=(25, 75), sun_power=(2.2, 3.6)),
 }
 
 

@@ -319,6 +319,18 @@ fn a_long_robot_leans_as_the_others_do() {
     assert!(r.robots.iter().any(|m| r.grid.xy(m.cell) == (7, 6)));
 }
 
+/// Painted lines whose colour reads as an obstacle's or as one that cannot be told (white on a
+/// navy floor, balanced on it) are the floor's paint, not an obstacle's pixels (`lined`, issue
+/// #29's twenty-ninth round): before, i0034's lines counted as obstacle in the cover of the cell
+/// a white shelf's top leans over, and that cell was refused as one the top may cover whole.
+#[test]
+fn painted_lines_of_a_clear_colour_are_the_floor_s() {
+    let (image, truth) = scene("i0034");
+    let r = read_aerial(&image, "i0034", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("i0034: {e}"));
+    assert_exact("i0034", &r, &truth);
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

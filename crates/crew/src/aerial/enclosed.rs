@@ -15,6 +15,7 @@
 
 use super::blobs;
 use super::colour::Class;
+use super::pixels::OUTSIDE;
 
 /// The least share of the pixels around an unsure blob that must be of one kind.
 pub const SURROUNDED: f64 = 0.5;
@@ -34,7 +35,9 @@ pub fn settle(classes: &mut [u8], width: usize) -> usize {
             for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
                 for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
                     let c = classes[ny * width + nx];
-                    if c == unsure {
+                    // Neither the floor's edge nor a painted line says what the blob is
+                    // (see `lined`).
+                    if c == unsure || c == OUTSIDE {
                         continue;
                     }
                     let k = match c {

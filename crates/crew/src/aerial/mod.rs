@@ -5,7 +5,8 @@
 //! 1. the floor's place in the image: the whole image for a straight-down view, or four
 //!    corners through a [`homography`], and the grid: given (W × H cells or the cell size in
 //!    pixels) or found from painted [`lines`];
-//! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor)
+//! 2. every pixel's class by [`colour`] after white balance on the floor (shadows stay floor;
+//!    painted lines whose colour reads as an obstacle's are set aside: [`lined`])
 //!    and each cell's obstacle coverage, in one pass over the [`pixels`]; floor-coloured
 //!    pixels that make a square half a cell wide brighter or more tinted than the lit floor
 //!    can be are a pale shelf's ([`pale`]); a cell the window
@@ -71,6 +72,7 @@ pub mod enclosed;
 pub mod face;
 pub mod faint;
 pub mod homography;
+pub mod lined;
 pub mod lines;
 pub mod looks;
 pub mod painted;
@@ -740,8 +742,9 @@ fn read_inner(
     };
     let mut classes = pixels::classify(img, &classifier, &image_to_floor, (gw, gh), radius);
     let width = img.width() as usize;
-    let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     let maps = (&floor_to_image, &image_to_floor);
+    lined::settle(&mut classes, width, maps, (gw, gh), px);
+    let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     dull::settle(&mut classes, img, &classifier);
     let hue_of = |i: usize| {

@@ -21,7 +21,8 @@ use super::pale;
 use image::RgbImage;
 use rayon::prelude::*;
 
-/// A pixel outside the floor.
+/// A pixel outside the floor, or one of a painted line set aside (see [`super::lined`]):
+/// neither floor nor obstacle, and counted nowhere.
 pub const OUTSIDE: u8 = 5;
 
 /// Obstacle and floor pixels counted in the middle of each cell.
