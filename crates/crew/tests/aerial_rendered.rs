@@ -331,6 +331,17 @@ fn painted_lines_of_a_clear_colour_are_the_floor_s() {
     assert_exact("i0034", &r, &truth);
 }
 
+/// A robot-coloured piece of a maroon shelf on a cell border, against the shelf, is set aside
+/// when the view then has as many goals as robots (issue #29's twenty-ninth round): w0002 was
+/// refused for "a robot on the border of cell (1, 6)", 6.5 cells from any robot.
+#[test]
+fn a_piece_of_a_shelf_on_a_border_is_set_aside() {
+    let (image, truth) = scene("w0002");
+    let r = read_aerial(&image, "w0002", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("w0002: {e}"));
+    assert_exact("w0002", &r, &truth);
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

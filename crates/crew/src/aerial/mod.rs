@@ -1821,7 +1821,7 @@ fn marks(
             *aside = *aside || alike::unlike_marks(b, &typical, img, classifier, class);
         }
     }
-    let set_aside = sorted
+    let mut set_aside = sorted
         .doubtful
         .iter()
         .zip(&behind)
@@ -1919,21 +1919,29 @@ fn marks(
             .into_iter()
             .fold(f64::INFINITY, f64::min);
         let (x, y) = grid.xy(cell);
-        if margin < BORDER_MARGIN {
-            return Err(at_pixel(
-                source,
-                pixel,
-                format!(
-                    "a {kind} on the border of cell ({x}, {y}): its centre ({u:.2}, {v:.2}) is {margin:.2} cells from the border (at least {BORDER_MARGIN} to settle)"
-                ),
-            ));
-        }
-        if !grid.is_free(cell) {
-            return Err(at_pixel(
-                source,
-                pixel,
-                format!("a {kind} on cell ({x}, {y}), which an obstacle covers"),
-            ));
+        let unsettled = if margin < BORDER_MARGIN {
+            Some(format!(
+                "a {kind} on the border of cell ({x}, {y}): its centre ({u:.2}, {v:.2}) is {margin:.2} cells from the border (at least {BORDER_MARGIN} to settle)"
+            ))
+        } else if !grid.is_free(cell) {
+            Some(format!(
+                "a {kind} on cell ({x}, {y}), which an obstacle covers"
+            ))
+        } else {
+            None
+        };
+        if let Some(why) = unsettled {
+            // Against an obstacle (`blobs::against_obstacle`), such a blob may be a piece of a
+            // shelf of a colour near the marks' (its rim, its top leaning off its cells, its
+            // shaded side): it is set aside as the pieces above are, and the view is read only
+            // with exactly as many goals as robots (issue #29's twenty-ninth round: o0020's tan
+            // shelf and w0002's maroon one left a robot-coloured piece on a border, 5 and 6
+            // cells from any robot).
+            if blobs::against_obstacle(&b, (classes, width), obstacle_least) {
+                set_aside.get_or_insert_with(|| at_pixel(source, pixel, why));
+                continue;
+            }
+            return Err(at_pixel(source, pixel, why));
         }
         let size = b.area() as f64 / sorted.median_area.max(1) as f64;
         let confidence = (margin / 0.25).min(1.0) * size.min(1.0 / size).min(1.0);

@@ -478,6 +478,28 @@ fn a_robot_against_a_shelf_of_its_colour_is_not_lost_without_a_word() {
 }
 
 #[test]
+fn a_mark_on_a_border_against_a_shelf_is_set_aside_only_when_the_counts_then_agree() {
+    // A robot-coloured disc on the border between the shelf's cell (3, 2) and cell (4, 2),
+    // against the shelf: a piece of a shelf of a colour near the robots' may be so.
+    let mut p = scene();
+    p.robots.push((4.02, 2.5));
+    // Three robots and three goals with it: set aside, two robots are left for three goals,
+    // and the view is refused for it.
+    let e = refusal(&p, &grid(8, 5));
+    assert!(e.contains("a robot on the border of cell (4, 2)"), "{e}");
+    // Three robots and two goals with it: read without it.
+    p.goals.pop();
+    let r = read_aerial(&png(&p.straight(12)), "v.png", &grid(8, 5)).unwrap();
+    assert_eq!(xy(&r, &r.robots), vec![(0, 0), (6, 3)]);
+    // Away from the shelf, on the border of cells (5, 2) and (6, 2), it is refused whatever
+    // the counts.
+    p.robots.pop();
+    p.robots.push((6.0, 2.45));
+    let e = refusal(&p, &grid(8, 5));
+    assert!(e.contains("a robot on the border of cell (6, 2)"), "{e}");
+}
+
+#[test]
 fn a_blob_on_blocked_cells_is_the_obstacle_s() {
     // A 4 × 4 floor of 10 px cells, straight down; cell (1, 1) blocked.
     let f2i = Homography::floor_to_image(
