@@ -743,7 +743,7 @@ fn read_inner(
     let mut classes = pixels::classify(img, &classifier, &image_to_floor, (gw, gh), radius);
     let width = img.width() as usize;
     let maps = (&floor_to_image, &image_to_floor);
-    lined::settle(&mut classes, width, maps, (gw, gh), px);
+    lined::settle(img, &mut classes, width, maps, (gw, gh), px);
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
     dull::settle(&mut classes, img, &classifier);
