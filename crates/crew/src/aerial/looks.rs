@@ -56,6 +56,35 @@ pub const LEANING_SAMPLE: f64 = 0.1;
 /// none of those then in a view that is read (another check refuses each; issue #29's
 /// fourteenth round).
 pub const LEANING_PIXELS: usize = 20;
+
+/// A view's free floor leans pale when at least a quarter of its lit cells read free, judged on
+/// [`LEANING_PIXELS`] or more, lean pale over at least this share of their middle's floor
+/// ([`floor_leans`]).
+pub const FLOOR_LEANS: f64 = 0.1;
+/// [`floor_leans`] judges a view on at least this many cells.
+pub const FLOOR_LEANS_CELLS: usize = 8;
+
+/// Whether the view's free floor leans pale as a whole: the 75th percentile of the share of
+/// their middle's floor that leans pale, over the lit cells read free (`looks`, one a cell,
+/// `None` for a blocked one) judged on [`LEANING_PIXELS`] or more, is at least [`FLOOR_LEANS`]
+/// (at least [`FLOOR_LEANS_CELLS`] of them). A pale shelf's top stands out of a floor that
+/// does not lean pale; on a floor that does (a pale, grainy or unevenly lit floor: the Blender
+/// families' white floors, sunlit sand), the cells that lean pale over half their middle were
+/// all free in truth (issue #29's twenty-ninth round: 299 such cells over the 1840 views, and
+/// none of the 707 pale tops the check caught lay in such a view; at 0.05, 27 of them did).
+pub fn floor_leans(looks: &[Option<Look>]) -> bool {
+    let mut shares: Vec<f64> = looks
+        .iter()
+        .flatten()
+        .filter(|l| l.bright.is_some() && l.leaning.1 >= LEANING_PIXELS)
+        .map(|l| l.leaning.0 as f64 / l.leaning.1 as f64)
+        .collect();
+    if shares.len() < FLOOR_LEANS_CELLS {
+        return false;
+    }
+    let k = 3 * shares.len() / 4;
+    *shares.select_nth_unstable_by(k, f64::total_cmp).1 >= FLOOR_LEANS
+}
 /// The largest share of a free cell's middle of a colour that cannot be told.
 pub const UNSURE: f64 = 0.6;
 /// The band along a cell's border (each side, in cells) that is not judged: painted lines (up
@@ -305,6 +334,12 @@ impl Look {
 
     /// Why the cell does not look like the floor, if it does not.
     pub fn odd(&self) -> Option<String> {
+        self.odd_in(false)
+    }
+
+    /// Like [`Look::odd`], in a view whose free floor leans pale (`floor_leans`, see
+    /// [`floor_leans`]): there a cell is not refused for leaning pale.
+    pub fn odd_in(&self, floor_leans: bool) -> Option<String> {
         let (unsure, all) = self.unsure;
         match self.bright {
             Some(b) if b > BRIGHTER => Some(format!(
@@ -315,7 +350,8 @@ impl Look {
                 self.saturation
             )),
             Some(_)
-                if self.leaning.0 as f64 > LEANING * self.leaning.1 as f64
+                if !floor_leans
+                    && self.leaning.0 as f64 > LEANING * self.leaning.1 as f64
                     && self.leaning.1 as f64 >= LEANING_SAMPLE * self.area as f64
                     && self.leaning.1 >= LEANING_PIXELS =>
             {
@@ -684,6 +720,40 @@ mod tests {
         assert!(!dark(0.6, 0.05).dark_unlike());
         // Never refused for it: a dark cell is not judged by its tint.
         assert_eq!(dark(0.6, 0.15).odd(), None);
+    }
+
+    #[test]
+    fn a_floor_that_leans_pale_as_a_whole_does_not_tell_a_pale_top() {
+        let leaning = |share: usize| Look {
+            leaning: (share, 100),
+            ..lit(1.2, 0.05)
+        };
+        // Twelve cells: eight lean pale over 2 % of their middle, three over 30 %, one over
+        // 70 %. The 75th percentile (the tenth smallest) is 30 %: the floor leans pale, and
+        // the one at 70 % is not refused for it.
+        let mut looks: Vec<Option<Look>> = (0..8).map(|_| Some(leaning(2))).collect();
+        looks.extend((0..3).map(|_| Some(leaning(30))));
+        looks.push(Some(leaning(70)));
+        looks.push(None);
+        assert!(floor_leans(&looks));
+        assert!(leaning(70).odd().is_some());
+        assert_eq!(leaning(70).odd_in(true), None);
+        // Ten at 2 %: the tenth smallest is 2 %, the floor does not lean, the top stands out.
+        looks[8] = Some(leaning(2));
+        looks[9] = Some(leaning(2));
+        assert!(!floor_leans(&looks));
+        // Cells judged on too few pixels, or not lit, do not count; nor does a view of fewer
+        // than eight cells.
+        let few = |l: Look| {
+            Some(Look {
+                leaning: (30, 19),
+                ..l
+            })
+        };
+        let some: Vec<Option<Look>> = (0..12).map(|_| few(lit(1.2, 0.05))).collect();
+        assert!(!floor_leans(&some));
+        assert!(!floor_leans(&vec![Some(leaning(50)); 7]));
+        assert!(floor_leans(&vec![Some(leaning(50)); 8]));
     }
 
     #[test]

@@ -1064,6 +1064,8 @@ fn read_inner(
             })
             .collect()
     };
+    // A floor that leans pale as a whole does not tell a pale top by it (see `looks::floor_leans`).
+    let floor_leans = looks::floor_leans(&looks);
     // Every such cell (for the shelves of the floor's colour); refused, auditing, each, else the
     // first.
     let (odd_cells, mut not_floor): (Vec<usize>, Vec<CrewError>) = looks
@@ -1074,7 +1076,7 @@ fn read_inner(
                 return None;
             }
             let (x, y) = ((i % gw as usize) as u32, (i / gw as usize) as u32);
-            look.as_ref()?.odd().map(|why| {
+            look.as_ref()?.odd_in(floor_leans).map(|why| {
                 (
                     i,
                     at_pixel(
