@@ -342,6 +342,18 @@ fn a_piece_of_a_shelf_on_a_border_is_set_aside() {
     assert_exact("w0002", &r, &truth);
 }
 
+/// A speck of a robot's colour in a shadow, dimmer than the view's robots and completed by no
+/// whole mark, is set aside when the view then has as many goals as robots (issue #29's
+/// twenty-ninth round, `alike::dimmer_than_marks`): d0015 was refused for "a robot-coloured
+/// blob of 15 px, too large for noise and too small for a robot".
+#[test]
+fn a_dim_speck_of_a_mark_s_colour_is_set_aside() {
+    let (image, truth) = scene("d0015");
+    let r = read_aerial(&image, "d0015", &config(&truth, true))
+        .unwrap_or_else(|e| panic!("d0015: {e}"));
+    assert_exact("d0015", &r, &truth);
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

@@ -105,6 +105,46 @@ pub fn unlike_marks(
     (h - hue).abs() > HUE_NEAR || s < super::dull::DULL * saturation
 }
 
+/// A piece whose median brightness (its brightest channel after white balance) is under
+/// this share of the view's typical mark's is dimmer than its marks ([`dimmer_than_marks`]).
+pub const DIM: f64 = 0.6;
+
+/// The median brightness of a blob's pixels: their brightest channel after white balance.
+fn brightness_of(b: &blobs::Blob, img: &RgbImage, classifier: &Classifier) -> f64 {
+    let mut v: Vec<f64> = b
+        .pixels
+        .iter()
+        .map(|&(x, y)| {
+            let c = classifier.balanced(img.get_pixel(x, y).0);
+            c[0].max(c[1]).max(c[2])
+        })
+        .collect();
+    middle(&mut v)
+}
+
+/// Whether a piece of a mark's colour is dimmer than the view's `marks` of its kind (each of
+/// a typical area, at least [`LEAST_MARKS`] of them): its median brightness under [`DIM`]
+/// times theirs. A speck of a mark's colour in a shadow or on a dark floor, whose noise white
+/// balance makes saturated (Z0039's green speck at 0.37 of the goals' brightness, e0029's at
+/// 0.18), is so; so may be a mark cut by a top's edge in the top's shadow (U0018's goal), which
+/// is tried whole first (see `cut_mark`). False when there are too few marks to tell. Since
+/// issue #29's twenty-ninth round.
+pub fn dimmer_than_marks(
+    piece: &blobs::Blob,
+    marks: &[blobs::Blob],
+    img: &RgbImage,
+    classifier: &Classifier,
+) -> bool {
+    if marks.len() < LEAST_MARKS {
+        return false;
+    }
+    let mut bright: Vec<f64> = marks
+        .iter()
+        .map(|b| brightness_of(b, img, classifier))
+        .collect();
+    brightness_of(piece, img, classifier) < DIM * middle(&mut bright)
+}
+
 /// Gives each unsure blob like one kind's marks that kind; returns how many it settled.
 pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> usize {
     let width = img.width() as usize;
@@ -205,5 +245,30 @@ mod tests {
         assert!(!like(5, &goals[..3]));
         // Too few marks to tell: nothing is unlike them.
         assert!(like(4, &goals[..2]));
+    }
+
+    #[test]
+    fn a_speck_in_a_shadow_is_dimmer_than_the_view_s_marks() {
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 120 * 30];
+        for x0 in [2, 12, 22] {
+            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
+        }
+        // A goal's piece as bright as the goals (180: 1.41 of the floor), a green speck at
+        // 0.55 of their brightness (a shadow's), and one at 0.65.
+        put(&mut img, &mut classes, (32, 3), [54, 180, 117]);
+        put(&mut img, &mut classes, (42, 3), [30, 99, 64]);
+        put(&mut img, &mut classes, (52, 3), [35, 117, 76]);
+        let goals = blobs::find(&mut classes, 120, Class::Goal as u8);
+        assert_eq!(goals.len(), 6);
+        let dim = |i: usize, marks: &[blobs::Blob]| {
+            dimmer_than_marks(&goals[i], marks, &img, &classifier)
+        };
+        assert!(!dim(3, &goals[..3]));
+        assert!(dim(4, &goals[..3]));
+        assert!(!dim(5, &goals[..3]));
+        // Too few marks to tell.
+        assert!(!dim(4, &goals[..2]));
     }
 }

@@ -1810,15 +1810,17 @@ fn marks(
     );
     // So are pieces against an obstacle whose colour is unlike the view's marks of the kind
     // (see `alike::unlike_marks`): a shelf's edge or shaded side of a colour near the marks'.
-    {
-        let (img, classifier, class) = faint;
+    let typical: Vec<blobs::Blob> = {
         let median = sorted.median_area;
-        let typical: Vec<blobs::Blob> = sorted
+        sorted
             .kept
             .iter()
             .filter(|b| b.area() * blobs::ALIKE >= median && b.area() <= blobs::ALIKE * median)
             .cloned()
-            .collect();
+            .collect()
+    };
+    {
+        let (img, classifier, class) = faint;
         for (b, aside) in sorted.doubtful.iter().zip(behind.iter_mut()) {
             *aside = *aside || alike::unlike_marks(b, &typical, img, classifier, class);
         }
@@ -1866,6 +1868,12 @@ fn marks(
             .flatten();
         match whole {
             Some(mark) => cut.push(mark),
+            // A piece no whole mark completes, dimmer than the view's marks: a speck of their
+            // colour in a shadow or on a dark floor, set aside as the pieces above are (see
+            // `alike::dimmer_than_marks`).
+            None if alike::dimmer_than_marks(piece, &typical, faint.0, faint.1) => {
+                set_aside.get_or_insert_with(|| doubt(piece));
+            }
             None => return Err(doubt(piece)),
         }
     }
