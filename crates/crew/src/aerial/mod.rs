@@ -2333,7 +2333,10 @@ const FAINT_CONFIDENCE: f64 = 0.5;
 /// The marks of one kind read by [`marks`], with what it left out that may have been one.
 struct ReadMarks {
     marks: Vec<Mark>,
-    /// The first piece set aside as what an obstacle's edge or a mark it hides leaves.
+    /// The first piece set aside as what an obstacle's edge or a mark it hides leaves, a
+    /// piece unlike or dimmer than the view's marks, or a mark on a cell border or a blocked
+    /// cell against an obstacle (since issue #29's twenty-ninth round): its refusal, given when
+    /// the view then has not as many goals as robots.
     set_aside: Option<CrewError>,
     /// The largest blob of the kind's colour on blocked cells, read as the obstacle's: its
     /// pixel and area.
