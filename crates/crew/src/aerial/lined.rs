@@ -28,14 +28,15 @@
 //! [`SAMPLED_BORDERS`] borders) is at least 0.06 (pale lines) or at most −0.15 (dark ones;
 //! [`LINES`]). Over the 962 rendered views without lines it lies between −0.092 (tile seams on
 //! the borders) and 0.025; 332 of the 341 with white lines reach 0.06, and 438 of the 537
-//! with dark lines −0.15 (dark lines seldom read as an obstacle's colour). Elsewhere a few thin pixels on the borders are
-//! specks of the floor's texture or a shelf's edge between pixels of a colour that cannot be
-//! told, and are left as read (set aside on every floor, they moved 16 verdicts, 8 of them
-//! lost; with a count of pixels in place of the contrast, Y0018's white lines, read as floor
-//! but where they cross, were left out). The lines' pixels are set aside ([`OUTSIDE`]):
-//! neither floor nor obstacle, part of no blob and of no cell's cover, as the floor's edge
-//! is. Taken as floor pixels instead, a white line on a dark floor made the cells beside it
-//! darker than the "lit floor" around them (u0038, read as a shadow nothing casts).
+//! with dark lines −0.15 (dark lines seldom read as an obstacle's colour). Elsewhere a few
+//! thin pixels on the borders are specks of the floor's texture or a shelf's edge between
+//! pixels of a colour that cannot be told, and are left as read (set aside on every floor,
+//! they moved 16 verdicts, 8 of them lost; with a count of pixels in place of the contrast,
+//! Y0018's white lines, read as floor but where they cross, were left out). The lines'
+//! pixels are set aside ([`OUTSIDE`]): neither floor nor obstacle, part of no blob and of no
+//! cell's cover, as the floor's edge is. Taken as floor pixels instead, a white line on a dark
+//! floor made the cells beside it darker than the "lit floor" around them (u0038, read as a
+//! shadow nothing casts).
 //!
 //! The band and the reach grow to [`MIN_PX`] and [`MIN_PX`] + [`REACH`] − [`BAND`] pixels on
 //! small cells (blur spreads a line over a pixel or two either side), the band at most
