@@ -72,16 +72,23 @@ fn assert_exact(name: &str, r: &AerialReading, truth: &Value) {
     assert_eq!(goals, cells(&truth["goals"]), "{name}: goals");
 }
 
+/// Reads the rendered view `name` with its grid and corners, asserts that every cell, robot
+/// and goal is read as rendered, and returns the reading.
+fn read_exactly(name: &str) -> AerialReading {
+    let (image, truth) = scene(name);
+    let r =
+        read_aerial(&image, name, &config(&truth, true)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_exact(name, &r, &truth);
+    r
+}
+
 #[test]
 fn rendered_views_read_exactly() {
     // A0013: two robots touching after blur, split.
     for name in [
         "A0011", "A0013", "A0901", "A0902", "A0904", "A0906", "A0908",
     ] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        let r = read_exactly(name);
         assert!(r.robots.iter().all(|m| m.confidence > 0.0), "{name}");
     }
 }
@@ -94,10 +101,7 @@ fn rendered_views_read_exactly() {
 #[test]
 fn shelves_of_a_colour_near_a_mark_s_read_by_their_shape() {
     for name in ["C0160", "D0015", "D0046"] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        read_exactly(name);
     }
 }
 
@@ -162,10 +166,7 @@ fn a_run_s_far_cell_a_top_could_cover_whole_is_refused() {
 #[test]
 fn a_run_s_far_cell_is_told_by_the_view_s_other_faces() {
     for name in ["T0003", "a0001"] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        read_exactly(name);
     }
 }
 
@@ -175,10 +176,7 @@ fn a_run_s_far_cell_is_told_by_the_view_s_other_faces() {
 /// was refused before.
 #[test]
 fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_run_s_face() {
-    let (image, truth) = scene("T0012");
-    let r = read_aerial(&image, "T0012", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("T0012: {e}"));
-    assert_exact("T0012", &r, &truth);
+    read_exactly("T0012");
 }
 
 /// A free cell in a faint shadow under a blue sky is floor, though lit by the loose limit of a
@@ -188,10 +186,7 @@ fn a_cell_a_top_may_cover_almost_whole_is_told_by_the_run_s_face() {
 /// was refused before.
 #[test]
 fn a_free_cell_tinted_by_the_sky_s_light_in_a_shadow_is_floor() {
-    let (image, truth) = scene("D0007");
-    let r = read_aerial(&image, "D0007", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("D0007: {e}"));
-    assert_exact("D0007", &r, &truth);
+    read_exactly("D0007");
 }
 
 /// A shelf whose face toward the nadir reads as floor (in its own shadow) covers only the far
@@ -201,10 +196,7 @@ fn a_free_cell_tinted_by_the_sky_s_light_in_a_shadow_is_floor() {
 /// top, were refused before.
 #[test]
 fn a_shelf_whose_face_reads_as_floor_is_told_by_its_top_s_band() {
-    let (image, truth) = scene("O0011");
-    let r = read_aerial(&image, "O0011", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("O0011: {e}"));
-    assert_exact("O0011", &r, &truth);
+    read_exactly("O0011");
 }
 
 /// A dark shelf of nearly the floor's hue reads as floor in a shadow, and its own shadow as
@@ -213,10 +205,7 @@ fn a_shelf_whose_face_reads_as_floor_is_told_by_its_top_s_band() {
 /// round). V0030's slate shelf over cells (0, 5)–(0, 8) was refused before.
 #[test]
 fn a_dark_top_of_another_hue_than_the_shadows_is_told_by_its_shadow() {
-    let (image, truth) = scene("V0030");
-    let r = read_aerial(&image, "V0030", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("V0030: {e}"));
-    assert_exact("V0030", &r, &truth);
+    let r = read_exactly("V0030");
     let tops: Vec<(u32, u32)> = r.floor_tops.iter().map(|&c| r.grid.xy(c)).collect();
     assert_eq!(tops, vec![(0, 5), (0, 6), (0, 7), (0, 8)]);
 }
@@ -229,10 +218,7 @@ fn a_dark_top_of_another_hue_than_the_shadows_is_told_by_its_shadow() {
 #[test]
 fn a_run_s_far_cell_is_told_by_the_lean_measured_beside_it() {
     for name in ["i0023", "A0037", "B0027"] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        read_exactly(name);
     }
 }
 
@@ -243,10 +229,7 @@ fn a_run_s_far_cell_is_told_by_the_lean_measured_beside_it() {
 #[test]
 fn a_top_read_partly_as_floor_is_told_by_its_colour() {
     for name in ["a0021", "d0002"] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        read_exactly(name);
     }
 }
 
@@ -256,10 +239,7 @@ fn a_top_read_partly_as_floor_is_told_by_its_colour() {
 /// and named so in the reading.
 #[test]
 fn a_half_covered_cell_under_a_mark_is_free() {
-    let (image, truth) = scene("l0005");
-    let r = read_aerial(&image, "l0005", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("l0005: {e}"));
-    assert_exact("l0005", &r, &truth);
+    let r = read_exactly("l0005");
     let under: Vec<(u32, u32)> = r.under_marks.iter().map(|&c| r.grid.xy(c)).collect();
     assert_eq!(under, vec![(2, 8), (6, 10)]);
     assert!(
@@ -299,10 +279,7 @@ fn a_shelf_read_as_its_shadow_is_refused_by_the_robots_sun() {
 #[test]
 fn a_dim_floor_between_pale_lines_is_not_a_shadow() {
     for name in ["j0001", "v0020"] {
-        let (image, truth) = scene(name);
-        let r = read_aerial(&image, name, &config(&truth, true))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_exact(name, &r, &truth);
+        read_exactly(name);
     }
 }
 
@@ -312,10 +289,7 @@ fn a_dim_floor_between_pale_lines_is_not_a_shadow() {
 /// cell's border, and was refused.
 #[test]
 fn a_long_robot_leans_as_the_others_do() {
-    let (image, truth) = scene("I0004");
-    let r = read_aerial(&image, "I0004", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("I0004: {e}"));
-    assert_exact("I0004", &r, &truth);
+    let r = read_exactly("I0004");
     assert!(r.robots.iter().any(|m| r.grid.xy(m.cell) == (7, 6)));
 }
 
@@ -325,10 +299,7 @@ fn a_long_robot_leans_as_the_others_do() {
 /// a white shelf's top leans over, and that cell was refused as one the top may cover whole.
 #[test]
 fn painted_lines_of_a_clear_colour_are_the_floor_s() {
-    let (image, truth) = scene("i0034");
-    let r = read_aerial(&image, "i0034", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("i0034: {e}"));
-    assert_exact("i0034", &r, &truth);
+    read_exactly("i0034");
 }
 
 /// A robot-coloured piece of a maroon shelf on a cell border, against the shelf, is set aside
@@ -336,10 +307,7 @@ fn painted_lines_of_a_clear_colour_are_the_floor_s() {
 /// refused for "a robot on the border of cell (1, 6)", 6.5 cells from any robot.
 #[test]
 fn a_piece_of_a_shelf_on_a_border_is_set_aside() {
-    let (image, truth) = scene("w0002");
-    let r = read_aerial(&image, "w0002", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("w0002: {e}"));
-    assert_exact("w0002", &r, &truth);
+    read_exactly("w0002");
 }
 
 /// A speck of a robot's colour in a shadow, dimmer than the view's robots and completed by no
@@ -348,10 +316,7 @@ fn a_piece_of_a_shelf_on_a_border_is_set_aside() {
 /// blob of 15 px, too large for noise and too small for a robot".
 #[test]
 fn a_dim_speck_of_a_mark_s_colour_is_set_aside() {
-    let (image, truth) = scene("d0015");
-    let r = read_aerial(&image, "d0015", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("d0015: {e}"));
-    assert_exact("d0015", &r, &truth);
+    read_exactly("d0015");
 }
 
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
@@ -360,10 +325,7 @@ fn a_dim_speck_of_a_mark_s_colour_is_set_aside() {
 /// #29's twenty-eighth round).
 #[test]
 fn a_floor_tinted_by_its_lines_is_balanced_on_the_cells_middles() {
-    let (image, truth) = scene("d0009");
-    let r = read_aerial(&image, "d0009", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("d0009: {e}"));
-    assert_exact("d0009", &r, &truth);
+    let r = read_exactly("d0009");
     assert!(r.balanced_on_middles);
     // A view that reads balanced on the whole floor keeps that balance.
     let (image, truth) = scene("j0001");
@@ -411,10 +373,7 @@ fn a_top_where_a_shelf_casts_its_shadow_is_refused() {
 /// a0030 lost two robots so and was refused ("19 goals but only 17 robots").
 #[test]
 fn a_robot_against_a_shelf_of_its_hue_is_read() {
-    let (image, truth) = scene("a0030");
-    let r = read_aerial(&image, "a0030", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("a0030: {e}"));
-    assert_exact("a0030", &r, &truth);
+    read_exactly("a0030");
 }
 
 /// A terracotta shelf is as saturated as the red robots, its hue 20°–30° from theirs; read
@@ -424,10 +383,7 @@ fn a_robot_against_a_shelf_of_its_hue_is_read() {
 /// twenty-fifth round).
 #[test]
 fn a_shelf_of_a_hue_near_the_robots_is_read_as_a_shelf() {
-    let (image, truth) = scene("U0032");
-    let r = read_aerial(&image, "U0032", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("U0032: {e}"));
-    assert_exact("U0032", &r, &truth);
+    read_exactly("U0032");
 }
 
 /// A goal whose green, in N0013, sits just beyond the goals' hue band (157° after white
@@ -436,10 +392,7 @@ fn a_shelf_of_a_hue_near_the_robots_is_read_as_a_shelf() {
 /// issue #29's twenty-fifth round).
 #[test]
 fn a_goal_beyond_its_band_is_told_by_the_view_s_goals() {
-    let (image, truth) = scene("N0013");
-    let r = read_aerial(&image, "N0013", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("N0013: {e}"));
-    assert_exact("N0013", &r, &truth);
+    read_exactly("N0013");
 }
 
 /// b0019's dark floor has specks of green in its noise, one of 48 px: too large for noise,
@@ -448,10 +401,7 @@ fn a_goal_beyond_its_band_is_told_by_the_view_s_goals() {
 /// goals as robots, is read (issue #29's twenty-fifth round).
 #[test]
 fn a_piece_unlike_the_view_s_goals_is_set_aside() {
-    let (image, truth) = scene("b0019");
-    let r = read_aerial(&image, "b0019", &config(&truth, true))
-        .unwrap_or_else(|e| panic!("b0019: {e}"));
-    assert_exact("b0019", &r, &truth);
+    read_exactly("b0019");
 }
 
 /// Two views of the held-out family n (issue #29's twenty-fourth round), each a dark brown shelf
