@@ -189,15 +189,22 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_blob_like_the_view_s_goals_beyond_their_band_is_a_goal() {
+    /// A grey floor 120 × 30 px with three goals of hue 150° (at their band's edge, 120° ±
+    /// 35°), 6 px square, from columns 2, 12 and 22; its classifier and class map.
+    fn three_goals() -> (Classifier, RgbImage, Vec<u8>) {
         let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
         let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
         let mut classes = vec![Class::Floor as u8; 120 * 30];
-        // Three goals of hue 150°, at their band's edge (120° ± 35°) ...
         for x0 in [2, 12, 22] {
             put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
         }
+        (classifier, img, classes)
+    }
+
+    #[test]
+    fn a_blob_like_the_view_s_goals_beyond_their_band_is_a_goal() {
+        // Three goals of hue 150°, at their band's edge (120° ± 35°) ...
+        let (classifier, mut img, mut classes) = three_goals();
         assert_eq!(classes[3 * 120 + 3], Class::Goal as u8);
         // ... a fourth of hue 160° (in a bluish shadow), just beyond it: a colour that cannot
         // be told ...
@@ -224,12 +231,7 @@ mod tests {
 
     #[test]
     fn a_piece_unlike_the_view_s_marks_is_told() {
-        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
-        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
-        let mut classes = vec![Class::Floor as u8; 120 * 30];
-        for x0 in [2, 12, 22] {
-            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
-        }
+        let (classifier, mut img, mut classes) = three_goals();
         // A piece of a goal's paint, a dark green shelf side (as saturated, 25° away) and a
         // greyish green speck (half as saturated).
         put(&mut img, &mut classes, (32, 3), [54, 180, 117]);
@@ -249,12 +251,7 @@ mod tests {
 
     #[test]
     fn a_speck_in_a_shadow_is_dimmer_than_the_view_s_marks() {
-        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
-        let mut img = RgbImage::from_pixel(120, 30, Rgb([128, 128, 128]));
-        let mut classes = vec![Class::Floor as u8; 120 * 30];
-        for x0 in [2, 12, 22] {
-            put(&mut img, &mut classes, (x0, 6), [54, 180, 117]);
-        }
+        let (classifier, mut img, mut classes) = three_goals();
         // A goal's piece as bright as the goals (180: 1.41 of the floor), a green speck at
         // 0.55 of their brightness (a shadow's), and one at 0.65.
         put(&mut img, &mut classes, (32, 3), [54, 180, 117]);
