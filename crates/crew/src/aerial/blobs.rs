@@ -1369,28 +1369,39 @@ mod tests {
         out
     }
 
-    /// A cylinder of radius 0.3 at (18.5, 12.5), its top 1.05 times as far from the nadir
-    /// at (2, 2) as its base (a lean of almost a cell): the blob is the base, the top and the
-    /// band between them, each point of the floor once (as the pixels of a blob are).
-    #[test]
-    fn a_leaning_robot_stands_on_its_base() {
-        let (nadir, centre, r, k) = ((2.0, 2.0), (18.5, 12.5), 0.3, 1.05);
+    /// A robot's blob on the floor as a camera over `nadir` sees it: its footprint (the points
+    /// `footprint(centre, s)` gives at scale s) swept from its base (s = 1) to its top
+    /// (s = k, scaled about the nadir), in `steps` steps, each point once on a lattice of 0.02.
+    fn swept(
+        (nadir, centre, k): (Point, Point, f64),
+        steps: u32,
+        footprint: impl Fn(Point, f64) -> Vec<Point>,
+    ) -> Vec<Point> {
         let mut seen = std::collections::BTreeSet::new();
         let mut pts = Vec::new();
-        for step in 0..=40 {
-            let s = 1.0 + (k - 1.0) * f64::from(step) / 40.0;
+        for step in 0..=steps {
+            let s = 1.0 + (k - 1.0) * f64::from(step) / f64::from(steps);
             let c = (
                 nadir.0 + (centre.0 - nadir.0) * s,
                 nadir.1 + (centre.1 - nadir.1) * s,
             );
-            for p in disc(c.0, c.1, r * s) {
-                // On a lattice of 0.02: the union of the discs.
+            for p in footprint(c, s) {
                 let key = ((p.0 * 50.0).round() as i64, (p.1 * 50.0).round() as i64);
                 if seen.insert(key) {
                     pts.push((key.0 as f64 / 50.0, key.1 as f64 / 50.0));
                 }
             }
         }
+        pts
+    }
+
+    /// A cylinder of radius 0.3 at (18.5, 12.5), its top 1.05 times as far from the nadir
+    /// at (2, 2) as its base (a lean of almost a cell): the blob is the base, the top and the
+    /// band between them, each point of the floor once (as the pixels of a blob are).
+    #[test]
+    fn a_leaning_robot_stands_on_its_base() {
+        let (nadir, centre, r, k) = ((2.0, 2.0), (18.5, 12.5), 0.3, 1.05);
+        let pts = swept((nadir, centre, k), 40, |c, s| disc(c.0, c.1, r * s));
         let got = standing_centre(&pts, Some(nadir), 0.01);
         let err = ((got.0 - centre.0).powi(2) + (got.1 - centre.1).powi(2)).sqrt();
         // The top is 15 % wider: the centre is off by at most 0.15 r.
@@ -1409,27 +1420,19 @@ mod tests {
     fn a_long_robot_leans_as_the_others_do() {
         let (nadir, centre, k) = ((0.0, 5.5), (10.5, 5.5), 1.004);
         let (half_long, half_wide) = (0.7, 0.25);
-        let mut seen = std::collections::BTreeSet::new();
-        let mut pts = Vec::new();
-        for step in 0..=10 {
-            let s = 1.0 + (k - 1.0) * f64::from(step) / 10.0;
-            let c = (
-                nadir.0 + (centre.0 - nadir.0) * s,
-                nadir.1 + (centre.1 - nadir.1) * s,
-            );
+        let pts = swept((nadir, centre, k), 10, |c, s| {
+            let mut out = Vec::new();
             let mut y = c.1 - half_wide * s;
             while y <= c.1 + half_wide * s {
                 let mut x = c.0 - half_long * s;
                 while x <= c.0 + half_long * s {
-                    let key = ((x * 50.0).round() as i64, (y * 50.0).round() as i64);
-                    if seen.insert(key) {
-                        pts.push((key.0 as f64 / 50.0, key.1 as f64 / 50.0));
-                    }
+                    out.push((x, y));
                     x += 0.01;
                 }
                 y += 0.01;
             }
-        }
+            out
+        });
         let off = |p: Point| ((p.0 - centre.0).powi(2) + (p.1 - centre.1).powi(2)).sqrt();
         let own = standing_centre(&pts, Some(nadir), 0.01);
         assert!(off(own) > 0.3, "{own:?}");
