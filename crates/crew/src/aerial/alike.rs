@@ -109,19 +109,6 @@ pub fn unlike_marks(
 /// this share of the view's typical mark's is dimmer than its marks ([`dimmer_than_marks`]).
 pub const DIM: f64 = 0.6;
 
-/// The median brightness of a blob's pixels: their brightest channel after white balance.
-fn brightness_of(b: &blobs::Blob, img: &RgbImage, classifier: &Classifier) -> f64 {
-    let mut v: Vec<f64> = b
-        .pixels
-        .iter()
-        .map(|&(x, y)| {
-            let c = classifier.balanced(img.get_pixel(x, y).0);
-            c[0].max(c[1]).max(c[2])
-        })
-        .collect();
-    middle(&mut v)
-}
-
 /// Whether a piece of a mark's colour is dimmer than the view's `marks` of its kind (each of
 /// a typical area, at least [`LEAST_MARKS`] of them): its median brightness under [`DIM`]
 /// times theirs. A speck of a mark's colour in a shadow or on a dark floor, whose noise white
@@ -140,9 +127,9 @@ pub fn dimmer_than_marks(
     }
     let mut bright: Vec<f64> = marks
         .iter()
-        .map(|b| brightness_of(b, img, classifier))
+        .map(|b| super::dull::brightness_of(b, img, classifier))
         .collect();
-    brightness_of(piece, img, classifier) < DIM * middle(&mut bright)
+    super::dull::brightness_of(piece, img, classifier) < DIM * middle(&mut bright)
 }
 
 /// Gives each unsure blob like one kind's marks that kind; returns how many it settled.

@@ -38,10 +38,18 @@
 //! Goals are left as they are: their paint varies more, and a goal-coloured shelf is told by
 //! its shape ([`super::shelves`]).
 //!
+//! A robot under a highlight is dull too: the sun's or the sky's white on its top greys its
+//! paint, and G0019's frustums and H0000's domes in a bright band read at 0.57 to 0.70 of the
+//! robots' saturation, as a dusty shelf does. White added makes a colour brighter, never
+//! darker, and a robot keeps its shape: so a dull blob of a robot's size, shape and place
+//! ([`highlighted`]) stays the robots' (since issue #29's thirtieth round; such robots were
+//! turned into shelves, and the view refused for a robot lost).
+//!
 //! Cost: O(pixels of the robots' colour).
 
 use super::blobs;
 use super::colour::{Class, Classifier};
+use super::homography::Homography;
 use image::RgbImage;
 
 /// A blob at most this many times as saturated as the robots is a shelf's.
@@ -58,9 +66,115 @@ pub const HUE_APART: f64 = 12.0;
 /// against the shelf ([`robots_within`]).
 pub const VIVID: f64 = 0.85;
 
+/// A dull blob of a robot's size: from this to [`ROBOT_SIZE`]`.1` times the typical robot ...
+pub const ROBOT_SIZE: (f64, f64) = (0.6, 1.5);
+/// ... compact (at least this [`blobs::Blob::solidity`] ...
+pub const COMPACT: f64 = 0.8;
+/// ... and under this [`blobs::Blob::elongation`]: a robot is a disc or a square, 1) ...
+pub const ROUND: f64 = 1.3;
+/// ... under this many cells across on the floor, along both axes (a shelf's top over one
+/// cell, raised toward the camera, spans more than its cell less its inset, 0.9 and more) ...
+pub const SMALLER_THAN_A_CELL: f64 = 0.85;
+/// ... and at least this many times as bright as the typical robot (its median brightest
+/// channel after white balance) is a robot under a highlight ([`highlighted`]). Measured on
+/// families A-Z and a-y: the 22 dull blobs so shaped on a robot's centre were 1.00 to 1.41
+/// as bright as their view's robots; the 5 elsewhere (shadows read as the robots' hue, a
+/// dark shelf) 0.25 to 0.97.
+pub const HIGHLIGHT: f64 = 1.0;
+
+/// The median brightness of a blob's pixels: their brightest channel after white balance.
+pub(crate) fn brightness_of(b: &blobs::Blob, img: &RgbImage, classifier: &Classifier) -> f64 {
+    let mut v: Vec<f64> = b
+        .pixels
+        .iter()
+        .map(|&(x, y)| {
+            let c = classifier.balanced(img.get_pixel(x, y).0);
+            c[0].max(c[1]).max(c[2])
+        })
+        .collect();
+    middle(&mut v)
+}
+
+/// The blob with its holes: the pixels of its bounding box that no path of pixels outside it
+/// (4-connected) joins to the box's edge. A highlight may read as pale floor in a robot's
+/// middle (G0019's frustum, a ring of the robots' colour).
+fn with_holes(b: &blobs::Blob) -> blobs::Blob {
+    let (x0, y0, x1, y1) = b.bbox;
+    let (w, h) = ((x1 - x0 + 3) as usize, (y1 - y0 + 3) as usize);
+    // A local map with a one-pixel margin: 1 the blob's, 2 reached from the edge.
+    let mut local = vec![0u8; w * h];
+    for &(x, y) in &b.pixels {
+        local[(y - y0 + 1) as usize * w + (x - x0 + 1) as usize] = 1;
+    }
+    local[0] = 2;
+    let mut stack = vec![0usize];
+    while let Some(i) = stack.pop() {
+        let (x, y) = (i % w, i / w);
+        let steps = [
+            (x > 0).then(|| i - 1),
+            (x + 1 < w).then(|| i + 1),
+            (y > 0).then(|| i - w),
+            (y + 1 < h).then(|| i + w),
+        ];
+        for j in steps.into_iter().flatten() {
+            if local[j] == 0 {
+                local[j] = 2;
+                stack.push(j);
+            }
+        }
+    }
+    blobs::Blob::from_pixels(
+        (0..local.len())
+            .filter(|&i| local[i] != 2)
+            .map(|i| ((i % w) as u32 + x0 - 1, (i / w) as u32 + y0 - 1))
+            .collect(),
+    )
+}
+
+/// The dull blob with its holes ([`with_holes`]) when it is a robot under a highlight: of a
+/// robot's size ([`ROBOT_SIZE`] times the typical robot's `area`), compact ([`COMPACT`],
+/// [`ROUND`]), smaller than a cell on the floor along both axes ([`SMALLER_THAN_A_CELL`]) and
+/// at least [`HIGHLIGHT`] times as bright as the typical robot (`bright`).
+fn highlighted(
+    b: &blobs::Blob,
+    (area, bright): (usize, f64),
+    img: &RgbImage,
+    classifier: &Classifier,
+    image_to_floor: &Homography,
+) -> Option<blobs::Blob> {
+    let whole = with_holes(b);
+    let robots = whole.area() as f64 / area as f64;
+    if !(ROBOT_SIZE.0..=ROBOT_SIZE.1).contains(&robots)
+        || whole.solidity() < COMPACT
+        || whole.elongation() >= ROUND
+    {
+        return None;
+    }
+    let (mut u0, mut v0, mut u1, mut v1) = (
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in &whole.pixels {
+        let (u, v) = image_to_floor.apply((f64::from(x) + 0.5, f64::from(y) + 0.5))?;
+        (u0, v0, u1, v1) = (u0.min(u), v0.min(v), u1.max(u), v1.max(v));
+    }
+    (u1 - u0 < SMALLER_THAN_A_CELL
+        && v1 - v0 < SMALLER_THAN_A_CELL
+        && brightness_of(&whole, img, classifier) >= HIGHLIGHT * bright)
+        .then_some(whole)
+}
+
 /// Turns the dull blobs of the robots' colour, and the large ones of another hue, into
-/// obstacle blobs, but for the robots within them ([`robots_within`]); returns how many.
-pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> usize {
+/// obstacle blobs, but for the robots within them ([`robots_within`]) and for robots under a
+/// highlight ([`highlighted`]); returns how many.
+pub fn settle(
+    classes: &mut [u8],
+    img: &RgbImage,
+    classifier: &Classifier,
+    image_to_floor: &Homography,
+) -> usize {
     let width = img.width() as usize;
     let found = blobs::find(classes, width, Class::Robot as u8);
     let colour = |(x, y): (u32, u32)| classifier.hue_from_robots(img.get_pixel(x, y).0);
@@ -91,10 +205,30 @@ pub fn settle(classes: &mut [u8], img: &RgbImage, classifier: &Classifier) -> us
         return 0;
     }
     let (typical, hue) = (middle(&mut sats), middle(&mut hues));
+    // The typical robot's brightness, the same way, when a dull blob asks for it.
+    let mut bright = None;
+    let mut typical_brightness = || {
+        *bright.get_or_insert_with(|| {
+            let mut v: Vec<f64> = sized
+                .iter()
+                .filter(|s| alike(s.0))
+                .map(|s| brightness_of(s.0, img, classifier))
+                .collect();
+            middle(&mut v)
+        })
+    };
     let mut turned = 0;
-    for (b, (s, h)) in sized {
+    for &(b, (s, h)) in &sized {
         let unhued = b.area() as f64 > LARGE * robot_area as f64 && (h - hue).abs() > HUE_APART;
-        if s < DULL * typical || unhued {
+        let dull = s < DULL * typical;
+        if dull && !unhued {
+            let typical = (robot_area, typical_brightness());
+            if let Some(whole) = highlighted(b, typical, img, classifier, image_to_floor) {
+                whole.paint(classes, width, Class::Robot as u8);
+                continue;
+            }
+        }
+        if dull || unhued {
             let vivid = |&p: &(u32, u32)| {
                 let (h, s) = colour(p);
                 s >= VIVID * typical && (h - hue).abs() <= HUE_APART
@@ -187,6 +321,81 @@ mod tests {
     use crate::aerial::colour::Hue;
     use image::Rgb;
 
+    /// The image → floor map of a view straight down on `img`, `cell` pixels a cell.
+    fn floor_of(img: &RgbImage, cell: f64) -> Homography {
+        let (w, h) = (f64::from(img.width()), f64::from(img.height()));
+        Homography::floor_to_image(w / cell, h / cell, [(0.0, 0.0), (w, 0.0), (w, h), (0.0, h)])
+            .and_then(|m| m.inverse())
+            .unwrap()
+    }
+
+    #[test]
+    fn a_robot_under_a_highlight_stays_a_robot() {
+        // Three red robots 8 px square and a fourth greyed by a highlight, paler and
+        // brighter, on cells of 20 px: it stays a robot. The same blob darker (a dusty
+        // shelf's piece), or a whole cell large, is turned.
+        let run = |pale: [u8; 3], cell: f64| {
+            let mut img = RgbImage::from_pixel(80, 20, Rgb([128, 128, 128]));
+            let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+            let mut classes = vec![Class::Floor as u8; 80 * 20];
+            for (x0, c) in [
+                (2, [200, 20, 20]),
+                (22, [150, 15, 15]),
+                (42, [210, 30, 25]),
+                (62, pale),
+            ] {
+                for y in 6..14u32 {
+                    for x in x0..x0 + 8 {
+                        img.put_pixel(x, y, Rgb(c));
+                        classes[y as usize * 80 + x as usize] = Class::Robot as u8;
+                    }
+                }
+            }
+            let turned = settle(&mut classes, &img, &classifier, &floor_of(&img, cell));
+            (turned, classes[10 * 80 + 66])
+        };
+        let (_, s) = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN)
+            .hue_from_robots([240, 120, 110]);
+        assert!(s < DULL * 0.9, "{s}");
+        assert_eq!(run([240, 120, 110], 20.0), (0, Class::Robot as u8));
+        assert_eq!(run([150, 75, 70], 20.0), (1, Class::Obstacle as u8));
+        assert_eq!(run([240, 120, 110], 8.0), (1, Class::Obstacle as u8));
+    }
+
+    #[test]
+    fn a_highlight_read_as_floor_in_a_robot_s_middle_is_the_robot_s() {
+        // As above, the fourth robot's middle 4 × 4 so pale that it reads as floor: a ring of
+        // the robots' colour, dull, whose hole is the robot's.
+        let mut img = RgbImage::from_pixel(80, 20, Rgb([128, 128, 128]));
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let mut classes = vec![Class::Floor as u8; 80 * 20];
+        for (x0, c) in [
+            (2, [200, 20, 20]),
+            (22, [150, 15, 15]),
+            (42, [210, 30, 25]),
+            (62, [240, 120, 110]),
+        ] {
+            for y in 6..14u32 {
+                for x in x0..x0 + 8 {
+                    let middle = x0 == 62 && (2..6).contains(&(x - x0)) && (8..12).contains(&y);
+                    img.put_pixel(x, y, Rgb(if middle { [250, 235, 230] } else { c }));
+                    if !middle {
+                        classes[y as usize * 80 + x as usize] = Class::Robot as u8;
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 20.0)),
+            0
+        );
+        for x in 62..70 {
+            assert_eq!(classes[10 * 80 + x], Class::Robot as u8, "x = {x}");
+        }
+        // A floor pixel beside it is left as it is.
+        assert_eq!(classes[10 * 80 + 70], Class::Floor as u8);
+    }
+
     #[test]
     fn a_dull_blob_of_the_robots_hue_is_a_shelf() {
         // A grey floor, three red robots (saturated) and a dusty-rose shelf of the robots' hue.
@@ -205,7 +414,10 @@ mod tests {
         put(12, 18, [150, 15, 15]);
         put(22, 28, [220, 40, 30]);
         put(34, 56, [170, 110, 105]);
-        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            1
+        );
         assert_eq!(classes[10 * 60 + 40], Class::Obstacle as u8);
         for x in [4, 14, 24] {
             assert_eq!(classes[10 * 60 + x], Class::Robot as u8);
@@ -236,7 +448,10 @@ mod tests {
         for y in 5..15u32 {
             img.put_pixel(56, y, Rgb([180, 70, 60]));
         }
-        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            1
+        );
         for x in 34..56 {
             assert_eq!(classes[10 * 70 + x], Class::Obstacle as u8, "x = {x}");
         }
@@ -263,7 +478,10 @@ mod tests {
         for (x, y) in [(40, 8), (41, 8), (40, 9)] {
             img.put_pixel(x, y, Rgb([200, 20, 20]));
         }
-        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            1
+        );
         assert_eq!(classes[8 * 70 + 40], Class::Obstacle as u8);
     }
 
@@ -290,7 +508,10 @@ mod tests {
         }
         let (hue, s) = classifier.hue_from_robots([200, 100, 30]);
         assert!(hue > HUE_APART && s > 0.8, "{hue} {s}");
-        assert_eq!(settle(&mut classes, &img, &classifier), 1);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            1
+        );
         // (The shelf's column against the robot stays the robot's, as its rim.)
         for x in 34..55 {
             assert_eq!(classes[10 * 80 + x], Class::Obstacle as u8, "x = {x}");
@@ -320,7 +541,10 @@ mod tests {
                 classes[y as usize * 80 + x as usize] = Class::Robot as u8;
             }
         }
-        assert_eq!(settle(&mut classes, &img, &classifier), 6);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            6
+        );
         assert_eq!(classes[10 * 80 + 4], Class::Robot as u8);
         assert_eq!(classes[2 * 80 + 34], Class::Obstacle as u8);
     }
@@ -338,7 +562,10 @@ mod tests {
         }
         let alone = classes.clone();
         // One blob: nothing to compare it with.
-        assert_eq!(settle(&mut classes, &img, &classifier), 0);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            0
+        );
         assert_eq!(classes, alone);
         // A second robot in a shadow: darker, as saturated.
         for y in 5..15u32 {
@@ -347,6 +574,9 @@ mod tests {
                 classes[y as usize * 30 + x as usize] = Class::Robot as u8;
             }
         }
-        assert_eq!(settle(&mut classes, &img, &classifier), 0);
+        assert_eq!(
+            settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+            0
+        );
     }
 }

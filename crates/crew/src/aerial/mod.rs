@@ -746,7 +746,7 @@ fn read_inner(
     lined::settle(img, &mut classes, width, maps, (gw, gh), px);
     let leaned = pale::settle(&mut classes, img, &classifier, pale::square_px(px));
     tinted::recover(&mut classes, img, &classifier, maps, (gw, gh));
-    dull::settle(&mut classes, img, &classifier);
+    dull::settle(&mut classes, img, &classifier, &image_to_floor);
     let hue_of = |i: usize| {
         let p = img.get_pixel((i % width) as u32, (i / width) as u32).0;
         colour::hue_saturation(classifier.balanced(p)).0
