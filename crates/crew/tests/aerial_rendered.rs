@@ -319,6 +319,15 @@ fn a_dim_speck_of_a_mark_s_colour_is_set_aside() {
     read_exactly("d0015");
 }
 
+/// A robot against a tan shelf that reads as the robots' colour, its rim blurred into the
+/// shelf, keeps a compact vivid piece of 0.54 robots: it stays a robot (issue #29's thirtieth
+/// round, `dull::PIECE_SMALL`). Before, o0039's robot was turned with the shelf, and its cell
+/// was refused as the far cell of the shelf's run.
+#[test]
+fn a_robot_against_a_shelf_of_its_hue_keeps_its_compact_piece() {
+    read_exactly("o0039");
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

@@ -34,7 +34,12 @@
 //! [`HUE_APART`] of their hue, each at least
 //! [`blobs::SMALL`] times the typical robot large, stay the robots', with the blob's pixels
 //! next to them (their rims); until issue #29's twenty-fifth round the robot was turned with
-//! the shelf (a0030, Y0011, p0037: refused as a robot lost, "more goals than robots").
+//! the shelf (a0030, Y0011, p0037: refused as a robot lost, "more goals than robots"). A
+//! robot's vivid piece is smaller where its rim blurs into the shelf: since the thirtieth
+//! round a compact piece ([`PIECE_COMPACT`], [`PIECE_ROUND`]) of at least [`PIECE_SMALL`]
+//! robots stays the robots' too (o0039's and P0031's robots against tan shelves, 0.44 to 0.6
+//! robots; of the compact pieces from 0.35 to 0.6 robots on families A-Z and a-y, 13 lay on a
+//! robot's centre, none elsewhere).
 //! Goals are left as they are: their paint varies more, and a goal-coloured shelf is told by
 //! its shape ([`super::shelves`]).
 //!
@@ -166,6 +171,15 @@ fn highlighted(
         .then_some(whole)
 }
 
+/// A compact piece of vivid pixels in a dull blob, of at least this many typical robots, is a
+/// robot's ([`robots_within`]) ...
+pub const PIECE_SMALL: f64 = 0.35;
+/// ... at least this [`blobs::Blob::solidity`] ...
+pub const PIECE_COMPACT: f64 = 0.8;
+/// ... and at most this [`blobs::Blob::elongation`] (a shelf's vivid specks and strips are
+/// ragged or long).
+pub const PIECE_ROUND: f64 = 1.6;
+
 /// Turns the dull blobs of the robots' colour, and the large ones of another hue, into
 /// obstacle blobs, but for the robots within them ([`robots_within`]) and for robots under a
 /// highlight ([`highlighted`]); returns how many.
@@ -257,7 +271,7 @@ fn middle(values: &mut [f64]) -> f64 {
 
 /// The pixels of a dull blob that stay a robot's: the 8-connected pieces of its `vivid`
 /// pixels (as saturated as the robots) of at least [`blobs::SMALL`] times the typical robot's
-/// `area`, each with the blob's pixels next to it (its rim, blurred toward the shelf's
+/// `area` (or [`PIECE_SMALL`] times it when compact), each with the blob's pixels next to it (its rim, blurred toward the shelf's
 /// colour): a robot standing against a shelf of its hue joins the shelf's blob (a0030,
 /// Y0011: red robots against dusty-rose shelves; issue #29's twenty-fifth round), and was
 /// turned with it. Pixel indices (row-major, `width` wide), sorted.
@@ -297,7 +311,19 @@ fn robots_within(
                 }
             }
         }
-        if (piece.len() as f64) < least {
+        let compact = || {
+            let local = blobs::Blob::from_pixels(
+                piece
+                    .iter()
+                    .map(|&i| ((i % w) as u32, (i / w) as u32))
+                    .collect(),
+            );
+            local.solidity() >= PIECE_COMPACT && local.elongation() <= PIECE_ROUND
+        };
+        let robots = piece.len() as f64 / area as f64;
+        if (piece.len() as f64) < least
+            && (robots < PIECE_SMALL || (piece.len() as f64) < blobs::MIN_AREA as f64 || !compact())
+        {
             continue;
         }
         let global = |i: usize| (y0 as usize + i / w - 1) * width + x0 as usize + i % w - 1;
@@ -483,6 +509,57 @@ mod tests {
             1
         );
         assert_eq!(classes[8 * 70 + 40], Class::Obstacle as u8);
+    }
+
+    #[test]
+    fn a_compact_piece_of_a_robot_against_a_dull_shelf_stays_a_robot() {
+        // Three red robots of 60 px and a dusty-rose shelf; against it a vivid piece of 25 px
+        // (0.42 robots) stays a robot when compact (its rim blurred into the shelf), and is
+        // the shelf's when it is a strip of 24 px.
+        let run = |piece: &[(u32, u32)]| {
+            let mut img = RgbImage::from_pixel(70, 30, Rgb([128, 128, 128]));
+            let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+            let mut classes = vec![Class::Floor as u8; 70 * 30];
+            let mut put = |x: u32, y: u32, c: [u8; 3]| {
+                img.put_pixel(x, y, Rgb(c));
+                classes[y as usize * 70 + x as usize] = Class::Robot as u8;
+            };
+            for (x0, c) in [(2, [200, 20, 20]), (12, [150, 15, 15]), (22, [220, 40, 30])] {
+                for y in 5..15u32 {
+                    for x in x0..x0 + 6 {
+                        put(x, y, c);
+                    }
+                }
+            }
+            for y in 5..25u32 {
+                for x in 34..56u32 {
+                    put(x, y, [170, 110, 105]);
+                }
+            }
+            for &(x, y) in piece {
+                put(x, y, [200, 25, 20]);
+            }
+            assert_eq!(
+                settle(&mut classes, &img, &classifier, &floor_of(&img, 10.0)),
+                1
+            );
+            classes
+        };
+        let square: Vec<(u32, u32)> = (56..61)
+            .flat_map(|x| (8..13).map(move |y| (x, y)))
+            .collect();
+        let classes = run(&square);
+        for &(x, y) in &square {
+            assert_eq!(classes[y as usize * 70 + x as usize], Class::Robot as u8);
+        }
+        assert_eq!(classes[10 * 70 + 40], Class::Obstacle as u8);
+        let strip: Vec<(u32, u32)> = (56..58)
+            .flat_map(|x| (6..18).map(move |y| (x, y)))
+            .collect();
+        let classes = run(&strip);
+        for &(x, y) in &strip {
+            assert_eq!(classes[y as usize * 70 + x as usize], Class::Obstacle as u8);
+        }
     }
 
     #[test]
