@@ -328,6 +328,15 @@ fn a_robot_against_a_shelf_of_its_hue_keeps_its_compact_piece() {
     read_exactly("o0039");
 }
 
+/// A tan shelf whose top reads as a colour that cannot be told, with robot-coloured specks,
+/// fills one cell of its column: an obstacle, as a blob filling two cells is (issue #29's
+/// thirtieth round, `shelves::ONE_CELL`). P0028 was refused for "a blob of 183 px whose colour
+/// is neither the robots' nor the goals' nor clearly another".
+#[test]
+fn a_top_of_a_colour_between_over_one_cell_is_an_obstacle() {
+    read_exactly("P0028");
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

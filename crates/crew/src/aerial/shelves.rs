@@ -347,6 +347,34 @@ fn filled_shifted(
     width: usize,
     maps: (&Homography, &Homography),
     floor: (u32, u32),
+    share: (
+        &mut std::collections::BTreeMap<usize, Middle>,
+        Shift,
+        f64,
+        bool,
+    ),
+) -> Vec<usize> {
+    let filled = filled_middles(pixels, classes, width, maps, floor, share);
+    let w = floor.0 as usize;
+    let side_by_side = filled.iter().any(|&c| {
+        (c % w + 1 < w && filled.binary_search(&(c + 1)).is_ok())
+            || filled.binary_search(&(c + w)).is_ok()
+    });
+    if side_by_side {
+        filled
+    } else {
+        Vec::new()
+    }
+}
+
+/// The cells of the grid shifted by `shift` whose middles a blob fills, one or more, side by
+/// side or not (see [`filled_shifted`]), in increasing order.
+fn filled_middles(
+    pixels: &[usize],
+    classes: &[u8],
+    width: usize,
+    maps: (&Homography, &Homography),
+    floor: (u32, u32),
     (known, shift, share, alone): (
         &mut std::collections::BTreeMap<usize, Middle>,
         Shift,
@@ -366,25 +394,14 @@ fn filled_shifted(
     let mut held: Vec<(usize, u32)> = count.into_iter().collect();
     held.sort_unstable();
     // The obstacle pixels in the middles of those cells (the blob's own too) fill them.
-    let filled: Vec<usize> = held
-        .into_iter()
+    held.into_iter()
         .filter(|&(c, n)| {
             let m = middle_shifted(known, classes, width, maps, floor, (c, shift));
             let obstacle = if alone { 0 } else { m.obstacle };
             m.pixels > 0 && f64::from(n + obstacle) >= share * f64::from(m.pixels)
         })
         .map(|(c, _)| c)
-        .collect();
-    let w = floor.0 as usize;
-    let side_by_side = filled.iter().any(|&c| {
-        (c % w + 1 < w && filled.binary_search(&(c + 1)).is_ok())
-            || filled.binary_search(&(c + w)).is_ok()
-    });
-    if side_by_side {
-        filled
-    } else {
-        Vec::new()
-    }
+        .collect()
 }
 
 /// What [`absorb`] did.
@@ -415,6 +432,20 @@ pub fn absorb(
     let height = classes.len() / width.max(1);
     let mut out = Absorbed::default();
     let blobs_found = mixed_blobs(classes, width);
+    // The areas of the blobs of a colour that cannot be told for the most part: a shelf of
+    // such a colour may fill a single cell ([`ONE_CELL`]) unless blobs alike abound.
+    let unsure_areas: Vec<usize> = blobs_found
+        .iter()
+        .filter(|b| mostly_unsure(b, classes))
+        .map(Vec::len)
+        .collect();
+    let alike_abound = |n: usize| {
+        unsure_areas
+            .iter()
+            .filter(|&&m| m * blobs::ALIKE >= n && m <= blobs::ALIKE * n)
+            .count()
+            >= ONE_CELL_ALIKE
+    };
     // Only a blob at least two cells large can fill two.
     let cells = f64::from(floor.0) * f64::from(floor.1);
     let inside = classes
@@ -498,9 +529,14 @@ pub fn absorb(
                 .collect::<Vec<usize>>()
         })
         .filter(|b| {
-            // At [`LOOSE`], a blob that fills two cells may be smaller.
-            b.len() as f64 >= LOOSE / FILLED * two_cells as f64
-                && b.iter().any(|&i| classes[i] != Class::Obstacle as u8)
+            // At [`LOOSE`], a blob that fills two cells may be smaller; one of a colour that
+            // cannot be told may fill one cell ([`ONE_CELL`]).
+            let least = if mostly_unsure(b, classes) {
+                FILLED / 2.0 * two_cells as f64
+            } else {
+                LOOSE / FILLED * two_cells as f64
+            };
+            b.len() as f64 >= least && b.iter().any(|&i| classes[i] != Class::Obstacle as u8)
         })
         .map(|b| with_holes(b, classes, width, hole_px))
         .collect();
@@ -546,7 +582,18 @@ pub fn absorb(
                     if !aligned.is_empty() {
                         return Some((aligned, ALIGNED));
                     }
-                    fills(shifted, b, classes, false, FILLED)
+                    fills(shifted, b, classes, false, FILLED).or_else(|| {
+                        // A shelf of a colour that cannot be told over one cell.
+                        if !mostly_unsure(b, classes) || alike_abound(b.len()) {
+                            return None;
+                        }
+                        (0..steps).find_map(|k| {
+                            let known = if k == 0 { &mut *known } else { &mut shifted[k] };
+                            let share = (known, shift_of(k), FILLED, false);
+                            let cells = filled_middles(b, classes, width, maps, floor, share);
+                            (!cells.is_empty()).then(|| (cells, shift_of(k)))
+                        })
+                    })
                 },
             )
             .collect()
@@ -671,6 +718,34 @@ pub fn absorb(
         out.turned += 1;
     }
     out
+}
+
+/// A blob of which a colour that cannot be told makes at least this share of the pixels that
+/// are not floor (its holes), and at least [`ONE_CELL_MARKS`] times its mark-coloured ones, is
+/// mostly of such a colour ([`mostly_unsure`]). Such a blob that fills a single cell (at
+/// [`FILLED`], of the grid or of a shifted one) is an obstacle as one filling two is: a shelf of
+/// one cell whose top reads between a mark's colour and another's (cartons of brown or beige
+/// card, an olive or tan top; since issue #29's thirtieth round). A mark of such a colour as
+/// large as a cell is lost to it, and the count of goals against robots refuses the view; the
+/// robots of a view whose robots all read so (families w and x: large cylinders of a colour
+/// between) are many blobs alike, so a blob with [`ONE_CELL_ALIKE`] such blobs of its area
+/// (within [`blobs::ALIKE`], itself among them) is left as it is.
+pub const ONE_CELL: f64 = 0.25;
+/// ... see [`ONE_CELL`].
+pub const ONE_CELL_MARKS: usize = 2;
+/// ... see [`ONE_CELL`].
+pub const ONE_CELL_ALIKE: usize = 3;
+
+/// Whether a blob (pixel indices) is mostly of a colour that cannot be told ([`ONE_CELL`]).
+fn mostly_unsure(b: &[usize], classes: &[u8]) -> bool {
+    let (mut unsure, mut marks, mut solid) = (0usize, 0usize, 0usize);
+    for &i in b {
+        let c = classes[i];
+        unsure += usize::from(c == Class::Unsure as u8);
+        marks += usize::from(c == Class::Goal as u8 || c == Class::Robot as u8);
+        solid += usize::from(c != Class::Floor as u8);
+    }
+    unsure > 0 && unsure >= ONE_CELL_MARKS * marks && unsure as f64 >= ONE_CELL * solid as f64
 }
 
 /// The `k`-th grid shifted by quarters of a cell ([`SHIFT_STEPS`]), row-major from the
@@ -1443,9 +1518,46 @@ mod tests {
     }
 
     #[test]
-    fn a_blob_filling_one_cell_is_not_judged() {
+    fn a_goal_coloured_blob_filling_one_cell_is_not_judged() {
         let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (0, 0, 10, 10), Class::Goal);
+        let before = classes.clone();
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
+            0
+        );
+        assert_eq!(classes, before);
+    }
+
+    #[test]
+    fn a_top_of_a_colour_between_over_one_cell_is_an_obstacle_unless_many_are_alike() {
+        // Goals 5 px wide in cells (3, 0) and (3, 1); a top of a colour that cannot be told,
+        // with a few goal-coloured specks, over cell (0, 0): an obstacle.
+        let (to_image, to_floor, mut classes) = floor();
+        paint(&mut classes, 40, (33, 3, 38, 8), Class::Goal);
+        paint(&mut classes, 40, (33, 13, 38, 18), Class::Goal);
         paint(&mut classes, 40, (0, 0, 10, 10), Class::Unsure);
+        paint(&mut classes, 40, (4, 4, 6, 6), Class::Goal);
+        assert_eq!(
+            absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
+            1
+        );
+        assert_eq!(classes[5 * 40 + 5], Class::Obstacle as u8);
+        assert_eq!(classes[5 * 40 + 35], Class::Goal as u8);
+        // Mostly goal-coloured, it is left as it is (two cells side by side are needed).
+        let (_, _, mut classes) = floor();
+        paint(&mut classes, 40, (33, 3, 38, 8), Class::Goal);
+        paint(&mut classes, 40, (0, 0, 10, 10), Class::Goal);
+        paint(&mut classes, 40, (2, 2, 8, 8), Class::Unsure);
+        let before = classes.clone();
+        absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue);
+        assert_eq!(classes, before);
+        // Three such blobs, one a cell, alike: marks of such a colour, left as they are.
+        let (_, _, mut classes) = floor();
+        paint(&mut classes, 40, (33, 3, 38, 8), Class::Goal);
+        for x0 in [0, 11, 22] {
+            paint(&mut classes, 40, (x0, 11, x0 + 9, 20), Class::Unsure);
+        }
         let before = classes.clone();
         assert_eq!(
             absorb(&mut classes, 40, (&to_image, &to_floor), (4, 2), &one_hue).turned,
