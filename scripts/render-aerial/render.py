@@ -593,6 +593,18 @@ FAMILIES = {
                              (0.35, 0.40, 0.48)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 165),
               sun_elevation=(25, 75), sun_power=(2.2, 3.6)),
+    # 1: held out after issue #29's thirtieth round (robots under a highlight, robots against
+    # shelves of their hue, tops of a colour between over one cell). Box-and-dome, puck and
+    # turned-box robots, ring, ellipse and diamond goals, mid-grey, pale straw and dark slate-blue
+    # floors tiled every half cell, salmon, bottle-green, light grey, navy and tan shelves from
+    # 0.3 to 1.9 high inset 0.06 cell, a sun 30-70 degrees up of strength 2.4-3.8, and a camera
+    # from 50 to 160 cells per 24 high.
+    "1": dict(robot_shapes=("boxdome", "puck", "rotbox"), goal_shapes=("ring", "ellipse", "diamond"),
+              floors=((0.50, 0.50, 0.50), (0.78, 0.72, 0.52), (0.20, 0.24, 0.32)),
+              shelf_colours=((0.85, 0.50, 0.42), (0.10, 0.35, 0.20), (0.80, 0.80, 0.80), (0.10, 0.15, 0.40),
+                             (0.65, 0.50, 0.32)),
+              shelf_height=(0.3, 1.9), tiles=0.5, shelf_inset=0.06, warm=0.3, camera_height=(50, 160),
+              sun_elevation=(30, 70), sun_power=(2.4, 3.8)),
 }
 
 
