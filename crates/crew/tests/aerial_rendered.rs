@@ -337,6 +337,14 @@ fn a_top_of_a_colour_between_over_one_cell_is_an_obstacle() {
     read_exactly("P0028");
 }
 
+/// Specks of an obstacle's colour under a tenth of a cell (the crossings of S0025's white
+/// painted lines) are no obstacle's (issue #29's thirtieth round, `pixels::set_aside_specks`):
+/// before, cell (13, 0) was refused as 38 % covered.
+#[test]
+fn specks_of_an_obstacle_s_colour_are_set_aside() {
+    read_exactly("S0025");
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

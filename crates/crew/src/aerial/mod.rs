@@ -755,6 +755,7 @@ fn read_inner(
     enclosed::settle(&mut classes, width);
     alike::settle(&mut classes, img, &classifier);
     let faint_tops = faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
+    pixels::set_aside_specks(&mut classes, width, px);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
         floor_to_image

@@ -25,6 +25,40 @@ use rayon::prelude::*;
 /// neither floor nor obstacle, and counted nowhere.
 pub const OUTSIDE: u8 = 5;
 
+/// An 8-connected blob of obstacle pixels under this share of a cell's area is a speck
+/// ([`set_aside_specks`]).
+pub const SPECK: f64 = 0.1;
+
+/// Sets aside the specks of an obstacle's colour: the 8-connected blobs of obstacle pixels
+/// under [`SPECK`] of a cell (`cell_px` pixels a side; at least 3 pixels) become [`OUTSIDE`],
+/// counted neither as obstacle nor as floor (in the cells' cover, their looks and their
+/// shadows), as painted lines are. A shelf stands on whole cells: its top, its faces and its
+/// edges are one piece, or pieces a cell long. Specks are a dark or noisy floor's grain, or
+/// JPEG's blocks, saturated by white balance (R0004's and X0020's dark floors, d0016's shadow),
+/// the crossings of painted lines (S0025), a pale top's grain at the obstacle colour's limit.
+/// Counted as obstacle, they made free cells half covered (refused), or moved a cover's edge
+/// (a lean measured off by them). A top read as specks alone is judged by what is left, its
+/// pixels of the floor's colour: a free cell that does not look like the floor is refused.
+/// Since issue #29's thirtieth round: on families A–Z and a–y, +5 views read exactly (P0018,
+/// S0025, X0023, n0012, t0021), one refused that read exactly (K0004: a cell whose specks made
+/// it covered is now free and does not look like the floor), and the views that the truth
+/// shows would read wrongly were their refusals settled are as many as before (212). At 0.2
+/// cell, +7 −1; at 0.3, R0026 read wrongly (a speckled top's cells read free): 0.1 keeps a
+/// factor of three.
+///
+/// Cost: one labelling of the obstacle pixels.
+pub fn set_aside_specks(classes: &mut [u8], width: usize, cell_px: f64) -> usize {
+    let least = (SPECK * cell_px * cell_px).max(3.0);
+    let mut specks = 0;
+    for b in super::blobs::find(classes, width, Class::Obstacle as u8) {
+        if (b.area() as f64) < least {
+            b.paint(classes, width, OUTSIDE);
+            specks += 1;
+        }
+    }
+    specks
+}
+
 /// Obstacle and floor pixels counted in the middle of each cell.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Coverage {
@@ -666,6 +700,47 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn specks_of_an_obstacle_s_colour_are_set_aside_and_a_shelf_is_not() {
+        // Cells of 10 px: a shelf of 10 × 20 px, a speck of 3 × 3 (0.09 cell), a thin strip of
+        // 1 × 12 (0.12 cell) and a pixel of floor between two specks of 2 px (8-connected
+        // apart: diagonal neighbours join).
+        let (w, h) = (40usize, 30usize);
+        let mut classes = vec![Class::Floor as u8; w * h];
+        let mut put = |x0: usize, y0: usize, x1: usize, y1: usize| {
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    classes[y * w + x] = Class::Obstacle as u8;
+                }
+            }
+        };
+        put(0, 0, 10, 20);
+        put(20, 2, 23, 5);
+        put(30, 2, 31, 14);
+        put(20, 25, 22, 26);
+        put(22, 26, 24, 27);
+        assert_eq!(set_aside_specks(&mut classes, w, 10.0), 2);
+        assert_eq!(classes[5 * w + 5], Class::Obstacle as u8);
+        assert_eq!(classes[3 * w + 21], OUTSIDE);
+        assert_eq!(classes[8 * w + 30], Class::Obstacle as u8);
+        // The two diagonal specks are one blob of 4 px: set aside as one.
+        assert_eq!(classes[25 * w + 20], OUTSIDE);
+        assert_eq!(classes[26 * w + 23], OUTSIDE);
+        assert_eq!(classes[10 * w + 15], Class::Floor as u8);
+        // On cells of 4 px, 3 px at least: a speck of 2 px goes, the 3 × 3 one stays.
+        let mut classes = vec![Class::Floor as u8; w * h];
+        classes[0] = Class::Obstacle as u8;
+        classes[1] = Class::Obstacle as u8;
+        for y in 10..13 {
+            for x in 10..13 {
+                classes[y * w + x] = Class::Obstacle as u8;
+            }
+        }
+        assert_eq!(set_aside_specks(&mut classes, w, 4.0), 1);
+        assert_eq!(classes[0], OUTSIDE);
+        assert_eq!(classes[11 * w + 11], Class::Obstacle as u8);
     }
 
     #[test]
