@@ -271,8 +271,9 @@ fn middle(values: &mut [f64]) -> f64 {
 
 /// The pixels of a dull blob that stay a robot's: the 8-connected pieces of its `vivid`
 /// pixels (as saturated as the robots) of at least [`blobs::SMALL`] times the typical robot's
-/// `area` (or [`PIECE_SMALL`] times it when compact), each with the blob's pixels next to it (its rim, blurred toward the shelf's
-/// colour): a robot standing against a shelf of its hue joins the shelf's blob (a0030,
+/// `area` (or [`PIECE_SMALL`] times it when compact), each with the blob's pixels next to it
+/// (its rim, blurred toward the shelf's colour): a robot standing against a shelf of its hue
+/// joins the shelf's blob (a0030,
 /// Y0011: red robots against dusty-rose shelves; issue #29's twenty-fifth round), and was
 /// turned with it. Pixel indices (row-major, `width` wide), sorted.
 fn robots_within(

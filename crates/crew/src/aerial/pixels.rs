@@ -1,5 +1,6 @@
 //! Two passes over the image: every pixel's class, and (once [`super::shelves`] has judged
-//! the large blobs) how much of each cell's floor an obstacle covers.
+//! the large blobs, and the specks of an obstacle's colour are set aside,
+//! [`set_aside_specks`]) how much of each cell's floor an obstacle covers.
 //!
 //! A pixel is classified by its own colour when that is a robot's or a goal's (marks keep
 //! their every pixel, a sliver of a robot under a leaning top too), and otherwise by its
@@ -705,8 +706,8 @@ mod tests {
     #[test]
     fn specks_of_an_obstacle_s_colour_are_set_aside_and_a_shelf_is_not() {
         // Cells of 10 px: a shelf of 10 × 20 px, a speck of 3 × 3 (0.09 cell), a thin strip of
-        // 1 × 12 (0.12 cell) and a pixel of floor between two specks of 2 px (8-connected
-        // apart: diagonal neighbours join).
+        // 1 × 12 (0.12 cell), and two specks of 2 px touching at a corner (one blob of 4 px:
+        // diagonal neighbours join).
         let (w, h) = (40usize, 30usize);
         let mut classes = vec![Class::Floor as u8; w * h];
         let mut put = |x0: usize, y0: usize, x1: usize, y1: usize| {

@@ -54,6 +54,11 @@
 //! Otherwise nothing changes: the blob's goal pixels are goals, its unsure pixels are
 //! refused as before.
 //!
+//! A blob mostly of a colour that cannot be told ([`ONE_CELL`]) may fill a single cell
+//! instead of two: a shelf of one cell whose top reads between a mark's colour and another's
+//! (since issue #29's thirtieth round), unless such blobs of its area abound (marks of such a
+//! colour).
+//!
 //! Limit: a goal touching such a blob mostly inside the cells it fills (a goal against the
 //! shelf's side, the grid shifted by its lean) is taken as part of it; when the view has as
 //! many goals as robots the reading is then refused ("fewer goals than robots").
@@ -530,7 +535,8 @@ pub fn absorb(
         })
         .filter(|b| {
             // At [`LOOSE`], a blob that fills two cells may be smaller; one of a colour that
-            // cannot be told may fill one cell ([`ONE_CELL`]).
+            // cannot be told may fill one cell ([`ONE_CELL`]): [`FILLED`] of one cell's
+            // worth, the obstacle pixels beside it counting too.
             let least = if mostly_unsure(b, classes) {
                 FILLED / 2.0 * two_cells as f64
             } else {
