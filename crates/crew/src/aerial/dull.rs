@@ -356,33 +356,45 @@ mod tests {
             .unwrap()
     }
 
-    #[test]
-    fn a_robot_under_a_highlight_stays_a_robot() {
-        // Three red robots 8 px square and a fourth greyed by a highlight, paler and
-        // brighter, on cells of 20 px: it stays a robot. The same blob darker (a dusty
-        // shelf's piece), or a whole cell large, is turned.
-        let run = |pale: [u8; 3], cell: f64| {
-            let mut img = RgbImage::from_pixel(80, 20, Rgb([128, 128, 128]));
-            let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
-            let mut classes = vec![Class::Floor as u8; 80 * 20];
-            for (x0, c) in [
-                (2, [200, 20, 20]),
-                (22, [150, 15, 15]),
-                (42, [210, 30, 25]),
-                (62, pale),
-            ] {
-                for y in 6..14u32 {
-                    for x in x0..x0 + 8 {
-                        img.put_pixel(x, y, Rgb(c));
-                        classes[y as usize * 80 + x as usize] = Class::Robot as u8;
+    /// Three red robots 8 px square on a grey floor 80 × 20 px, and a fourth of colour `pale`
+    /// at x = 62..70, its middle 4 × 4 of colour `middle` read as floor when given.
+    fn four_robots(pale: [u8; 3], middle: Option<[u8; 3]>) -> (RgbImage, Vec<u8>) {
+        let mut img = RgbImage::from_pixel(80, 20, Rgb([128, 128, 128]));
+        let mut classes = vec![Class::Floor as u8; 80 * 20];
+        for (x0, c) in [
+            (2, [200, 20, 20]),
+            (22, [150, 15, 15]),
+            (42, [210, 30, 25]),
+            (62, pale),
+        ] {
+            for y in 6..14u32 {
+                for x in x0..x0 + 8 {
+                    let hole = x0 == 62 && (2..6).contains(&(x - x0)) && (8..12).contains(&y);
+                    match middle.filter(|_| hole) {
+                        Some(m) => img.put_pixel(x, y, Rgb(m)),
+                        None => {
+                            img.put_pixel(x, y, Rgb(c));
+                            classes[y as usize * 80 + x as usize] = Class::Robot as u8;
+                        }
                     }
                 }
             }
+        }
+        (img, classes)
+    }
+
+    #[test]
+    fn a_robot_under_a_highlight_stays_a_robot() {
+        // The fourth robot greyed by a highlight, paler and brighter, on cells of 20 px: it
+        // stays a robot. The same blob darker (a dusty shelf's piece), or a whole cell large,
+        // is turned.
+        let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
+        let run = |pale: [u8; 3], cell: f64| {
+            let (img, mut classes) = four_robots(pale, None);
             let turned = settle(&mut classes, &img, &classifier, &floor_of(&img, cell));
             (turned, classes[10 * 80 + 66])
         };
-        let (_, s) = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN)
-            .hue_from_robots([240, 120, 110]);
+        let (_, s) = classifier.hue_from_robots([240, 120, 110]);
         assert!(s < DULL * 0.9, "{s}");
         assert_eq!(run([240, 120, 110], 20.0), (0, Class::Robot as u8));
         assert_eq!(run([150, 75, 70], 20.0), (1, Class::Obstacle as u8));
@@ -393,25 +405,8 @@ mod tests {
     fn a_highlight_read_as_floor_in_a_robot_s_middle_is_the_robot_s() {
         // As above, the fourth robot's middle 4 × 4 so pale that it reads as floor: a ring of
         // the robots' colour, dull, whose hole is the robot's.
-        let mut img = RgbImage::from_pixel(80, 20, Rgb([128, 128, 128]));
         let classifier = Classifier::new([128.0, 128.0, 128.0], Hue::RED, Hue::GREEN);
-        let mut classes = vec![Class::Floor as u8; 80 * 20];
-        for (x0, c) in [
-            (2, [200, 20, 20]),
-            (22, [150, 15, 15]),
-            (42, [210, 30, 25]),
-            (62, [240, 120, 110]),
-        ] {
-            for y in 6..14u32 {
-                for x in x0..x0 + 8 {
-                    let middle = x0 == 62 && (2..6).contains(&(x - x0)) && (8..12).contains(&y);
-                    img.put_pixel(x, y, Rgb(if middle { [250, 235, 230] } else { c }));
-                    if !middle {
-                        classes[y as usize * 80 + x as usize] = Class::Robot as u8;
-                    }
-                }
-            }
-        }
+        let (img, mut classes) = four_robots([240, 120, 110], Some([250, 235, 230]));
         assert_eq!(
             settle(&mut classes, &img, &classifier, &floor_of(&img, 20.0)),
             0
