@@ -890,7 +890,10 @@ def draw_scene(args, seed):
     return rng, fam, (w, h), cell_px, robot, goal, (blocked, shelves, robots[:n], goals[:n])
 
 
-def render_one(args, seed, out_dir):
+def draw_view(args, seed):
+    """The scene's random draws up to its camera, in the order render_one makes them: those of
+    draw_scene, then the floor's colour, painted lines and texture, the light and the camera.
+    visibility.py draws a view again with it (no rendering)."""
     rng, fam, (w, h), cell_px, robot, goal, (blocked, shelves, robots, goals) = draw_scene(args, seed)
     base = fam["floors"][int(rng.integers(len(fam["floors"])))]
     lines = None
@@ -899,8 +902,6 @@ def render_one(args, seed, out_dir):
                      colour=[0.12, 0.12, 0.12] if rng.random() < 0.6 else [0.92, 0.92, 0.9])
     tex_px = int(min(24, max(8, 4096 // max(w, h))))
     tex = floor_texture(rng, w, h, tex_px, base, lines, fam.get("tiles"))
-    tex_path = os.path.join(out_dir, f".floor-{args.family}{seed}.png")
-    Image.fromarray((tex * 255).astype(np.uint8)).save(tex_path)
     elev = math.radians(rng.uniform(*fam.get("sun_elevation", (35, 80))))
     az = rng.uniform(0, 2 * math.pi)
     warm = rng.uniform(-fam.get("warm", 0.15), fam.get("warm", 0.15))
@@ -911,6 +912,17 @@ def render_one(args, seed, out_dir):
                  sky=[0.35 * (1 - warm / 2), 0.38, 0.42 * (1 + warm / 2)],
                  soft=float(rng.uniform(1.0, 6.0)) if rng.random() < 0.5 else 0.0)
     cam = camera(rng, w, h, cell_px, args.tilt, fam.get("camera_height", (60, 140)))
+    return dict(rng=rng, fam=fam, grid=(w, h), cell_px=cell_px, robot=robot, goal=goal, blocked=blocked,
+                shelves=shelves, robots=robots, goals=goals, lines=lines, tex=tex, light=light, cam=cam)
+
+
+def render_one(args, seed, out_dir):
+    v = draw_view(args, seed)
+    rng, fam, (w, h), cell_px, robot, goal = v["rng"], v["fam"], v["grid"], v["cell_px"], v["robot"], v["goal"]
+    blocked, shelves, robots, goals = v["blocked"], v["shelves"], v["robots"], v["goals"]
+    lines, light, cam = v["lines"], v["light"], v["cam"]
+    tex_path = os.path.join(out_dir, f".floor-{args.family}{seed}.png")
+    Image.fromarray((v["tex"] * 255).astype(np.uint8)).save(tex_path)
     mi_scene = mi.load_dict(scene_dict(rng, fam, args, w, h, cell_px, tex_path, shelves, robots, goals,
                                        cam, robot, goal, light))
     img = np.array(mi.render(mi_scene, seed=seed))
