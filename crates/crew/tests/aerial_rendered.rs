@@ -345,6 +345,16 @@ fn specks_of_an_obstacle_s_colour_are_set_aside() {
     read_exactly("S0025");
 }
 
+/// A sage top of four cells on a pale floor, under a tilted camera, is not found judged in
+/// its cells' middles; judged in the windows away from the nadir, it is (issue #29's
+/// thirty-first round, `faint::Window::Far`). Before, v0016 was refused for ten cells, among
+/// them those four (free cells unlike the floor, its shadow with no caster, the painted lines
+/// over it that do not show).
+#[test]
+fn a_pale_top_whose_face_fills_its_cells_middles_is_read() {
+    read_exactly("v0016");
+}
+
 /// White painted lines on a navy floor tint the whole floor's median colour: balanced on it,
 /// d0009's cells' floor read as tinted ("lit … but tinted"), and the view was refused. Read
 /// again balanced on the cells' middles, it is read exactly, and the reading says so (issue

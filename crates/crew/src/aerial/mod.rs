@@ -754,7 +754,25 @@ fn read_inner(
     let absorbed = shelves::absorb(&mut classes, width, maps, (gw, gh), &hue_of);
     enclosed::settle(&mut classes, width);
     alike::settle(&mut classes, img, &classifier);
-    let faint_tops = faint::settle(&mut classes, &leaned, width, maps, (gw, gh));
+    let mut faint_tops = faint::settle(
+        &mut classes,
+        &leaned,
+        width,
+        maps,
+        (gw, gh),
+        faint::Window::Middle,
+    );
+    // Then tops whose face fills their cells' middles, judged away from the nadir.
+    if let Some(n) = nadir {
+        faint_tops.extend(faint::settle(
+            &mut classes,
+            &leaned,
+            width,
+            maps,
+            (gw, gh),
+            faint::Window::Far(n),
+        ));
+    }
     pixels::set_aside_specks(&mut classes, width, px);
     let coverage = pixels::coverage(&classes, width, &image_to_floor, (gw, gh), nadir);
     let cell_centre_px = |i: usize| {
