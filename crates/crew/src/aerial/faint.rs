@@ -28,10 +28,11 @@
 //! cells must reach [`SHARE`]; the free rectangles of the Blender families' bright floors that
 //! reach it have floor around them leaning by 0.32 and more.
 //!
-//! The cells' middles miss a top whose face fills them: a run along the camera's line of
-//! sight, seen from the side, shows its shaded face (which does not lean pale) over the part
-//! of each cell toward the nadir and its top, leaning off, over the rest (y0038's pale
-//! blue-grey run: 60–65 % of each middle leaned, 83–99 % of the window away from the nadir).
+//! The cells' middles miss a top whose face fills them: under a tilted camera a run shows its
+//! side facing the nadir (lit otherwise than its top: it does not lean pale) over the part of
+//! each cell toward the nadir, and its top, leaning off, over the rest (y0038's pale blue-grey
+//! run down column 28: 39–65 % of each middle leaned, 83–99 % of the window away from the
+//! nadir; its six cells were refused as free cells unlike the floor, and are now turned).
 //! So the tops left are then sought again, each cell judged in the window that
 //! [`super::looks`] judges ([`Window::Far`], away from the nadir, where no neighbour's top
 //! leans), and such a top must stand on [`FAR_CELLS`] cells at least (since issue #29's
