@@ -2,7 +2,7 @@
 goals) come to each other in the image: what a reader could see at best, from the scene's
 geometry alone.
 
-    target/venv-render/bin/python scripts/render-aerial/visibility.py SCENE_DIR [...] [--scores FILE] [--tsv OUT]
+    target/venv-render/bin/python scripts/render-aerial/visibility.py SCENE_DIR [...] [--scores SCORES] [--tsv OUT]
 
 For every scene rendered by render.py (families in FAMILIES, default arguments), the view is
 drawn again with `render.draw_view` (the same random draws, so the same layout, light and
@@ -18,10 +18,10 @@ rendering:
   goals 0.2 cell apart on the floor, but a tilted camera leans robots' bodies toward each
   other, and at 8 px a cell 0.2 cell is under 2 px, which blur and JPEG close.
 
-With `--scores FILE` (the lines `NAME VERDICT ...` that score.py prints, or a census file of
-`NAME<TAB>reason | reason`), the views are counted by verdict against the geometry: how many
-refused views have a mark mostly hidden or marks within a pixel or two, so that their
-refusal is forced by the scene rather than by the reader.
+With `--scores FILE` (score.py's output for the same folders: it names every view not read
+exactly, with its verdict), the views are counted by verdict against the geometry: how many
+refused views have a mark mostly hidden or marks within 2 px, so that their refusal is forced
+by the scene rather than by the reader.
 
 Scenes rendered by render_blender.py (families G-J) are left out: their geometry is not drawn
 again here.
@@ -314,15 +314,13 @@ def measure(folder, name):
 
 
 def scores(path):
-    """Verdicts by view: score.py's `NAME VERDICT ...` lines, or a census file's
-    `NAME<TAB>reasons`."""
+    """Verdicts by view from score.py's output (`NAME.json: VERDICT: why` for each view not
+    read exactly; the views it does not name were read exactly)."""
     out = {}
     for line in open(path):
-        if "\t" in line:
-            n, reasons = line.rstrip("\n").split("\t", 1)
-            out[n] = ("refused", reasons)
-        elif line.split() and len(line.split()[0]) == 5:
-            out[line.split()[0]] = (line.split()[1], " ".join(line.split()[2:]))
+        name, sep, rest = line.partition(".json: ")
+        if sep and " after " not in rest.split(":")[0]:
+            out[name.strip()] = rest.split(":")[0].strip()
     return out
 
 
@@ -368,8 +366,7 @@ def main():
         verdicts = scores(opts["--scores"])
         table = Counter()
         for r in rows:
-            if r["name"] in verdicts:
-                table[(verdicts[r["name"]][0], bool(forced(r)))] += 1
+            table[(verdicts.get(r["name"], "exact"), bool(forced(r)))] += 1
         print("by verdict (the scene shows every mark, none within 2 px / it does not):")
         for v in sorted({k[0] for k in table}):
             print(f"  {v:8s} {table[(v, False)]:5d} / {table[(v, True)]:5d}")
