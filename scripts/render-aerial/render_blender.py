@@ -101,6 +101,25 @@ FAMILIES = {
         robot_rgb=((0.5, 0.95), (0.0, 0.1), (0.0, 0.12)), goal_rgb=((0.0, 0.18), (0.32, 0.72), (0.0, 0.3)),
         sun_elevation=(30.0, 75.0), sun_angle=(0.8, 10.0), exposure=(0.15, 0.31),
         noise_max=0.028, blur_max=1.2, jpeg_quality=(58, 96)),
+    # 3 (a digit, as render.py's held-out families after z): the fifth Blender family, held out
+    # after issue #29's thirty-first round (rendered once its reader was finished, scored once):
+    # other floors and shelf colours (a pale lilac and an off-white near the pale floors), other
+    # sizes, reds and greens, sun, exposure, noise, blur and JPEG quality. Only keys G-J know.
+    "3": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Dark teal-grey, pale warm grey, mid brown, light green-grey, mid grey.
+        floors=((0.25, 0.32, 0.34), (0.72, 0.70, 0.66), (0.46, 0.36, 0.28), (0.64, 0.68, 0.60),
+                (0.50, 0.50, 0.52)),
+        # Brick red, pale lilac, dark olive, sky blue, off-white, dark grey.
+        shelf_colours=((0.55, 0.18, 0.12), (0.70, 0.64, 0.76), (0.28, 0.30, 0.14), (0.35, 0.60, 0.85),
+                       (0.86, 0.85, 0.80), (0.20, 0.20, 0.22)),
+        goods_colour=(0.60, 0.46, 0.30),
+        shelf_height=(0.3, 1.9), shelf_inset=(0.02, 0.08), camera_ratio=(1.5, 5.0), tilt_max=30.0,
+        robot_size=(0.4, 0.8), big_robot_size=(1.2, 1.6), goal_size=(0.4, 0.8),
+        robot_rgb=((0.5, 0.9), (0.0, 0.12), (0.0, 0.12)), goal_rgb=((0.0, 0.2), (0.35, 0.7), (0.02, 0.25)),
+        sun_elevation=(30.0, 80.0), sun_angle=(1.0, 9.0), exposure=(0.15, 0.30),
+        noise_max=0.025, blur_max=1.1, jpeg_quality=(60, 96)),
 }
 
 

@@ -130,6 +130,30 @@ fn a_view_with_goals_too_faint_is_refused() {
     assert!(faint_goals || half_covered, "{e}");
 }
 
+/// An off-white top on a pale warm-grey floor under a high sun, 1.05–1.08 times as bright as
+/// the floor around it, on a floor whose cells differ by little more than a percent: refused
+/// as cells unlike the floor (`looks::ring_limit`, issue #29's thirty-first round). 30016, of
+/// the held-out Blender family 3, was read with the shelf's four cells free: the one view of
+/// all the rendered families read wrongly.
+#[test]
+fn a_pale_top_a_little_brighter_than_an_even_floor_is_refused() {
+    let (image, truth) = scene("30016");
+    let e = read_aerial(&image, "30016", &config(&truth, true))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("4 cells side by side from cell (8, 2)")
+            && e.contains("do not look like the floor"),
+        "{e}"
+    );
+    let blocked = truth["blocked"].as_array().unwrap();
+    for y in 2..6u64 {
+        assert!(blocked
+            .iter()
+            .any(|c| c[0].as_u64() == Some(8) && c[1].as_u64() == Some(y)));
+    }
+}
+
 /// The far cell of a run of blocked cells, with a free cell beyond it, whose cover a top leaning
 /// from the run's other cells could make whole at the lean measured beside the run, is refused
 /// (`cover::lean_doubt` with `Beyond::Free`; the held-out family N had such a free cell read as

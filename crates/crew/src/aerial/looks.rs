@@ -21,8 +21,9 @@
 //! A pale shelf's top of nearly the floor's colour may pass these limits cell by cell (uneven
 //! light makes floor brighter than such a top), but it differs from the floor beside it over
 //! its whole extent: [`unlike_ring`] refuses three or more lit free cells side by side each
-//! brighter ([`RING`]) or more saturated ([`RING_TINT`]) than the lit free cells around them,
-//! or both at once by less ([`RING_BOTH`]).
+//! brighter ([`RING`], or less on an even floor: [`ring_limit`]) or more saturated
+//! ([`RING_TINT`]) than the lit free cells around them, or both at once by less
+//! ([`RING_BOTH`]).
 
 use super::blobs;
 use super::colour::{Class, Classifier};
@@ -113,6 +114,20 @@ pub const RING_TINT: f64 = 0.075;
 /// views, each refused for other reasons, and none in a view read exactly; at 1.07 or 0.025
 /// instead, in O0006, read exactly.
 pub const RING_BOTH: (f64, f64) = (1.08, 0.03);
+/// A view's free floor sets a lower limit than [`RING`] where its cells differ little from
+/// each other: this many times the spread of its cells' ratios to their rings (the 90th
+/// percentile less the median, [`ring_limit`]) above 1, ...
+pub const RING_SPREAD: f64 = 5.0;
+/// ... and at least this. On an even floor an off-white top on pale warm grey, 1.05–1.08
+/// times its ring, stands out of cells within 1.3 % of theirs (held-out Blender family 3,
+/// 30016: a shelf of four cells read as free floor, the view read wrongly); on families A–Z,
+/// a–z and 0–3 this limit refuses one view read exactly (G0018: two runs of free cells
+/// 1.06–1.11 times their rings under ceiling lights) and no other (at 4 times the spread,
+/// O0034 too: free cells between two pale shelves, 1.14–1.19 against a limit of 1.136).
+/// Since issue #29's thirty-first round.
+pub const RING_LEAST: f64 = 1.04;
+/// The fewest cells with a ratio that tell the floor's spread; with fewer, [`RING`] alone.
+pub const RING_SAMPLE: usize = 12;
 /// The fewest lit free neighbours (of the eight) a cell needs to be compared with them.
 pub const RING_MIN: usize = 3;
 /// The fewest cells side by side, each brighter than [`RING`] times its ring, that are refused.
@@ -126,6 +141,30 @@ pub struct Region {
     pub cells: Vec<usize>,
     /// The smallest of its cells' values (brightness ratio or saturation above the ring).
     pub least: f64,
+    /// The limit each of its cells' values is over.
+    pub limit: f64,
+}
+
+/// The limit over which lit free cells are brighter than the floor around them
+/// ([`unlike_ring`]), from their `ratios` ([`ring_ratios`]): [`RING_SPREAD`] times the spread
+/// of the ratios above 1, within [`RING_LEAST`] and [`RING`]; [`RING`] with fewer than
+/// [`RING_SAMPLE`] ratios.
+pub fn ring_limit(ratios: &[Option<f64>]) -> f64 {
+    let mut values: Vec<f64> = ratios.iter().flatten().copied().collect();
+    if values.len() < RING_SAMPLE {
+        return RING;
+    }
+    values.sort_by(f64::total_cmp);
+    let median = values[values.len() / 2];
+    let high = values[9 * (values.len() - 1) / 10];
+    let limit = 1.0 + RING_SPREAD * (high - median);
+    // At the cap (within rounding), RING itself: the ratios are ratios of medians of whole
+    // pixel values, and a spread of exactly (RING - 1) / RING_SPREAD must not lower it.
+    if limit >= RING - 1e-9 {
+        RING
+    } else {
+        limit.max(RING_LEAST)
+    }
 }
 
 /// Each lit free cell's brightness ([`LIT`] or brighter) relative to its ring: the lower third
@@ -214,7 +253,11 @@ pub fn odd_region(values: &[Option<f64>], (gw, gh): (u32, u32), limit: f64) -> O
         }
         if cells.len() >= RING_CELLS && best.as_ref().is_none_or(|b| cells.len() > b.cells.len()) {
             cells.sort_unstable();
-            best = Some(Region { cells, least });
+            best = Some(Region {
+                cells,
+                least,
+                limit,
+            });
         }
     }
     best
@@ -272,7 +315,7 @@ pub fn unlike_ring(
     };
     let ratios = unsettled(ring_ratios(bright, (gw, gh)));
     let tints = unsettled(ring_tints(bright, saturation, (gw, gh)));
-    if let Some(r) = odd_region(&ratios, (gw, gh), RING) {
+    if let Some(r) = odd_region(&ratios, (gw, gh), ring_limit(&ratios)) {
         return Some((Unlike::Brighter, r));
     }
     if let Some(r) = odd_region(&tints, (gw, gh), RING_TINT) {
@@ -879,6 +922,56 @@ mod tests {
         // No panic on an empty or a short list.
         assert_eq!(unlike_ring(&[], &[], (gw, gh), &[]), None);
         assert_eq!(unlike_ring(&[Some(2.0); 3], &[0.5; 2], (gw, gh), &[]), None);
+    }
+
+    #[test]
+    fn on_an_even_floor_cells_a_little_brighter_than_the_floor_around_them_are_found() {
+        // 8 x 5 cells of floor within half a percent of each other (a ripple of 0.997 to 1.005),
+        // and a pale top over a run of four, 1.06 times the floor.
+        let (gw, gh) = (8u32, 5u32);
+        let grey = [0.02; 40];
+        let even: Vec<Option<f64>> = (0..40)
+            .map(|i| Some(1.0 + 0.004 * ((i * 7) % 3) as f64 - 0.003))
+            .collect();
+        assert_eq!(unlike_ring(&even, &grey, (gw, gh), &[]), None);
+        let mut top = even.clone();
+        for i in [10, 11, 12, 13] {
+            top[i] = Some(1.06);
+        }
+        let (kind, r) = unlike_ring(&top, &grey, (gw, gh), &[]).unwrap();
+        assert_eq!(kind, Unlike::Brighter);
+        assert_eq!(r.cells, vec![10, 11, 12, 13]);
+        assert!((r.limit - RING_LEAST).abs() < 1e-9, "{}", r.limit);
+        // On a blotchy floor (cells up to 7 % apart, unevenly) the same top is floor as far as
+        // this tells: its cells differ from their rings no more than the floor's do.
+        let blotchy: Vec<Option<f64>> = (0..40)
+            .map(|i| Some(1.0 + 0.012 * ((i * 5) % 7) as f64))
+            .collect();
+        assert_eq!(unlike_ring(&blotchy, &grey, (gw, gh), &[]), None);
+        let mut top = blotchy.clone();
+        for i in [10, 11, 12, 13] {
+            top[i] = Some(top[i].unwrap() * 1.06);
+        }
+        assert_eq!(unlike_ring(&top, &grey, (gw, gh), &[]), None);
+    }
+
+    #[test]
+    fn the_ring_limit_follows_the_floor_s_spread_within_its_bounds() {
+        // Too few cells to tell a spread: RING.
+        assert_eq!(ring_limit(&[Some(1.0); RING_SAMPLE - 1]), RING);
+        // An even floor: RING_LEAST.
+        assert_eq!(ring_limit(&[Some(1.0); 30]), RING_LEAST);
+        // A spread of 0.012 (the 90th percentile over the median): 1 + RING_SPREAD × 0.012.
+        let mut spread: Vec<Option<f64>> = vec![Some(1.0); 27];
+        spread.extend([Some(1.012); 3]);
+        spread.push(Some(1.3));
+        assert!((ring_limit(&spread) - (1.0 + RING_SPREAD * 0.012)).abs() < 1e-9);
+        // A wide spread: RING, and so at the cap exactly (no rounding below it).
+        let mut wide: Vec<Option<f64>> = vec![Some(1.0); 27];
+        wide.extend([Some(1.0 + (RING - 1.0) / RING_SPREAD); 4]);
+        assert_eq!(ring_limit(&wide), RING);
+        // Cells without a ratio do not count.
+        assert_eq!(ring_limit(&[None; 40]), RING);
     }
 
     #[test]

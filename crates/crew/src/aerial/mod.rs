@@ -1130,9 +1130,9 @@ fn read_inner(
             let (x, y) = ((first % gw as usize) as u32, (first / gw as usize) as u32);
             let why = match kind {
                 looks::Unlike::Brighter => format!(
-                    "each at least {:.2} times as bright as the lit free floor around it (floor changes at most {:.2} times from cell to cell over {} cells side by side)",
+                    "each at least {:.2} times as bright as the lit free floor around it (this floor's cells change at most {:.2} times from cell to cell over {} cells side by side)",
                     r.least,
-                    looks::RING,
+                    r.limit,
                     looks::RING_CELLS
                 ),
                 looks::Unlike::Tinted => format!(
