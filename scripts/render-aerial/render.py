@@ -616,6 +616,18 @@ FAMILIES = {
                              (0.35, 0.20, 0.50)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.04, warm=0.3, camera_height=(50, 150),
               sun_elevation=(30, 75), sun_power=(2.3, 3.7)),
+    # 4: held out after issue #29's thirty-first round's last rule (a pale top on an even
+    # floor, looks::ring_limit). Puck, box-and-dome and cylinder robots, diamond, ellipse and
+    # ring goals, light sand, mid blue-grey and dark brown-grey floors tiled every third of a
+    # cell, off-white, teal, salmon-pink, dark navy and olive-green shelves from 0.3 to 2.0
+    # high inset 0.05 cell, a sun 25-80 degrees up of strength 2.2-3.8, and a camera from 45 to
+    # 160 cells per 24 high.
+    "4": dict(robot_shapes=("puck", "boxdome", "cylinder"), goal_shapes=("diamond", "ellipse", "ring"),
+              floors=((0.78, 0.72, 0.60), (0.44, 0.48, 0.55), (0.30, 0.27, 0.25)),
+              shelf_colours=((0.90, 0.88, 0.84), (0.15, 0.45, 0.45), (0.85, 0.55, 0.50), (0.10, 0.12, 0.30),
+                             (0.40, 0.45, 0.20)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
+              sun_elevation=(25, 80), sun_power=(2.2, 3.8)),
 }
 
 

@@ -120,6 +120,25 @@ FAMILIES = {
         robot_rgb=((0.5, 0.9), (0.0, 0.12), (0.0, 0.12)), goal_rgb=((0.0, 0.2), (0.35, 0.7), (0.02, 0.25)),
         sun_elevation=(30.0, 80.0), sun_angle=(1.0, 9.0), exposure=(0.15, 0.30),
         noise_max=0.025, blur_max=1.1, jpeg_quality=(60, 96)),
+    # 5: the sixth Blender family, held out after issue #29's thirty-first round's last rule
+    # (rendered once that reader was finished, scored once): other floors and shelf colours (a
+    # cream near the tan floor, a pale blue and a steel grey near the concrete and slate), other
+    # sizes, reds and greens, sun, exposure, noise, blur and JPEG quality. Only keys G-J know.
+    "5": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Light concrete, warm tan, dark slate, pale sage, mid grey-brown.
+        floors=((0.70, 0.70, 0.68), (0.66, 0.58, 0.46), (0.22, 0.26, 0.30), (0.62, 0.66, 0.58),
+                (0.48, 0.44, 0.40)),
+        # Cream, steel grey, dark green, orange, pale blue, plum.
+        shelf_colours=((0.88, 0.84, 0.72), (0.45, 0.48, 0.52), (0.10, 0.30, 0.18), (0.90, 0.45, 0.10),
+                       (0.60, 0.70, 0.82), (0.40, 0.18, 0.35)),
+        goods_colour=(0.56, 0.44, 0.30),
+        shelf_height=(0.3, 1.8), shelf_inset=(0.02, 0.08), camera_ratio=(1.6, 5.0), tilt_max=32.0,
+        robot_size=(0.38, 0.82), big_robot_size=(1.2, 1.6), goal_size=(0.38, 0.82),
+        robot_rgb=((0.5, 0.92), (0.0, 0.12), (0.0, 0.14)), goal_rgb=((0.0, 0.2), (0.35, 0.72), (0.0, 0.25)),
+        sun_elevation=(30.0, 82.0), sun_angle=(1.0, 9.0), exposure=(0.15, 0.30),
+        noise_max=0.026, blur_max=1.1, jpeg_quality=(60, 96)),
 }
 
 
