@@ -155,17 +155,17 @@ fn highlighted(
     {
         return None;
     }
-    let (mut u0, mut v0, mut u1, mut v1) = (
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
+    let (u0, v0, u1, v1) = blobs::on_floor(&whole, image_to_floor).into_iter().fold(
+        (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(u0, v0, u1, v1), (u, v)| (u0.min(u), v0.min(v), u1.max(u), v1.max(v)),
     );
-    for &(x, y) in &whole.pixels {
-        let (u, v) = image_to_floor.apply((f64::from(x) + 0.5, f64::from(y) + 0.5))?;
-        (u0, v0, u1, v1) = (u0.min(u), v0.min(v), u1.max(u), v1.max(v));
-    }
-    (u1 - u0 < SMALLER_THAN_A_CELL
+    (u0.is_finite()
+        && u1 - u0 < SMALLER_THAN_A_CELL
         && v1 - v0 < SMALLER_THAN_A_CELL
         && brightness_of(&whole, img, classifier) >= HIGHLIGHT * bright)
         .then_some(whole)
