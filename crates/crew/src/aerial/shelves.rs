@@ -561,20 +561,37 @@ pub fn absorb(
     // a middle does not depend on what asked for it first).
     let steps = (SHIFT_STEPS * SHIFT_STEPS) as usize;
     type Known = std::collections::BTreeMap<usize, Middle>;
+    // `fill` is `filled_shifted` (two cells side by side) or `filled_middles` (one or more).
+    type Fill = fn(
+        &[usize],
+        &[u8],
+        usize,
+        (&Homography, &Homography),
+        (u32, u32),
+        (&mut Known, Shift, f64, bool),
+    ) -> Vec<usize>;
+    let fills_with = |fill: Fill,
+                      known: &mut [Known],
+                      b: &[usize],
+                      classes: &[u8],
+                      from_aligned: bool,
+                      share: f64| {
+        (usize::from(!from_aligned)..steps).find_map(|k| {
+            let shift = shift_of(k);
+            let cells = fill(
+                b,
+                classes,
+                width,
+                maps,
+                floor,
+                (&mut known[k], shift, share, false),
+            );
+            (!cells.is_empty()).then_some((cells, shift))
+        })
+    };
     let fills =
         |known: &mut [Known], b: &[usize], classes: &[u8], from_aligned: bool, share: f64| {
-            (usize::from(!from_aligned)..steps).find_map(|k| {
-                let shift = shift_of(k);
-                let cells = filled_shifted(
-                    b,
-                    classes,
-                    width,
-                    maps,
-                    floor,
-                    (&mut known[k], shift, share, false),
-                );
-                (!cells.is_empty()).then_some((cells, shift))
-            })
+            fills_with(filled_shifted, known, b, classes, from_aligned, share)
         };
     // Each blob alone, on all cores (in the order found).
     let firm: Vec<Option<(Vec<usize>, Shift)>> = {
@@ -593,12 +610,7 @@ pub fn absorb(
                         if !mostly_unsure(b, classes) || alike_abound(b.len()) {
                             return None;
                         }
-                        (0..steps).find_map(|k| {
-                            let known = if k == 0 { &mut *known } else { &mut shifted[k] };
-                            let share = (known, shift_of(k), FILLED, false);
-                            let cells = filled_middles(b, classes, width, maps, floor, share);
-                            (!cells.is_empty()).then(|| (cells, shift_of(k)))
-                        })
+                        fills_with(filled_middles, shifted, b, classes, true, FILLED)
                     })
                 },
             )
