@@ -310,7 +310,7 @@ def measure(folder, name):
     return dict(name=name[:-5], robots=len(robots), cell_px=view["cell_px"], tilt=view["cam"]["tilt"],
                 robot_vis=min(rvis, default=1.0), goal_vis=min(gvis, default=1.0),
                 robots_hidden=sum(v < HIDDEN for v in rvis), goals_hidden=sum(v < HIDDEN for v in gvis),
-                robot_gap=rgap, goal_gap=ggap)
+                robot_gap=rgap, goal_gap=ggap, jpeg=int(truth["image"].endswith(".jpg")))
 
 
 def scores(path):
@@ -370,6 +370,15 @@ def main():
         print("by verdict (the scene shows every mark, none within 2 px / it does not):")
         for v in sorted({k[0] for k in table}):
             print(f"  {v:8s} {table[(v, False)]:5d} / {table[(v, True)]:5d}")
+        # Read exactly, by pixels per cell and camera (the README's "what to expect").
+        exact = lambda rs: f"{sum(verdicts.get(r['name'], 'exact') == 'exact' for r in rs)} of {len(rs)}"
+        print("read exactly, by pixels per cell: straight down | tilted | all | all showing every mark")
+        for lo, hi in ((8, 12), (12, 16), (16, 24), (24, 40)):
+            rs = [r for r in rows if lo <= r["cell_px"] < hi or (hi == 40 and r["cell_px"] >= 40)]
+            print(f"  {lo}-{hi}: {exact([r for r in rs if r['tilt'] == 0])} | "
+                  f"{exact([r for r in rs if r['tilt'] != 0])} | {exact(rs)} | "
+                  f"{exact([r for r in rs if not forced(r)])}")
+        print(f"  PNG: {exact([r for r in rows if not r['jpeg']])}, JPEG: {exact([r for r in rows if r['jpeg']])}")
     return 0
 
 
