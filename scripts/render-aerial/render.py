@@ -628,6 +628,18 @@ FAMILIES = {
                              (0.40, 0.45, 0.20)),
               shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
               sun_elevation=(25, 80), sun_power=(2.2, 3.8)),
+    # 8: held out after issue #29's thirty-second round (painted lines measured by colour,
+    # faint lines against the cells' middles). Dome, turned-box and puck robots, square, cross
+    # and ellipse goals, mid warm grey, dark blue-grey and pale warm white floors tiled every
+    # quarter cell, pale grey-green, plum, mid blue, straw and charcoal shelves from 0.3 to 2.0
+    # high inset 0.05 cell, a sun 25-80 degrees up of strength 2.3-3.8, and a camera from 45 to
+    # 160 cells per 24 high.
+    "8": dict(robot_shapes=("dome", "rotbox", "puck"), goal_shapes=("square", "cross", "ellipse"),
+              floors=((0.60, 0.58, 0.55), (0.36, 0.40, 0.46), (0.80, 0.78, 0.74)),
+              shelf_colours=((0.70, 0.72, 0.70), (0.55, 0.15, 0.35), (0.20, 0.30, 0.60), (0.85, 0.75, 0.40),
+                             (0.25, 0.25, 0.25)),
+              shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
+              sun_elevation=(25, 80), sun_power=(2.3, 3.8)),
 }
 
 

@@ -159,6 +159,26 @@ FAMILIES = {
         robot_rgb=((0.5, 0.92), (0.0, 0.12), (0.0, 0.14)), goal_rgb=((0.0, 0.2), (0.35, 0.72), (0.0, 0.25)),
         sun_elevation=(50.0, 88.0), sun_angle=(1.0, 9.0), exposure=(0.15, 0.30),
         noise_max=0.026, blur_max=1.1, jpeg_quality=(60, 96)),
+    # 7: the eighth Blender family, held out after issue #29's thirty-second round (painted
+    # lines measured by colour, faint lines against the cells' middles; rendered once that
+    # reader was finished, scored once): other floors and shelf colours (a light warm grey and a
+    # pale grey-blue near two of the floors), other sizes, reds and greens, sun, exposure,
+    # noise, blur and JPEG quality. Only keys G-J know.
+    "7": dict(
+        robot_shapes=("hex", "capsule", "frustum", "roundbox", "lidar"),
+        goal_shapes=("ring", "star", "xcross", "target", "disc"),
+        # Mid warm grey, pale blue-grey, dark brown, light sage, sandy beige.
+        floors=((0.55, 0.52, 0.48), (0.70, 0.74, 0.78), (0.28, 0.22, 0.18), (0.66, 0.70, 0.62),
+                (0.78, 0.72, 0.60)),
+        # Teal, light warm grey, mustard, charcoal, maroon, pale grey-blue.
+        shelf_colours=((0.10, 0.45, 0.45), (0.72, 0.70, 0.66), (0.80, 0.65, 0.15), (0.15, 0.15, 0.17),
+                       (0.45, 0.10, 0.12), (0.66, 0.70, 0.76)),
+        goods_colour=(0.54, 0.42, 0.28),
+        shelf_height=(0.3, 1.8), shelf_inset=(0.02, 0.08), camera_ratio=(1.6, 5.0), tilt_max=32.0,
+        robot_size=(0.4, 0.8), big_robot_size=(1.2, 1.6), goal_size=(0.4, 0.8),
+        robot_rgb=((0.5, 0.92), (0.0, 0.12), (0.0, 0.14)), goal_rgb=((0.0, 0.2), (0.35, 0.72), (0.0, 0.25)),
+        sun_elevation=(35.0, 85.0), sun_angle=(1.0, 9.0), exposure=(0.15, 0.30),
+        noise_max=0.026, blur_max=1.1, jpeg_quality=(60, 96)),
 }
 
 

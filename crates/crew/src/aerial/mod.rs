@@ -1405,7 +1405,7 @@ fn read_inner(
                     source,
                     m.at,
                     format!(
-                        "the painted line between cells ({x}, {y}) and ({nx}, {ny}) does not show (contrast {:.2} against the floor's {:.2}): something of the floor's colour may stand over it",
+                        "the painted line between cells ({x}, {y}) and ({nx}, {ny}) does not show (contrast {:+.2} against the floor's {:+.2}): something of the floor's colour may stand over it",
                         m.contrast.0, m.contrast.1
                     ),
                 )
