@@ -640,6 +640,18 @@ FAMILIES = {
                              (0.25, 0.25, 0.25)),
               shelf_height=(0.3, 2.0), tiles=0.25, shelf_inset=0.05, warm=0.3, camera_height=(45, 160),
               sun_elevation=(25, 80), sun_power=(2.3, 3.8)),
+    # 9: held out after issue #29's thirty-second round's last rule (each border judged along
+    # the lines' colour). Cylinder, box-and-dome and turned-box robots, disc, diamond and cross
+    # goals, dark charcoal, light tan and mid green-grey floors tiled every third of a cell,
+    # light grey, orange, deep blue, dusty pink and dark olive shelves from 0.3 to 2.0 high
+    # inset 0.06 cell, a sun 25-80 degrees up of strength 2.2-3.8, and a camera from 45 to 160
+    # cells per 24 high.
+    "9": dict(robot_shapes=("cylinder", "boxdome", "rotbox"), goal_shapes=("disc", "diamond", "cross"),
+              floors=((0.22, 0.22, 0.24), (0.74, 0.68, 0.56), (0.46, 0.52, 0.46)),
+              shelf_colours=((0.78, 0.78, 0.76), (0.85, 0.45, 0.12), (0.12, 0.18, 0.45), (0.70, 0.50, 0.52),
+                             (0.30, 0.32, 0.16)),
+              shelf_height=(0.3, 2.0), tiles=1 / 3, shelf_inset=0.06, warm=0.3, camera_height=(45, 160),
+              sun_elevation=(25, 80), sun_power=(2.2, 3.8)),
 }
 
 
