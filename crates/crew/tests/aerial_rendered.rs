@@ -115,6 +115,21 @@ fn painted_lines_give_the_grid_of_a_rendered_view() {
     assert_exact("A0901", &r, &truth);
 }
 
+/// Cells are square: K0033's white lines across its 22 rows showed every 11 cells in the
+/// median profile (shelves along the aisles hid the others from it), and the grid 12 × 2 was
+/// refused as not square. The rows are now sought at the columns' cell size, where the lines
+/// show, and the view reads exactly without --grid (issue #29's thirty-second round).
+#[test]
+fn an_axis_whose_lines_show_every_few_cells_takes_the_square_cells_of_the_other() {
+    let (image, truth) = scene("K0033");
+    assert!(truth["straight_down"].as_bool().unwrap() && truth["params"]["lines"].is_object());
+    let r = read_aerial(&image, "K0033", &config(&truth, false))
+        .unwrap_or_else(|e| panic!("K0033: {e}"));
+    assert_eq!(r.grid_source, GridSource::Lines);
+    assert_eq!(r.grid.width(), 12);
+    assert_exact("K0033", &r, &truth);
+}
+
 /// Small goals washed out by JPEG at 10 px per cell: fewer goals than robots are seen, and
 /// the view is refused rather than read wrongly. Since the pale-obstacle check (issue #29,
 /// ninth round) the refusal comes earlier, at a free cell whose window reads a third covered

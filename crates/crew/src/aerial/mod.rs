@@ -96,6 +96,8 @@ pub const MAX_PIXELS: u64 = 40_000_000;
 pub const MAX_GRID_CELLS: u64 = 1 << 20;
 /// The fewest pixels a cell may be wide.
 pub const MIN_CELL_PX: f64 = 3.0;
+/// A straight-down view's cells are square: their width and height within this ratio.
+pub const SQUARE: f64 = 1.1;
 /// A robot's or goal's centre closer than this (in cells) to a cell border is refused.
 pub const BORDER_MARGIN: f64 = 0.1;
 /// A cell whose window is covered by an obstacle at a share in this range is refused, unless
@@ -505,7 +507,7 @@ fn grid_and_floor(img: &RgbImage, config: &AerialConfig, source: &str) -> Result
     }
     if config.corners.is_none() {
         let (cw, ch) = (iw / f64::from(gw), ih / f64::from(gh));
-        if cw < MIN_CELL_PX || ch < MIN_CELL_PX || (cw / ch - 1.0).abs() > 0.1 {
+        if cw < MIN_CELL_PX || ch < MIN_CELL_PX || (cw / ch - 1.0).abs() > SQUARE - 1.0 {
             return Err(whole(
                 source,
                 format!(
@@ -573,8 +575,27 @@ fn find_grid_lines(img: &RgbImage, corners: &[Point; 4]) -> Option<(u32, u32)> {
     };
     let nu = (across.round() as usize).clamp(1, 4096);
     let nv = (down.round() as usize).clamp(1, 4096);
-    let w = lines::cells_along(&profile(nu, nv.min(301), true))?.0;
-    let h = lines::cells_along(&profile(nv, nu.min(301), false))?.0;
+    let (pu, pv) = (
+        profile(nu, nv.min(301), true),
+        profile(nv, nu.min(301), false),
+    );
+    let (w, _, dark_u) = lines::cells_along(&pu)?;
+    let (h, _, dark_v) = lines::cells_along(&pv)?;
+    // Cells are square: an axis whose cells come out a whole number of times the other's
+    // (its lines found only every few cells) takes the other's size when its own lines show
+    // there.
+    let (cell_u, cell_v) = (across / f64::from(w), down / f64::from(h));
+    if cell_u > SQUARE * cell_v {
+        let n = (across / cell_v).round() as u32;
+        if lines::shows(&pu, w, n, dark_u) {
+            return Some((n, h));
+        }
+    } else if cell_v > SQUARE * cell_u {
+        let n = (down / cell_u).round() as u32;
+        if lines::shows(&pv, h, n, dark_v) {
+            return Some((w, n));
+        }
+    }
     Some((w, h))
 }
 
