@@ -262,8 +262,9 @@ fn lines_contrast(borders: &[(Border, Contrast)], middles: Option<f64>) -> Optio
 
 /// The colour of the line's band on border `((x, y), vertical)` (the cell's right border when
 /// `vertical`, else its lower one) less the floor's on each side of it, over that floor's
-/// brightness (after white balance), or `None` when too few floor pixels show; with `shift` (in cells, across the border) the same measure taken
-/// elsewhere (-0.5: across the middle of the cell before it).
+/// brightness (after white balance), or `None` when too few floor pixels show; with `shift`
+/// (in cells, across the border) the same measure taken elsewhere (-0.5: across the middle of
+/// the cell before it).
 fn border_difference(
     img: &RgbImage,
     classes: &[u8],
