@@ -15,6 +15,8 @@ pub const MIN_SCORE: f64 = 5.0;
 const NEAR_BEST: f64 = 0.7;
 /// The fewest samples per cell in the profile.
 const MIN_SAMPLES_PER_CELL: usize = 4;
+/// The most cells sought along an axis.
+const MOST_CELLS: u32 = 1024;
 
 fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
@@ -73,7 +75,7 @@ fn score(detrended: &[f64], noise: f64, cells: usize, dark: bool) -> f64 {
 /// are dark; `None` when it shows no lines.
 pub fn cells_along(profile: &[f64]) -> Option<(u32, f64, bool)> {
     let (detrended, noise) = detrend(profile)?;
-    let most = (detrended.len() / MIN_SAMPLES_PER_CELL).min(1024);
+    let most = (detrended.len() / MIN_SAMPLES_PER_CELL).min(MOST_CELLS as usize);
     let best: Vec<(u32, f64, bool)> = (2..=most)
         .flat_map(|cells| {
             [true, false].map(|dark| (cells as u32, score(&detrended, noise, cells, dark), dark))
@@ -94,7 +96,7 @@ pub fn cells_along(profile: &[f64]) -> Option<(u32, f64, bool)> {
 /// axis whose lines were found only every few cells (a shelf in each aisle hides more than a
 /// quarter of the others), when the other axis's cells, square, say how many there are.
 pub fn shows(profile: &[f64], found: u32, cells: u32, dark: bool) -> bool {
-    if found == 0 || cells <= found || cells % found != 0 {
+    if found == 0 || cells <= found || cells % found != 0 || cells > MOST_CELLS {
         return false;
     }
     detrend(profile).is_some_and(|(detrended, noise)| {
@@ -171,7 +173,9 @@ mod tests {
         // Square cells from the other axis say 24: the faint lines show there, and at 12.
         assert!(shows(&faint, 6, 24, true));
         assert!(shows(&faint, 6, 12, true));
-        // Not a multiple of 6, not the lines' kind, or not more cells: no.
+        // Not a multiple of 6 (8 cells' lines, every third of 24, show too), not the lines'
+        // kind, or not more cells: no.
+        assert!(!shows(&faint, 6, 8, true));
         assert!(!shows(&faint, 6, 20, true));
         assert!(!shows(&faint, 6, 24, false));
         assert!(!shows(&faint, 6, 6, true));

@@ -489,7 +489,7 @@ fn grid_and_floor(img: &RgbImage, config: &AerialConfig, source: &str) -> Result
             ((fit(iw, "width")?, fit(ih, "height")?), GridSource::CellPx)
         }
         (None, None) => {
-            let found = find_grid_lines(img, &corners).ok_or_else(|| {
+            let found = find_grid_lines(img, &corners, config.corners.is_none()).ok_or_else(|| {
                 whole(
                     source,
                     "no grid: give --grid W×H or --cell-px N (no lines painted on the floor were found)",
@@ -537,8 +537,13 @@ fn grid_and_floor(img: &RgbImage, config: &AerialConfig, source: &str) -> Result
     Ok(((gw, gh), corners, from))
 }
 
-/// The grid from painted lines, both ways, or `None`.
-fn find_grid_lines(img: &RgbImage, corners: &[Point; 4]) -> Option<(u32, u32)> {
+/// The grid from painted lines, both ways, or `None`; its cells square when the view is
+/// `straight_down` (no corners given: the floor fills the image).
+fn find_grid_lines(
+    img: &RgbImage,
+    corners: &[Point; 4],
+    straight_down: bool,
+) -> Option<(u32, u32)> {
     // The floor as a unit square.
     let unit = Homography::floor_to_image(1.0, 1.0, *corners)?;
     let side = |a: Point, b: Point| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
@@ -585,6 +590,9 @@ fn find_grid_lines(img: &RgbImage, corners: &[Point; 4]) -> Option<(u32, u32)> {
     // (its lines found only every few cells) takes the other's size when its own lines show
     // there.
     let (cell_u, cell_v) = (across / f64::from(w), down / f64::from(h));
+    if !straight_down {
+        return Some((w, h));
+    }
     if cell_u > SQUARE * cell_v {
         let n = (across / cell_v).round() as u32;
         if lines::shows(&pu, w, n, dark_u) {
