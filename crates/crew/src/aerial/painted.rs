@@ -598,4 +598,22 @@ mod tests {
         assert_eq!(found[0].cells, [(2, 1), (3, 1)]);
         assert!(found[0].contrast.0 < 0.0);
     }
+
+    #[test]
+    fn lines_of_several_colours_are_not_judged() {
+        // Red, green and blue lines in turn, border by border: no one way most of them go.
+        // The channels' medians point to a darker grey, along which each line is a little
+        // brighter, and their median is under 0: no border is refused (every one was, before
+        // such a median was left unjudged).
+        let mixed = |x: u32, y: u32| {
+            let k = (x + 1) / 20 + 3 * ((y + 1) / 20);
+            Some(match k % 3 {
+                0 => [250, 110, 110],
+                1 => [110, 250, 110],
+                _ => [110, 110, 250],
+            })
+        };
+        let (img, to_image) = floor_with(&[], mixed, 0);
+        assert!(run(&img, &to_image).is_empty());
+    }
 }
