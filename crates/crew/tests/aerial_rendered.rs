@@ -161,11 +161,9 @@ fn a_pale_top_a_little_brighter_than_an_even_floor_is_refused() {
             && e.contains("do not look like the floor"),
         "{e}"
     );
-    let blocked = truth["blocked"].as_array().unwrap();
-    for y in 2..6u64 {
-        assert!(blocked
-            .iter()
-            .any(|c| c[0].as_u64() == Some(8) && c[1].as_u64() == Some(y)));
+    let blocked = cells(&truth["blocked"]);
+    for y in 2..6 {
+        assert!(blocked.contains(&(8, y)));
     }
 }
 
@@ -183,13 +181,11 @@ fn faint_lines_hidden_by_a_top_of_the_floor_s_colour_are_refused() {
     use mason_crew::aerial::audit_aerial;
     for (name, (x, y)) in [("60027", (9u32, 7u32)), ("60032", (8, 1))] {
         let (image, truth) = scene(name);
-        let blocked =
-            |(x, y): (u32, u32)| {
-                truth["blocked"].as_array().unwrap().iter().any(|c| {
-                    c[0].as_u64() == Some(u64::from(x)) && c[1].as_u64() == Some(u64::from(y))
-                })
-            };
-        assert!(blocked((x, y)) && blocked((x, y + 1)), "{name}");
+        let blocked = cells(&truth["blocked"]);
+        assert!(
+            blocked.contains(&(x, y)) && blocked.contains(&(x, y + 1)),
+            "{name}"
+        );
         let e = read_aerial(&image, name, &config(&truth, true))
             .unwrap_err()
             .to_string();

@@ -589,10 +589,10 @@ fn find_grid_lines(
     // Cells are square: an axis whose cells come out a whole number of times the other's
     // (its lines found only every few cells) takes the other's size when its own lines show
     // there.
-    let (cell_u, cell_v) = (across / f64::from(w), down / f64::from(h));
     if !straight_down {
         return Some((w, h));
     }
+    let (cell_u, cell_v) = (across / f64::from(w), down / f64::from(h));
     if cell_u > SQUARE * cell_v {
         let n = (across / cell_v).round() as u32;
         if lines::shows(&pu, w, n, dark_u) {

@@ -165,17 +165,16 @@ pub fn missing(
     // Faint lines: the borders under the limit must stand apart from the others, not be the
     // low end of the lines' own spread (a noisy JPEG's). A border at or under 0 shows nothing
     // of the lines' colour, and stands apart by itself.
-    let contrast = |c: &Contrast| c.0.max(c.1);
     let limit = MISSING * median;
     if median < PAINTED {
         let highest = borders
             .iter()
-            .map(|b| contrast(&b.1))
+            .map(|b| larger(b.1))
             .filter(|&c| c < limit)
             .fold(0.0, f64::max);
         let least = borders
             .iter()
-            .map(|b| contrast(&b.1))
+            .map(|b| larger(b.1))
             .filter(|&c| c >= limit)
             .fold(f64::INFINITY, f64::min);
         if least < GAP * highest {
@@ -185,7 +184,7 @@ pub fn missing(
     borders
         .into_iter()
         .filter_map(|(((x, y), vertical), c)| {
-            let c = contrast(&c);
+            let c = larger(c);
             (c < limit).then(|| {
                 let (nx, ny) = if vertical { (x + 1, y) } else { (x, y + 1) };
                 let mid = if vertical {
@@ -241,15 +240,25 @@ fn along_way(d: [f64; 3], way: [f64; 3]) -> f64 {
     d.iter().zip(&way).map(|(a, b)| a * b).sum::<f64>() / 3f64.sqrt()
 }
 
-/// The median of the borders' contrasts (each the larger of its two sides': a shadow's edge
-/// along a border darkens one side only), `None` for fewer than 5 borders.
-fn median_contrast(borders: &[(Border, Contrast)]) -> Option<f64> {
+/// A border's contrast: the larger of its two sides' (a shadow's edge along a border darkens
+/// one side only).
+fn larger((a, b): Contrast) -> f64 {
+    a.max(b)
+}
+
+/// The borders' contrasts ([`larger`]), in increasing order; `None` for fewer than 5 borders.
+fn sorted_contrasts(borders: &[(Border, Contrast)]) -> Option<Vec<f64>> {
     if borders.len() < 5 {
         return None;
     }
-    let mut along: Vec<f64> = borders.iter().map(|b| b.1 .0.max(b.1 .1)).collect();
+    let mut along: Vec<f64> = borders.iter().map(|b| larger(b.1)).collect();
     along.sort_by(f64::total_cmp);
-    Some(along[along.len() / 2])
+    Some(along)
+}
+
+/// The median of the borders' contrasts ([`larger`]), `None` for fewer than 5 borders.
+fn median_contrast(borders: &[(Border, Contrast)]) -> Option<f64> {
+    sorted_contrasts(borders).map(|along| along[along.len() / 2])
 }
 
 /// The borders' median contrast when they show painted lines: a median of at least
@@ -257,9 +266,8 @@ fn median_contrast(borders: &[(Border, Contrast)]) -> Option<f64> {
 /// (`middles`, the same measure where no line runs), and a lower fifth of at least [`STEADY`]
 /// of it; `None` otherwise (or for fewer than 5 borders).
 fn lines_contrast(borders: &[(Border, Contrast)], middles: Option<f64>) -> Option<f64> {
-    let median = median_contrast(borders)?;
-    let mut along: Vec<f64> = borders.iter().map(|b| b.1 .0.max(b.1 .1)).collect();
-    along.sort_by(f64::total_cmp);
+    let along = sorted_contrasts(borders)?;
+    let median = along[along.len() / 2];
     let faint = median >= PAINTED_LEAST && middles.is_some_and(|m| median >= OVER_MIDDLES * m);
     ((median >= PAINTED || faint) && along[along.len() / 5] >= STEADY * median).then_some(median)
 }
