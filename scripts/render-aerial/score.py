@@ -2,10 +2,11 @@
 the scene's ground truth: exact (grid, every blocked cell, robot and goal), refused (exit 2
 with a reason), or WRONG (read, but not as rendered).
 
-    python score.py MASON_BINARY SCENE_DIR [--lines] [--settle]
+    python score.py MASON_BINARY SCENE_DIR [--lines | --no-grid] [--settle]
 
-Straight-down scenes get --grid W×H (or, with --lines, nothing: the grid is found from painted
-lines when there are any); tilted ones get --grid and --corners from the ground truth.
+Straight-down scenes get --grid W×H (or, with --lines, nothing when lines are painted on their
+floor: the grid is found from them; with --no-grid, nothing on any floor: one without lines
+must be refused, "no grid"); tilted ones get --grid and --corners from the ground truth.
 
 With --settle, an operator in the loop: when a view is refused for cells, the cells the refusal
 names are settled as the ground truth has them (--blocked-cells, --free-cells) and the view is
@@ -49,10 +50,17 @@ def read(mason, truth, folder, lines, settle=False):
         settled.update((c, c in blocked) for c in new)
 
 
+def without_grid(truth, lines):
+    """Whether the scene is read without --grid: straight down, with --lines on a floor with
+    painted lines, with --no-grid (`lines` "all") on any floor."""
+    painted = truth["params"].get("lines") or lines == "all"
+    return bool(lines and truth["straight_down"] and painted)
+
+
 def read_once(mason, truth, folder, lines, settled):
     w, h = truth["grid"]
     args = [mason, "crew", "--image", os.path.join(folder, truth["image"]), "--json"]
-    if not (lines and truth["straight_down"] and truth["params"]["lines"]):
+    if not without_grid(truth, lines):
         args += ["--grid", f"{w}x{h}"]
     if not truth["straight_down"]:
         args += ["--corners", " ".join(f"{x},{y}" for x, y in truth["corners"])]
@@ -85,9 +93,11 @@ def read_once(mason, truth, folder, lines, settled):
 
 def main():
     mason, folder = sys.argv[1], sys.argv[2]
-    lines = "--lines" in sys.argv
+    lines = "all" if "--no-grid" in sys.argv else "--lines" in sys.argv
     settle = "--settle" in sys.argv
     tally = Counter()
+    # The scenes read without --grid, by whether lines are painted on their floor.
+    gridless = Counter()
     reasons = Counter()
     settled = Counter()
     for name in sorted(os.listdir(folder)):
@@ -96,6 +106,10 @@ def main():
         truth = json.load(open(os.path.join(folder, name)))
         verdict, why, *cells = read(mason, truth, folder, lines, settle)
         tally[verdict] += 1
+        if without_grid(truth, lines):
+            painted = "with lines" if truth["params"].get("lines") else "without lines"
+            no_grid = " (no grid)" if "no grid" in why else ""
+            gridless[(painted, verdict + no_grid)] += 1
         if cells and cells[0]:
             settled[verdict] += cells[0]
             print(f"{name}: {verdict} after {cells[0]} cells settled")
@@ -105,6 +119,8 @@ def main():
             print(f"{name}: {verdict}: {why}")
     total = sum(tally.values())
     print(f"{total} scenes: " + ", ".join(f"{k} {v} ({100 * v / total:.1f} %)" for k, v in sorted(tally.items())))
+    if gridless:
+        print("read without --grid: " + ", ".join(f"{k[0]}: {k[1]} {v}" for k, v in sorted(gridless.items())))
     if settle:
         print("cells settled: " + ", ".join(f"{k} {v}" for k, v in sorted(settled.items())))
     return 1 if tally["WRONG"] or tally["crash"] else 0
